@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs what bsg needs from Debian's packages: the one list of dependencies.
+# Idempotent and quick when everything is present. As root it runs apt-get;
+# otherwise it prints the exact command to run and exits non-zero.
+set -euo pipefail
+
+packages=(
+  g++ cmake make pkg-config     # toolchain
+  libbullet-dev                 # physics (ships the -float64 libraries we link)
+  libeigen3-dev                 # linear algebra for the MLP and trust-region tools
+  libopenmpi-dev openmpi-bin    # distributed training, mpirun
+  libyaml-cpp-dev               # run and grid configuration files
+  libgtest-dev                  # tests
+  libcli11-dev                  # the bsg command line
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+command="apt-get install -y --no-install-recommends ${missing[*]}"
+if [ "$(id -u)" -ne 0 ]; then
+  echo "install_deps: missing packages: ${missing[*]}" >&2
+  echo "install_deps: run as root:  apt-get update && $command" >&2
+  exit 1
+fi
+echo "install_deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}"
