@@ -12,6 +12,7 @@ packages=(
   libyaml-cpp-dev               # run and grid configuration files
   libgtest-dev                  # tests
   libcli11-dev                  # the bsg command line
+  nlohmann-json3-dev            # JSON output of bsg, golden trajectories in the tests
 )
 
 missing=()
