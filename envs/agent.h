@@ -9,11 +9,12 @@
 #include <LinearMath/btQuaternion.h>
 #include <LinearMath/btVector3.h>
 
+#include "common/random.h"
+
 class btCollisionObject;
 
 namespace bsg::envs {
 
-class Rng;
 class World;
 
 // What an agent needs to know about the task it is built for.
