@@ -1,0 +1,105 @@
+#include "algos/gaussian_policy.h"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace bsg {
+namespace {
+
+std::vector<int> layer_sizes_of(int observation_size, int action_size, const std::vector<int>& hidden_sizes) {
+  std::vector<int> sizes{observation_size};
+  sizes.insert(sizes.end(), hidden_sizes.begin(), hidden_sizes.end());
+  sizes.push_back(action_size);
+  return sizes;
+}
+
+std::string shape(const Eigen::Ref<const Eigen::MatrixXd>& m) {
+  return std::to_string(m.rows()) + " x " + std::to_string(m.cols());
+}
+
+const double kHalfLog2Pi = 0.5 * std::log(2.0 * std::numbers::pi);
+
+}  // namespace
+
+GaussianPolicy::GaussianPolicy(int observation_size, int action_size, const std::vector<int>& hidden_sizes,
+                               Rng& rng, MlpInitOptions init)
+    : mean_net_(layer_sizes_of(observation_size, action_size, hidden_sizes), rng, init) {}
+
+double GaussianPolicy::log_std() const { return std::log(std_); }
+
+void GaussianPolicy::set_std(double std) {
+  if (!(std > 0.0) || !std::isfinite(std)) {
+    throw std::invalid_argument("GaussianPolicy::set_std: std must be positive and finite, got " +
+                                std::to_string(std));
+  }
+  std_ = std;
+}
+
+double GaussianPolicy::annealed_std(int epoch, int epochs) {
+  if (epochs <= 0 || epoch < 0 || epoch >= epochs) {
+    throw std::invalid_argument("GaussianPolicy::annealed_std: epoch " + std::to_string(epoch) +
+                                " must lie in [0, epochs = " + std::to_string(epochs) + ")");
+  }
+  return 0.499 * (1.0 - static_cast<double>(epoch) / epochs) + 0.01;  // sigma_k
+}
+
+void GaussianPolicy::mean_action(const Eigen::Ref<const Eigen::VectorXd>& observation,
+                                 Eigen::Ref<Eigen::VectorXd> action, MlpSampleWorkspace& workspace) const {
+  mean_net_.forward(observation, action, workspace);
+}
+
+double GaussianPolicy::sample_action(const Eigen::Ref<const Eigen::VectorXd>& observation,
+                                     Eigen::Ref<Eigen::VectorXd> action, Rng& rng,
+                                     MlpSampleWorkspace& workspace) const {
+  mean_net_.forward(observation, action, workspace);
+  double squared_noise = 0.0;
+  for (Eigen::Index j = 0; j < action.size(); ++j) {
+    const double noise = standard_normal(rng);  // eps_j
+    squared_noise += noise * noise;
+    action[j] += std_ * noise;  // a = mu + sigma eps
+  }
+  // log pi(a|s) with (a - mu)/sigma = eps
+  return -0.5 * squared_noise - action.size() * (log_std() + kHalfLog2Pi);
+}
+
+double GaussianPolicy::log_prob(const Eigen::Ref<const Eigen::VectorXd>& mean,
+                                const Eigen::Ref<const Eigen::VectorXd>& action) const {
+  if (mean.size() != action_size() || action.size() != action_size()) {
+    throw std::invalid_argument("GaussianPolicy::log_prob: mean has " + std::to_string(mean.size()) +
+                                " and action " + std::to_string(action.size()) + " entries, expected " +
+                                std::to_string(action_size()));
+  }
+  return -0.5 * (action - mean).squaredNorm() / (std_ * std_) - action_size() * (log_std() + kHalfLog2Pi);
+}
+
+void GaussianPolicy::log_prob_batch(const Eigen::Ref<const Eigen::MatrixXd>& means,
+                                    const Eigen::Ref<const Eigen::MatrixXd>& actions,
+                                    Eigen::Ref<Eigen::VectorXd> log_probs) const {
+  if (means.cols() != action_size() || actions.rows() != means.rows() || actions.cols() != means.cols() ||
+      log_probs.size() != means.rows()) {
+    throw std::invalid_argument("GaussianPolicy::log_prob_batch: means " + shape(means) + ", actions " +
+                                shape(actions) + " and log_probs of " + std::to_string(log_probs.size()) +
+                                " do not match N x " + std::to_string(action_size()) + " / N");
+  }
+  const double constant = action_size() * (log_std() + kHalfLog2Pi);
+  log_probs = -0.5 / (std_ * std_) * (actions - means).rowwise().squaredNorm();
+  log_probs.array() -= constant;
+}
+
+double GaussianPolicy::entropy_per_dimension() const { return 0.5 + kHalfLog2Pi + log_std(); }
+
+double GaussianPolicy::mean_kl(const Eigen::Ref<const Eigen::MatrixXd>& old_means,
+                               const Eigen::Ref<const Eigen::MatrixXd>& new_means) const {
+  if (old_means.cols() != action_size() || new_means.rows() != old_means.rows() ||
+      new_means.cols() != old_means.cols()) {
+    throw std::invalid_argument("GaussianPolicy::mean_kl: old_means " + shape(old_means) + " and new_means " +
+                                shape(new_means) + " must both be N x " + std::to_string(action_size()));
+  }
+  if (old_means.rows() == 0) throw std::invalid_argument("GaussianPolicy::mean_kl: empty batch");
+  // KL_bar = 1/(N d_a) sum (mu_old - mu)^2 / (2 sigma^2)   (Q8: mean over dims too)
+  return (old_means - new_means).squaredNorm() / (2.0 * std_ * std_) / static_cast<double>(old_means.size());
+}
+
+}  // namespace bsg

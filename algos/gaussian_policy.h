@@ -1,0 +1,68 @@
+// The Gaussian policy pi(a|s) = N(mu_theta(s), sigma^2 I) of spec §3: an MLP
+// for the mean and a fixed, non-trainable scalar standard deviation sigma,
+// linearly annealed per epoch. theta is the mean net's flat parameter vector;
+// sigma is not part of it.
+//
+// Parameters:
+//   observation_size, action_size   d_o, d_a
+//   hidden_sizes                    {64, 64}
+//   init                            MlpInitOptions (zero_bias_init = false, Q1)
+//   std                             0.5 at construction (kInitialStd); epoch 0 of
+//                                   the annealing schedule sets 0.509 (Q2)
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "common/mlp.h"
+#include "common/random.h"
+
+namespace bsg {
+
+class GaussianPolicy {
+ public:
+  static constexpr double kInitialStd = 0.5;
+
+  GaussianPolicy(int observation_size, int action_size, const std::vector<int>& hidden_sizes, Rng& rng,
+                 MlpInitOptions init = {});
+
+  int observation_size() const { return mean_net_.input_size(); }
+  int action_size() const { return mean_net_.output_size(); }
+  Mlp& mean_net() { return mean_net_; }
+  const Mlp& mean_net() const { return mean_net_; }
+
+  double std() const { return std_; }
+  double log_std() const;
+  void set_std(double std);
+
+  // sigma_k = 0.499 (1 - k/E) + 0.01 for epoch k of E (spec §3.2, Q2).
+  static double annealed_std(int epoch, int epochs);
+  void set_annealed_std(int epoch, int epochs) { set_std(annealed_std(epoch, epochs)); }
+
+  // Deterministic action mu_theta(s) (evaluation). No allocation once `workspace` is sized.
+  void mean_action(const Eigen::Ref<const Eigen::VectorXd>& observation, Eigen::Ref<Eigen::VectorXd> action,
+                   MlpSampleWorkspace& workspace) const;
+  // a = mu + sigma eps, eps ~ N(0, I) from `rng` (unclipped, spec §3.3); returns log pi(a|s).
+  double sample_action(const Eigen::Ref<const Eigen::VectorXd>& observation, Eigen::Ref<Eigen::VectorXd> action,
+                       Rng& rng, MlpSampleWorkspace& workspace) const;
+
+  // log pi = -1/2 sum_j (a_j - mu_j)^2 / sigma^2 - d_a log sigma - d_a/2 log 2 pi
+  double log_prob(const Eigen::Ref<const Eigen::VectorXd>& mean, const Eigen::Ref<const Eigen::VectorXd>& action) const;
+  // Row-wise log-probabilities of `actions` under `means` (both N x d_a) into `log_probs` (N).
+  void log_prob_batch(const Eigen::Ref<const Eigen::MatrixXd>& means, const Eigen::Ref<const Eigen::MatrixXd>& actions,
+                      Eigen::Ref<Eigen::VectorXd> log_probs) const;
+
+  // Entropy of one action dimension: 1/2 + 1/2 log 2 pi + log sigma.
+  double entropy_per_dimension() const;
+
+  // Mean KL(old || new) over samples AND action dimensions (spec §6.3, Q8):
+  // 1/(N d_a) sum_ij (mu_old,ij - mu_new,ij)^2 / (2 sigma^2), with this policy's sigma.
+  double mean_kl(const Eigen::Ref<const Eigen::MatrixXd>& old_means,
+                 const Eigen::Ref<const Eigen::MatrixXd>& new_means) const;
+
+ private:
+  Mlp mean_net_;
+  double std_ = kInitialStd;
+};
+
+}  // namespace bsg

@@ -1,0 +1,86 @@
+#include "algos/policy_surrogate.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace bsg {
+
+PolicySurrogate::PolicySurrogate(const Eigen::Ref<const Eigen::MatrixXd>& observations,
+                                 const Eigen::Ref<const Eigen::MatrixXd>& actions,
+                                 const Eigen::Ref<const Eigen::VectorXd>& old_log_probs,
+                                 const Eigen::Ref<const Eigen::VectorXd>& advantages,
+                                 const Eigen::Ref<const Eigen::VectorXd>& cost_advantages)
+    : observations_(observations),
+      actions_(actions),
+      old_log_probs_(old_log_probs),
+      advantages_(advantages),
+      cost_advantages_(cost_advantages) {
+  const Eigen::Index n = observations.rows();
+  if (n == 0) throw std::invalid_argument("PolicySurrogate: observations are empty");
+  if (actions.rows() != n || old_log_probs.size() != n || advantages.size() != n || cost_advantages.size() != n) {
+    throw std::invalid_argument("PolicySurrogate: observations have " + std::to_string(n) + " rows but actions " +
+                                std::to_string(actions.rows()) + ", old_log_probs " +
+                                std::to_string(old_log_probs.size()) + ", advantages " +
+                                std::to_string(advantages.size()) + ", cost_advantages " +
+                                std::to_string(cost_advantages.size()));
+  }
+  log_probs_.resize(n);
+  ratios_.resize(n);
+  output_gradients_.resize(n, actions.cols());
+}
+
+void PolicySurrogate::check_policy(const GaussianPolicy& policy, const char* where) const {
+  if (policy.observation_size() != observations_.cols() || policy.action_size() != actions_.cols()) {
+    throw std::invalid_argument(std::string(where) + ": the policy maps " + std::to_string(policy.observation_size()) +
+                                " -> " + std::to_string(policy.action_size()) + " but the batch holds " +
+                                std::to_string(observations_.cols()) + "-d observations and " +
+                                std::to_string(actions_.cols()) + "-d actions");
+  }
+}
+
+void PolicySurrogate::set_reference_means(const GaussianPolicy& policy) {
+  check_policy(policy, "PolicySurrogate::set_reference_means");
+  reference_means_ = policy.mean_net().forward_batch(observations_, workspace_);
+  has_reference_means_ = true;
+}
+
+void PolicySurrogate::compute_ratios(const GaussianPolicy& policy) {
+  const Eigen::MatrixXd& means = policy.mean_net().forward_batch(observations_, workspace_);
+  policy.log_prob_batch(means, actions_, log_probs_);
+  ratios_ = (log_probs_ - old_log_probs_).array().exp().matrix();  // rho_i
+}
+
+SurrogateValues PolicySurrogate::evaluate(const GaussianPolicy& policy) {
+  check_policy(policy, "PolicySurrogate::evaluate");
+  compute_ratios(policy);
+  const double n = static_cast<double>(num_samples());
+  SurrogateValues values;
+  values.reward_surrogate = ratios_.dot(advantages_) / n;     // L_R = mean(rho A)
+  values.cost_surrogate = ratios_.dot(cost_advantages_) / n;  // L_C = mean(rho A^C)
+  values.mean_ratio = ratios_.mean();
+  if (has_reference_means_) {
+    values.kl = policy.mean_kl(reference_means_, workspace_.layer_outputs.back());
+  }
+  return values;
+}
+
+void PolicySurrogate::gradient(const GaussianPolicy& policy, double reward_weight, double cost_weight,
+                               Eigen::Ref<Eigen::VectorXd> gradient) {
+  check_policy(policy, "PolicySurrogate::gradient");
+  if (gradient.size() != policy.mean_net().num_parameters()) {
+    throw std::invalid_argument("PolicySurrogate::gradient: gradient has " + std::to_string(gradient.size()) +
+                                " entries, the policy has " + std::to_string(policy.mean_net().num_parameters()));
+  }
+  compute_ratios(policy);
+  const double sigma_squared = policy.std() * policy.std();
+  const double n = static_cast<double>(num_samples());
+  const Eigen::MatrixXd& means = workspace_.layer_outputs.back();
+  // dL/dmu_ij = 1/N rho_i (w_R A_i + w_C A^C_i) (a_ij - mu_ij) / sigma^2
+  output_gradients_ = actions_ - means;
+  output_gradients_.array().colwise() *=
+      (ratios_.array() * (reward_weight * advantages_.array() + cost_weight * cost_advantages_.array())) /
+      (n * sigma_squared);
+  policy.mean_net().backward_batch(output_gradients_, workspace_, gradient);
+}
+
+}  // namespace bsg

@@ -1,0 +1,70 @@
+// The surrogate objectives of spec §6.1–6.3 on one rank's batch and their
+// gradients with respect to theta (the policy mean net's parameters):
+//   rho_i = exp(log pi_theta(a_i|s_i) - log pi_old,i)
+//   L_R   = 1/N sum_i rho_i A_i        (reward surrogate; the loss is l_R = -L_R)
+//   L_C   = 1/N sum_i rho_i A^C_i      (cost surrogate)
+//   KL    = mean KL(theta_old || theta) over samples and action dims (Q8)
+// Everything here is LOCAL: callers average gradients and line-search values
+// over ranks with the MpiContext (g = avg grad L_R, b = avg grad L_C).
+//
+// The batch is copied once at construction; evaluation and gradients reuse
+// preallocated buffers.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "algos/gaussian_policy.h"
+#include "common/mlp.h"
+
+namespace bsg {
+
+struct SurrogateValues {
+  double reward_surrogate = 0.0;  // L_R
+  double cost_surrogate = 0.0;    // L_C
+  double kl = 0.0;                // KL(theta_old || theta) against the reference means
+  double mean_ratio = 0.0;        // mean rho (logged as PolicyRatio)
+};
+
+class PolicySurrogate {
+ public:
+  // observations: normalised, N x d_o; actions N x d_a; the rest length N.
+  PolicySurrogate(const Eigen::Ref<const Eigen::MatrixXd>& observations,
+                  const Eigen::Ref<const Eigen::MatrixXd>& actions,
+                  const Eigen::Ref<const Eigen::VectorXd>& old_log_probs,
+                  const Eigen::Ref<const Eigen::VectorXd>& advantages,
+                  const Eigen::Ref<const Eigen::VectorXd>& cost_advantages);
+
+  Eigen::Index num_samples() const { return observations_.rows(); }
+  const Eigen::MatrixXd& observations() const { return observations_; }
+
+  // Stores mu_theta(s_i) at the policy's current parameters as mu_old for the KL.
+  void set_reference_means(const GaussianPolicy& policy);
+  const Eigen::MatrixXd& reference_means() const { return reference_means_; }
+
+  // L_R, L_C, mean ratio and KL (0 if no reference means were set) at the policy's current parameters.
+  SurrogateValues evaluate(const GaussianPolicy& policy);
+
+  // gradient = d/dtheta (reward_weight L_R + cost_weight L_C), local, overwritten.
+  // g = gradient(1, 0), b = gradient(0, 1); TRPO-L's -grad l_L = gradient(1/(1+l), -l/(1+l)).
+  void gradient(const GaussianPolicy& policy, double reward_weight, double cost_weight,
+                Eigen::Ref<Eigen::VectorXd> gradient);
+
+ private:
+  void check_policy(const GaussianPolicy& policy, const char* where) const;
+  // Forward pass and ratios at the current parameters into means_ / ratios_.
+  void compute_ratios(const GaussianPolicy& policy);
+
+  Eigen::MatrixXd observations_;
+  Eigen::MatrixXd actions_;
+  Eigen::VectorXd old_log_probs_;
+  Eigen::VectorXd advantages_;
+  Eigen::VectorXd cost_advantages_;
+  Eigen::MatrixXd reference_means_;
+  bool has_reference_means_ = false;
+  MlpBatchWorkspace workspace_;
+  Eigen::VectorXd log_probs_;
+  Eigen::VectorXd ratios_;
+  Eigen::MatrixXd output_gradients_;
+};
+
+}  // namespace bsg

@@ -1,0 +1,72 @@
+// A value network (V for rewards or V_C for costs, spec §2, §8) with its own
+// Adam optimiser and the original's fitting schedule: `iterations` passes,
+// each over a fresh shuffle of the local indices in minibatches of
+// m = floor(N / num_mini_batches) (the last may be shorter), with the loss
+// mean (V(s) - R)^2, the gradient averaged over ranks, then one Adam step.
+// That is iterations * ceil(N / m) Adam steps (80 when 16 divides N).
+//
+// Parameters:
+//   hidden_sizes          {64, 64}
+//   adam                  lr 1e-3 (vf_lr), betas (0.9, 0.999), eps 1e-8; state persists
+//   iterations            5 (train_v_iterations, vf_iters)
+//   num_mini_batches      16 (vf_num_mini_batches; Q15)
+//   min_mini_batch_size   16 (the original asserts m >= 16)
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "common/adam.h"
+#include "common/mlp.h"
+#include "common/mpi_context.h"
+#include "common/random.h"
+
+namespace bsg {
+
+struct ValueFitOptions {
+  int iterations = 5;
+  int num_mini_batches = 16;
+  int min_mini_batch_size = 16;
+};
+
+struct ValueFitStats {
+  double loss_before = 0.0;           // full-batch local loss before training (Loss/Value)
+  double mean_minibatch_loss = 0.0;   // mean of the minibatch losses during training (local)
+  int adam_steps = 0;
+};
+
+class ValueFunction {
+ public:
+  ValueFunction(int observation_size, const std::vector<int>& hidden_sizes, Rng& rng, MlpInitOptions init = {},
+                AdamOptions adam = {});
+
+  Mlp& net() { return net_; }
+  const Mlp& net() const { return net_; }
+  Adam& optimizer() { return optimizer_; }
+  const Adam& optimizer() const { return optimizer_; }
+
+  // V(s) for one normalised observation; no allocation once `workspace` is sized.
+  double predict(const Eigen::Ref<const Eigen::VectorXd>& observation, MlpSampleWorkspace& workspace) const;
+  // V(s_i) for a batch (one observation per row) into `values`.
+  void predict_batch(const Eigen::Ref<const Eigen::MatrixXd>& observations, Eigen::Ref<Eigen::VectorXd> values);
+  // Local mean squared error against `targets`.
+  double loss(const Eigen::Ref<const Eigen::MatrixXd>& observations, const Eigen::Ref<const Eigen::VectorXd>& targets);
+
+  // The §8 schedule. Collective (one gradient allreduce per minibatch); `rng`
+  // is the rank's RNG (shuffles).
+  ValueFitStats fit(const Eigen::Ref<const Eigen::MatrixXd>& observations,
+                    const Eigen::Ref<const Eigen::VectorXd>& targets, Rng& rng, const MpiContext& mpi,
+                    const ValueFitOptions& options = {});
+
+ private:
+  Mlp net_;
+  Adam optimizer_;
+  MlpBatchWorkspace workspace_;
+  Eigen::MatrixXd minibatch_observations_;
+  Eigen::VectorXd minibatch_targets_;
+  Eigen::MatrixXd output_gradients_;
+  Eigen::VectorXd gradient_;
+  std::vector<Eigen::Index> permutation_;
+};
+
+}  // namespace bsg
