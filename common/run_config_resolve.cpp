@@ -1,0 +1,154 @@
+#include "common/run_config_resolve.h"
+
+#include <algorithm>
+#include <system_error>
+
+#include "common/config_entries.h"
+#include "common/config_error.h"
+#include "common/run_config_schema.h"
+
+namespace bsg {
+
+namespace {
+
+// env_id and alg choose the other layers, so only the run file and --set may
+// name them; seed and log_dir describe the run, not the algorithm or task.
+void reject_run_keys(const std::vector<ConfigEntry>& entries, const char* layer_name) {
+  for (const ConfigEntry& entry : entries) {
+    const ConfigKey* key = find_config_key(entry.key);
+    if (key != nullptr && key->default_source == ConfigLayer::run) {
+      throw ConfigError(entry.origin + ": key '" + entry.key + "' cannot be set in " +
+                        layer_name + " file; set it in the run file or with --set");
+    }
+  }
+}
+
+// The value of env_id or alg: the last --set, else the run file.
+const ConfigEntry& choosing_entry(const std::vector<ConfigEntry>& run_entries,
+                                  const std::vector<ConfigEntry>& set_entries,
+                                  const std::string& key, const RunConfigRequest& request,
+                                  const std::string& valid_values) {
+  if (const ConfigEntry* entry = find_last_entry(set_entries, key)) return *entry;
+  if (const ConfigEntry* entry = find_last_entry(run_entries, key)) return *entry;
+  const std::string where = request.run_file.empty()
+                                ? std::string("no run file was given")
+                                : "the run file " + request.run_file.string() + " does not";
+  throw ConfigError("no '" + key + "' given (" + where + " name it); set it in the run file or " +
+                    "with --set " + key + "=...; valid values: " + valid_values);
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string joined;
+  for (const std::string& item : items) joined += (joined.empty() ? "" : ", ") + item;
+  return joined;
+}
+
+}  // namespace
+
+std::filesystem::path locate_configs_dir(const std::filesystem::path& start) {
+  std::error_code error;
+  std::filesystem::path dir = std::filesystem::absolute(start, error);
+  if (error) dir = start;
+  while (true) {
+    const std::filesystem::path candidate = dir / "configs";
+    if (std::filesystem::is_directory(candidate / "algorithms", error)) return candidate;
+    if (!dir.has_parent_path() || dir.parent_path() == dir) break;
+    dir = dir.parent_path();
+  }
+  throw ConfigError("no configs directory (with an algorithms/ folder) found at or above " +
+                    start.string());
+}
+
+std::filesystem::path algorithm_config_path(const std::filesystem::path& configs_dir,
+                                            Algorithm alg) {
+  return configs_dir / "algorithms" / (std::string(to_string(alg)) + ".yaml");
+}
+
+std::filesystem::path environment_config_path(const std::filesystem::path& configs_dir,
+                                              const std::string& env_id) {
+  return configs_dir / "envs" / (env_id + ".yaml");
+}
+
+std::vector<std::string> list_config_env_ids(const std::filesystem::path& configs_dir) {
+  std::vector<std::string> ids;
+  std::error_code error;
+  const std::filesystem::path envs = configs_dir / "envs";
+  if (!std::filesystem::is_directory(envs, error)) return ids;
+  for (const auto& file : std::filesystem::directory_iterator(envs, error)) {
+    if (file.is_regular_file() && file.path().extension() == ".yaml") {
+      ids.push_back(file.path().stem().string());
+    }
+  }
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+ResolvedRunConfig resolve_run_config(const RunConfigRequest& request) {
+  const std::vector<ConfigEntry> run_entries =
+      request.run_file.empty() ? std::vector<ConfigEntry>{} : read_config_file(request.run_file);
+  const std::vector<ConfigEntry> set_entries = parse_set_arguments(request.set_arguments);
+
+  ResolvedRunConfig resolved;
+  RunConfig& config = resolved.config;
+
+  // 1. The algorithm and the environment choose the default layers.
+  const ConfigKey& alg_key = *find_config_key("alg");
+  const ConfigEntry& alg_entry =
+      choosing_entry(run_entries, set_entries, "alg", request, alg_key.valid_values());
+  set_config_value(config, alg_key, alg_entry.value, alg_entry.origin);
+  resolved.origins["alg"] = alg_entry.origin;
+
+  const std::vector<std::string> valid_env_ids = request.valid_env_ids.empty()
+                                                     ? list_config_env_ids(request.configs_dir)
+                                                     : request.valid_env_ids;
+  const ConfigKey& env_key = *find_config_key("env_id");
+  const ConfigEntry& env_entry =
+      choosing_entry(run_entries, set_entries, "env_id", request, join(valid_env_ids));
+  set_config_value(config, env_key, env_entry.value, env_entry.origin);
+  check_env_id(config.env_id, env_entry.origin, valid_env_ids);
+  resolved.origins["env_id"] = env_entry.origin;
+
+  // 2. The layers, lowest first.
+  const std::filesystem::path alg_file = algorithm_config_path(request.configs_dir, config.alg);
+  const std::vector<ConfigEntry> alg_entries = read_config_file(alg_file);
+  reject_run_keys(alg_entries, "an algorithm");
+
+  const std::filesystem::path env_file =
+      environment_config_path(request.configs_dir, config.env_id);
+  std::error_code error;
+  const bool has_env_file = std::filesystem::exists(env_file, error);
+  const std::vector<ConfigEntry> env_entries =
+      has_env_file ? read_config_file(env_file) : std::vector<ConfigEntry>{};
+  reject_run_keys(env_entries, "an environment");
+
+  for (const auto* layer : {&alg_entries, &env_entries, &run_entries, &set_entries}) {
+    apply_config_entries(config, *layer, resolved.origins);
+  }
+
+  // 3. Every key of the algorithm has a value from some layer.
+  for (const ConfigKey& key : run_config_schema()) {
+    if (!key.applies_to(config.alg) || resolved.origins.count(std::string(key.key)) != 0) {
+      continue;
+    }
+    const std::string name(key.key);
+    switch (key.default_source) {
+      case ConfigLayer::run:
+        resolved.origins[name] = "default";
+        break;
+      case ConfigLayer::algorithm:
+        throw ConfigError("key '" + name + "' is not set: " + alg_file.string() +
+                          " must list every key of alg '" + std::string(to_string(config.alg)) +
+                          "' (or set it in the run file or with --set)");
+      case ConfigLayer::environment:
+        throw ConfigError("key '" + name + "' is not set for env_id '" + config.env_id + "': " +
+                          (has_env_file ? env_file.string() + " does not list it"
+                                        : "there is no " + env_file.string()) +
+                          "; set it there, in the run file or with --set");
+    }
+  }
+
+  check_run_config_relations(config, resolved.origins);
+  return resolved;
+}
+
+}  // namespace bsg

@@ -1,0 +1,469 @@
+// The schema table: every configuration key in one place. Defaults are not
+// here but in configs/ (the layer named in the second column provides them);
+// RunConfig's member initialisers repeat the TRPO / SafetyBallCircle-v0 ones.
+#include "common/run_config_schema.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <type_traits>
+#include <variant>
+
+#include "common/config_error.h"
+#include "common/config_scalar.h"
+
+namespace bsg {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kIntMax = 2147483647.0;
+
+// Access to an enum member through its underlying index into its names.
+struct EnumAccess {
+  int (*get)(const RunConfig&);
+  void (*set)(RunConfig&, int);
+};
+
+template <auto Member>
+EnumAccess enum_access() {
+  return {[](const RunConfig& config) { return static_cast<int>(config.*Member); },
+          [](RunConfig& config, int index) {
+            using Enum = std::remove_cvref_t<decltype(config.*Member)>;
+            config.*Member = static_cast<Enum>(index);
+          }};
+}
+
+using FieldAccess =
+    std::variant<bool RunConfig::*, int RunConfig::*, std::int64_t RunConfig::*,
+                 double RunConfig::*, std::string RunConfig::*, std::vector<int> RunConfig::*,
+                 EnumAccess>;
+
+struct SchemaRow {
+  ConfigKey info;
+  FieldAccess field;
+};
+
+NumericRange closed(double min, double max) { return {min, max, true, true}; }
+NumericRange open_closed(double min, double max) { return {min, max, false, true}; }
+NumericRange open(double min, double max) { return {min, max, false, false}; }
+NumericRange at_least(double min) { return {min, kInf, true, false}; }
+NumericRange above(double min) { return {min, kInf, false, false}; }
+
+constexpr AlgorithmSet kLagrangian = algorithm_bit(Algorithm::lag_trpo) |
+                                     algorithm_bit(Algorithm::pdo);
+
+SchemaRow boolean(std::string_view key, bool RunConfig::*member, ConfigLayer layer,
+                  AlgorithmSet used_by, std::string_view description) {
+  return {{key, ConfigValueType::boolean, layer, {}, {}, used_by, description}, member};
+}
+template <typename Int>
+SchemaRow integer(std::string_view key, Int RunConfig::*member, ConfigLayer layer,
+                  NumericRange range, AlgorithmSet used_by, std::string_view description) {
+  return {{key, ConfigValueType::integer, layer, range, {}, used_by, description}, member};
+}
+SchemaRow real(std::string_view key, double RunConfig::*member, ConfigLayer layer,
+               NumericRange range, AlgorithmSet used_by, std::string_view description) {
+  return {{key, ConfigValueType::real, layer, range, {}, used_by, description}, member};
+}
+SchemaRow text(std::string_view key, std::string RunConfig::*member, ConfigLayer layer,
+               std::string_view description) {
+  return {{key, ConfigValueType::text, layer, {}, {}, kAllAlgorithms, description}, member};
+}
+SchemaRow choice(std::string_view key, EnumAccess access, std::span<const std::string_view> names,
+                 ConfigLayer layer, AlgorithmSet used_by, std::string_view description) {
+  return {{key, ConfigValueType::choice, layer, {}, names, used_by, description}, access};
+}
+SchemaRow integer_list(std::string_view key, std::vector<int> RunConfig::*member,
+                       ConfigLayer layer, NumericRange element_range, AlgorithmSet used_by,
+                       std::string_view description) {
+  return {{key, ConfigValueType::integer_list, layer, element_range, {}, used_by, description},
+          member};
+}
+
+// clang-format off
+const std::vector<SchemaRow>& schema_rows() {
+  using L = ConfigLayer;
+  using R = RunConfig;
+  constexpr AlgorithmSet all = kAllAlgorithms;
+  static const std::vector<SchemaRow> rows = {
+    // --- run ---
+    text("env_id", &R::env_id, L::run,
+         "environment id, e.g. SafetyBallCircle-v0 (report Table 3)"),
+    choice("alg", enum_access<&R::alg>(), kAlgorithmNames, L::run, all,
+           "algorithm: trpo, lag-trpo (TRPO-L), cpo, pdo or pcpo"),
+    integer("seed", &R::seed, L::run, closed(0, 4294967295.0), all,
+            "base seed; per-rank and per-environment seeds are derived from it (seeding.h)"),
+    text("log_dir", &R::log_dir, L::run,
+         "directory under which the run directory is created"),
+    // --- environment (report Table 3, spec 10.3) ---
+    real("cost_limit", &R::cost_limit, L::environment, at_least(0), all,
+         "d: limit on the undiscounted episode cost"),
+    integer("epochs", &R::epochs, L::environment, closed(1, kIntMax), all,
+            "E: number of training epochs"),
+    integer("steps_per_epoch", &R::steps_per_epoch, L::environment, closed(1, kIntMax), all,
+            "B: environment steps per epoch, summed over all MPI ranks"),
+    integer("max_ep_len", &R::max_ep_len, L::environment, closed(1, kIntMax), all,
+            "maximum episode length in steps (the environment's time limit)"),
+    // --- networks (spec 2) ---
+    integer_list("hidden_sizes", &R::hidden_sizes, L::algorithm, closed(1, 4096), all,
+                 "hidden layer widths of the policy net and both value nets"),
+    choice("activation", enum_access<&R::activation>(), kActivationNames, L::algorithm, all,
+           "hidden-layer activation of all nets"),
+    boolean("zero_bias_init", &R::zero_bias_init, L::algorithm, all,
+            "Q1: zero initial biases (report) instead of uniform +-1/sqrt(fan_in) (original)"),
+    // --- returns, advantages, normalisation (spec 3-5) ---
+    real("gamma", &R::gamma, L::algorithm, open_closed(0, 1), all,
+         "discount factor for rewards and costs"),
+    real("lam", &R::lam, L::algorithm, closed(0, 1), all,
+         "GAE lambda for reward advantages"),
+    real("lam_c", &R::lam_c, L::algorithm, closed(0, 1), all,
+         "GAE lambda for cost advantages"),
+    boolean("use_exploration_noise_anneal", &R::use_exploration_noise_anneal, L::algorithm, all,
+            "anneal the exploration std: sigma_k = 0.499 (1 - k/E) + 0.01 (else fixed 0.5)"),
+    boolean("use_standardized_obs", &R::use_standardized_obs, L::algorithm, all,
+            "normalise observations by the running mean/std"),
+    boolean("use_reward_scaling", &R::use_reward_scaling, L::algorithm, all,
+            "divide rewards by the running std of discounted returns, clip to +-10"),
+    boolean("use_standardized_advantages", &R::use_standardized_advantages, L::algorithm, all,
+            "Q6: standardise advantages (the original never does)"),
+    real("obs_clip", &R::obs_clip, L::algorithm, at_least(0), all,
+         "Q3: clip normalised observations to +-obs_clip; 0 = no clipping (original)"),
+    boolean("exact_parallel_variance", &R::exact_parallel_variance, L::algorithm, all,
+            "Q4: Chan's exact parallel variance instead of the original's update"),
+    // --- trust region (spec 6) ---
+    real("target_kl", &R::target_kl, L::algorithm, above(0), all,
+         "delta: trust-region size (mean KL per action dimension, Q8)"),
+    real("cg_damping", &R::cg_damping, L::algorithm, at_least(0), all,
+         "damping added to the Fisher-vector product"),
+    integer("cg_iters", &R::cg_iters, L::algorithm, closed(1, 1000), all,
+            "conjugate-gradient iterations"),
+    integer("fvp_subsample", &R::fvp_subsample, L::algorithm, closed(1, 1000), all,
+            "the Fisher-vector product uses every k-th observation of the batch"),
+    integer("backtrack_budget", &R::backtrack_budget, L::algorithm, closed(1, 1000), all,
+            "Q11: line-search steps (original: 15, CPO 20; report: CPO and PCPO 25)"),
+    real("backtrack_decay", &R::backtrack_decay, L::algorithm, open(0, 1), all,
+         "line-search step shrink factor"),
+    real("kl_accept_factor", &R::kl_accept_factor, L::algorithm, above(0), all,
+         "Q13: the line search accepts a step with KL <= kl_accept_factor * target_kl"),
+    // --- Lagrange multiplier (spec 7.2, 7.3) ---
+    real("lagrangian_multiplier_init", &R::lagrangian_multiplier_init, L::algorithm,
+         at_least(0), kLagrangian, "initial Lagrange multiplier lambda"),
+    real("lambda_lr", &R::lambda_lr, L::algorithm, above(0), kLagrangian,
+         "alpha_lambda: learning rate of the Lagrange multiplier"),
+    choice("lambda_optimizer", enum_access<&R::lambda_optimizer>(), kLambdaOptimizerNames,
+           L::algorithm, kLagrangian, "optimiser of the Lagrange multiplier"),
+    // --- algorithm switches (spec 7.3-7.5) ---
+    choice("cpo_r_sign", enum_access<&R::cpo_r_sign>(), kCpoRSignNames, L::algorithm,
+           algorithm_bit(Algorithm::cpo),
+           "Q10: sign of r in CPO's dual: original (as the code) or corrected"),
+    boolean("cpo_clamp_a", &R::cpo_clamp_a, L::algorithm, algorithm_bit(Algorithm::cpo),
+            "clamp CPO's A = q - r^2/s at 0 when rounding makes it negative (else an error)"),
+    choice("pcpo_projection", enum_access<&R::pcpo_projection>(), kPcpoProjectionNames,
+           L::algorithm, algorithm_bit(Algorithm::pcpo),
+           "metric of PCPO's projection: kl (Fisher) or l2"),
+    boolean("pcpo_line_search", &R::pcpo_line_search, L::algorithm,
+            algorithm_bit(Algorithm::pcpo),
+            "run the constrained line search on PCPO's step (false: apply it directly)"),
+    boolean("pdo_line_search", &R::pdo_line_search, L::algorithm, algorithm_bit(Algorithm::pdo),
+            "Q14: run the TRPO line search on PDO's reward loss (original); false: apply step"),
+    // --- value networks (spec 8) ---
+    boolean("use_cost_value_function", &R::use_cost_value_function, L::algorithm, all,
+            "train the cost value net V_C"),
+    real("vf_lr", &R::vf_lr, L::algorithm, above(0), all,
+         "Adam learning rate of the value nets"),
+    integer("train_v_iterations", &R::train_v_iterations, L::algorithm, closed(1, 10000), all,
+            "Q15: passes over the local batch per epoch when fitting the value nets"),
+    integer("num_mini_batches", &R::num_mini_batches, L::algorithm, closed(1, 100000), all,
+            "Q15: minibatches per pass; minibatch size floor(N / num_mini_batches) per rank"),
+    // --- bookkeeping (spec 1, 12) ---
+    integer("save_freq", &R::save_freq, L::algorithm, closed(1, kIntMax), all,
+            "save a checkpoint every save_freq epochs and after the last"),
+    integer("check_freq", &R::check_freq, L::algorithm, closed(1, kIntMax), all,
+            "check that parameters agree across ranks every check_freq epochs"),
+    integer("eval_episodes", &R::eval_episodes, L::algorithm, closed(0, kIntMax), all,
+            "deterministic evaluation episodes after training, split over ranks"),
+  };
+  return rows;
+}
+// clang-format on
+
+const SchemaRow& row_of(const ConfigKey& key) {
+  for (const SchemaRow& row : schema_rows()) {
+    if (row.info.key == key.key) return row;
+  }
+  throw ConfigError("internal: '" + std::string(key.key) + "' is not in the schema table");
+}
+
+std::string describe_node(const YAML::Node& node) {
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsNull()) return "no value";
+  YAML::Emitter out;
+  out << YAML::Flow << node;
+  return std::string(node.IsSequence() ? "the sequence " : "the mapping ") + out.c_str();
+}
+
+std::string expected_text(const ConfigKey& key) {
+  switch (key.type) {
+    case ConfigValueType::boolean: return "true or false";
+    case ConfigValueType::integer: return "an integer in " + key.range.to_string();
+    case ConfigValueType::real: return "a real number in " + key.range.to_string();
+    case ConfigValueType::text: return "a non-empty string";
+    case ConfigValueType::choice: return "one of " + key.valid_values();
+    case ConfigValueType::integer_list:
+      return "a non-empty list of integers in " + key.range.to_string() + ", e.g. [64, 64]";
+  }
+  return "";
+}
+
+[[noreturn]] void throw_type_error(const ConfigKey& key, const YAML::Node& value,
+                                   const std::string& origin, const std::string& detail = "") {
+  std::string message = origin + ": key '" + std::string(key.key) + "' expects " +
+                        expected_text(key) + ", got " + describe_node(value);
+  if (!detail.empty()) message += " (" + detail + ")";
+  throw ConfigError(message);
+}
+
+[[noreturn]] void throw_range_error(const ConfigKey& key, const std::string& value_text,
+                                    const std::string& origin) {
+  throw ConfigError(origin + ": key '" + std::string(key.key) + "' = " + value_text +
+                    " is out of range; valid: " + key.range.to_string());
+}
+
+// A plain (unquoted) scalar: quoted text such as '5' is a string, not a number.
+bool is_plain_scalar(const YAML::Node& node) { return node.IsScalar() && node.Tag() != "!"; }
+
+std::int64_t read_integer(const ConfigKey& key, const YAML::Node& value,
+                          const std::string& origin) {
+  if (!is_plain_scalar(value)) {
+    throw_type_error(key, value, origin, value.IsScalar() ? "quoted text is a string" : "");
+  }
+  const auto parsed = parse_config_integer(value.Scalar());
+  if (!parsed) throw_type_error(key, value, origin);
+  if (!key.range.contains(static_cast<double>(*parsed))) {
+    throw_range_error(key, value.Scalar(), origin);
+  }
+  return *parsed;
+}
+
+}  // namespace
+
+std::string_view to_string(ConfigLayer layer) {
+  switch (layer) {
+    case ConfigLayer::run: return "run";
+    case ConfigLayer::algorithm: return "algorithm";
+    case ConfigLayer::environment: return "environment";
+  }
+  return "<invalid>";
+}
+
+std::string_view to_string(ConfigValueType type) {
+  switch (type) {
+    case ConfigValueType::boolean: return "bool";
+    case ConfigValueType::integer: return "int";
+    case ConfigValueType::real: return "real";
+    case ConfigValueType::text: return "string";
+    case ConfigValueType::choice: return "choice";
+    case ConfigValueType::integer_list: return "int list";
+  }
+  return "<invalid>";
+}
+
+bool NumericRange::contains(double value) const {
+  const bool above_min = min_inclusive ? value >= min : value > min;
+  const bool below_max = max_inclusive ? value <= max : value < max;
+  return above_min && below_max;
+}
+
+std::string NumericRange::to_string() const {
+  auto bound = [](double x) {
+    if (std::isinf(x)) return std::string(x > 0 ? "inf" : "-inf");
+    if (x == std::floor(x) && std::fabs(x) < 1e15) {
+      return std::to_string(static_cast<long long>(x));
+    }
+    return format_config_real(x);
+  };
+  std::string text;
+  text += min_inclusive ? '[' : '(';
+  text += bound(min);
+  text += ", ";
+  text += bound(max);
+  text += max_inclusive ? ']' : ')';
+  return text;
+}
+
+std::string ConfigKey::valid_values() const {
+  switch (type) {
+    case ConfigValueType::boolean: return "true | false";
+    case ConfigValueType::integer:
+    case ConfigValueType::real: return range.to_string();
+    case ConfigValueType::integer_list: return "list of " + range.to_string();
+    case ConfigValueType::text: return "non-empty text";
+    case ConfigValueType::choice: {
+      std::string joined;
+      for (std::string_view name : choices) {
+        if (!joined.empty()) joined += " | ";
+        joined += name;
+      }
+      return joined;
+    }
+  }
+  return "";
+}
+
+std::string ConfigKey::used_by_text() const {
+  if (used_by == kAllAlgorithms) return "all";
+  std::string joined;
+  for (std::size_t i = 0; i < kAlgorithmNames.size(); ++i) {
+    if ((used_by & (1u << i)) == 0) continue;
+    if (!joined.empty()) joined += ", ";
+    joined += kAlgorithmNames[i];
+  }
+  return joined;
+}
+
+const std::vector<ConfigKey>& run_config_schema() {
+  static const std::vector<ConfigKey> keys = [] {
+    std::vector<ConfigKey> out;
+    for (const SchemaRow& row : schema_rows()) out.push_back(row.info);
+    return out;
+  }();
+  return keys;
+}
+
+const ConfigKey* find_config_key(std::string_view key) {
+  for (const ConfigKey& entry : run_config_schema()) {
+    if (entry.key == key) return &entry;
+  }
+  return nullptr;
+}
+
+std::string config_key_list() {
+  std::string joined;
+  for (const ConfigKey& entry : run_config_schema()) {
+    if (!joined.empty()) joined += ", ";
+    joined += entry.key;
+  }
+  return joined;
+}
+
+std::string closest_config_key(std::string_view unknown) {
+  // Levenshtein distance; a typo is at most 2 edits (or a third of the word).
+  auto distance = [](std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+      std::size_t diagonal = row[0];
+      row[0] = i;
+      for (std::size_t j = 1; j <= b.size(); ++j) {
+        const std::size_t above = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+        diagonal = above;
+      }
+    }
+    return row[b.size()];
+  };
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(2, unknown.size() / 3) + 1;
+  for (const ConfigKey& entry : run_config_schema()) {
+    const std::size_t d = distance(unknown, entry.key);
+    if (d < best_distance) {
+      best_distance = d;
+      best = entry.key;
+    }
+  }
+  return best;
+}
+
+void set_config_value(RunConfig& config, const ConfigKey& key, const YAML::Node& value,
+                      const std::string& origin) {
+  const SchemaRow& row = row_of(key);
+  std::visit(
+      [&](auto&& access) {
+        using Access = std::decay_t<decltype(access)>;
+        if constexpr (std::is_same_v<Access, bool RunConfig::*>) {
+          const auto parsed = is_plain_scalar(value) ? parse_config_bool(value.Scalar())
+                                                     : std::nullopt;
+          if (!parsed) throw_type_error(key, value, origin);
+          config.*access = *parsed;
+        } else if constexpr (std::is_same_v<Access, int RunConfig::*>) {
+          config.*access = static_cast<int>(read_integer(key, value, origin));
+        } else if constexpr (std::is_same_v<Access, std::int64_t RunConfig::*>) {
+          config.*access = read_integer(key, value, origin);
+        } else if constexpr (std::is_same_v<Access, double RunConfig::*>) {
+          if (!is_plain_scalar(value)) {
+            throw_type_error(key, value, origin,
+                             value.IsScalar() ? "quoted text is a string" : "");
+          }
+          const auto parsed = parse_config_real(value.Scalar());
+          if (!parsed) throw_type_error(key, value, origin);
+          if (!key.range.contains(*parsed)) throw_range_error(key, value.Scalar(), origin);
+          config.*access = *parsed;
+        } else if constexpr (std::is_same_v<Access, std::string RunConfig::*>) {
+          if (!value.IsScalar() || value.Scalar().empty()) throw_type_error(key, value, origin);
+          config.*access = value.Scalar();
+        } else if constexpr (std::is_same_v<Access, std::vector<int> RunConfig::*>) {
+          if (!value.IsSequence() || value.size() == 0) throw_type_error(key, value, origin);
+          std::vector<int> list;
+          for (const YAML::Node& element : value) {
+            const auto parsed = is_plain_scalar(element) ? parse_config_integer(element.Scalar())
+                                                         : std::nullopt;
+            if (!parsed) throw_type_error(key, value, origin);
+            if (!key.range.contains(static_cast<double>(*parsed))) {
+              throw_range_error(key, describe_node(value) + " (element " + element.Scalar() + ")",
+                                origin);
+            }
+            list.push_back(static_cast<int>(*parsed));
+          }
+          config.*access = std::move(list);
+        } else {  // EnumAccess
+          if (!value.IsScalar()) throw_type_error(key, value, origin);
+          const auto found = std::find(key.choices.begin(), key.choices.end(), value.Scalar());
+          if (found == key.choices.end()) {
+            throw ConfigError(origin + ": key '" + std::string(key.key) + "' = '" +
+                              value.Scalar() + "' is not valid; valid values: " +
+                              key.valid_values());
+          }
+          access.set(config, static_cast<int>(found - key.choices.begin()));
+        }
+      },
+      row.field);
+}
+
+std::string config_value_to_yaml(const RunConfig& config, const ConfigKey& key) {
+  const SchemaRow& row = row_of(key);
+  return std::visit(
+      [&](auto&& access) -> std::string {
+        using Access = std::decay_t<decltype(access)>;
+        if constexpr (std::is_same_v<Access, bool RunConfig::*>) {
+          return config.*access ? "true" : "false";
+        } else if constexpr (std::is_same_v<Access, int RunConfig::*> ||
+                             std::is_same_v<Access, std::int64_t RunConfig::*>) {
+          return std::to_string(config.*access);
+        } else if constexpr (std::is_same_v<Access, double RunConfig::*>) {
+          return format_config_real(config.*access);
+        } else if constexpr (std::is_same_v<Access, std::string RunConfig::*>) {
+          YAML::Emitter out;  // quotes the text where YAML would misread it
+          out << config.*access;
+          return out.c_str();
+        } else if constexpr (std::is_same_v<Access, std::vector<int> RunConfig::*>) {
+          std::ostringstream out;
+          out << "[";
+          for (std::size_t i = 0; i < (config.*access).size(); ++i) {
+            out << (i ? ", " : "") << (config.*access)[i];
+          }
+          out << "]";
+          return out.str();
+        } else {  // EnumAccess
+          const int index = access.get(config);
+          return std::string(key.choices[static_cast<std::size_t>(index)]);
+        }
+      },
+      row.field);
+}
+
+}  // namespace bsg

@@ -1,0 +1,81 @@
+// The schema of RunConfig: one table (run_config_schema.cpp) listing every
+// configuration key with its type, the layer its default comes from, its
+// valid range, the algorithms it applies to and a one-line description; and
+// the typed, range-checked assignment of a YAML value to a key.
+#pragma once
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/run_config.h"
+
+namespace YAML {
+class Node;
+}
+
+namespace bsg {
+
+// Where a key's default comes from: the run file (or --set), the algorithm
+// file configs/algorithms/<alg>.yaml, or the environment file
+// configs/envs/<env_id>.yaml. Any later layer may override any key.
+enum class ConfigLayer { run, algorithm, environment };
+std::string_view to_string(ConfigLayer layer);
+
+enum class ConfigValueType { boolean, integer, real, text, choice, integer_list };
+std::string_view to_string(ConfigValueType type);
+
+// Numeric bounds of an integer, a real, or each element of an integer list.
+struct NumericRange {
+  double min = 0.0;
+  double max = 0.0;
+  bool min_inclusive = true;
+  bool max_inclusive = true;
+
+  bool contains(double value) const;
+  std::string to_string() const;  // e.g. "(0, 1]", "[1, inf)"
+};
+
+// Bit set of the algorithms a key applies to.
+using AlgorithmSet = unsigned;
+constexpr AlgorithmSet algorithm_bit(Algorithm alg) { return 1u << static_cast<unsigned>(alg); }
+inline constexpr AlgorithmSet kAllAlgorithms = (1u << kAlgorithmNames.size()) - 1u;
+
+struct ConfigKey {
+  std::string_view key;
+  ConfigValueType type = ConfigValueType::boolean;
+  ConfigLayer default_source = ConfigLayer::algorithm;
+  NumericRange range;                          // integer, real, integer_list
+  std::span<const std::string_view> choices;   // choice
+  AlgorithmSet used_by = kAllAlgorithms;
+  std::string_view description;
+
+  bool applies_to(Algorithm alg) const { return (used_by & algorithm_bit(alg)) != 0; }
+  std::string valid_values() const;  // range, choices, or "non-empty text"
+  std::string used_by_text() const;  // "all" or e.g. "lag-trpo, pdo"
+};
+
+// Every key, in the order to_yaml() writes them.
+const std::vector<ConfigKey>& run_config_schema();
+
+// nullptr if `key` is not a configuration key.
+const ConfigKey* find_config_key(std::string_view key);
+
+// "env_id, alg, seed, ..." in schema order, for error messages.
+std::string config_key_list();
+
+// The known key closest in spelling to `unknown` if it is a likely typo, else "".
+std::string closest_config_key(std::string_view unknown);
+
+// Checks `value` against the key's type and range and stores it in `config`.
+// Throws ConfigError naming the key, the value and `origin` (e.g.
+// "configs/runs/x.yaml:3:1" or "--set gamma=2").
+void set_config_value(RunConfig& config, const ConfigKey& key, const YAML::Node& value,
+                      const std::string& origin);
+
+// The key's value in `config` as YAML text that set_config_value reads back
+// to the same value (reals are written in shortest round-trip form).
+std::string config_value_to_yaml(const RunConfig& config, const ConfigKey& key);
+
+}  // namespace bsg

@@ -1,0 +1,88 @@
+#include "common/run_config_yaml.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "common/config_entries.h"
+#include "common/config_error.h"
+#include "common/run_config_checks.h"
+#include "common/run_config_schema.h"
+
+namespace bsg {
+
+namespace {
+
+RunConfig from_document(const YAML::Node& document, const std::string& source_name,
+                        const std::vector<std::string>& valid_env_ids) {
+  const std::vector<ConfigEntry> entries = read_config_entries(document, source_name);
+  RunConfig config;
+  ConfigOrigins origins;
+  for (const char* chooser : {"alg", "env_id"}) {
+    const ConfigEntry* entry = find_last_entry(entries, chooser);
+    if (entry == nullptr) {
+      throw ConfigError(source_name + ": resolved config lacks key '" + std::string(chooser) +
+                        "'");
+    }
+    set_config_value(config, *find_config_key(chooser), entry->value, entry->origin);
+    origins[chooser] = entry->origin;
+  }
+  if (!valid_env_ids.empty()) check_env_id(config.env_id, origins["env_id"], valid_env_ids);
+  apply_config_entries(config, entries, origins);
+  for (const ConfigKey& key : run_config_schema()) {
+    if (key.applies_to(config.alg) && origins.count(std::string(key.key)) == 0) {
+      throw ConfigError(source_name + ": resolved config lacks key '" + std::string(key.key) +
+                        "' (" + std::string(key.description) + ")");
+    }
+  }
+  check_run_config_relations(config, origins);
+  return config;
+}
+
+}  // namespace
+
+std::string to_yaml(const RunConfig& config) {
+  std::ostringstream out;
+  out << "# bsg run configuration, resolved: configs/algorithms/" << to_string(config.alg)
+      << ".yaml <- configs/envs/" << config.env_id << ".yaml <- run file <- --set\n";
+  ConfigLayer section = ConfigLayer::run;
+  bool first = true;
+  for (const ConfigKey& key : run_config_schema()) {
+    if (!key.applies_to(config.alg)) continue;
+    if (first || key.default_source != section) {
+      section = key.default_source;
+      out << "# --- " << to_string(section) << " ---\n";
+      first = false;
+    }
+    out << key.key << ": " << config_value_to_yaml(config, key) << "  # " << key.description
+        << "\n";
+  }
+  return out.str();
+}
+
+void write_run_config(const RunConfig& config, const std::filesystem::path& path) {
+  std::ofstream out(path, std::ios::trunc);
+  if (!out) throw ConfigError("cannot write run config to " + path.string());
+  out << to_yaml(config);
+  out.flush();
+  if (!out) throw ConfigError("failed writing run config to " + path.string());
+}
+
+RunConfig run_config_from_yaml(std::string_view yaml_text, const std::string& source_name,
+                               const std::vector<std::string>& valid_env_ids) {
+  YAML::Node document;
+  try {
+    document = YAML::Load(std::string(yaml_text));
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(source_name + ": malformed YAML: " + e.what());
+  }
+  return from_document(document, source_name, valid_env_ids);
+}
+
+RunConfig load_resolved_run_config(const std::filesystem::path& path,
+                                   const std::vector<std::string>& valid_env_ids) {
+  return from_document(load_yaml_file(path), path.string(), valid_env_ids);
+}
+
+}  // namespace bsg
