@@ -335,6 +335,26 @@ const std::vector<ConfigKey>& run_config_schema() {
   return keys;
 }
 
+std::string config_schema_markdown() {
+  auto escape_bars = [](const std::string& text) {  // '|' would split a Markdown cell
+    std::string out;
+    for (char c : text) {
+      if (c == '|') out += '\\';
+      out += c;
+    }
+    return out;
+  };
+  std::ostringstream table;
+  table << "| key | type | default from | valid values | algorithms | description |\n"
+        << "|---|---|---|---|---|---|\n";
+  for (const ConfigKey& entry : run_config_schema()) {
+    table << "| `" << entry.key << "` | " << to_string(entry.type) << " | "
+          << to_string(entry.default_source) << " | " << escape_bars(entry.valid_values())
+          << " | " << entry.used_by_text() << " | " << entry.description << " |\n";
+  }
+  return table.str();
+}
+
 const ConfigKey* find_config_key(std::string_view key) {
   for (const ConfigKey& entry : run_config_schema()) {
     if (entry.key == key) return &entry;

@@ -59,6 +59,10 @@ struct ConfigKey {
 // Every key, in the order to_yaml() writes them.
 const std::vector<ConfigKey>& run_config_schema();
 
+// The schema as a Markdown table (key, type, default from, valid values,
+// algorithms, description), as configs/README.md shows it.
+std::string config_schema_markdown();
+
 // nullptr if `key` is not a configuration key.
 const ConfigKey* find_config_key(std::string_view key);
 

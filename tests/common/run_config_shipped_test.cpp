@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <map>
 #include <set>
 #include <string>
@@ -223,6 +225,15 @@ TEST(ConfigSchema, KeysAreUniqueDescribedAndIncludeTheSpecsNames) {
         "num_mini_batches"}) {
     EXPECT_NE(find_config_key(name), nullptr) << name;
   }
+}
+
+TEST(ConfigSchema, ConfigsReadmeShowsTheCurrentKeyTable) {
+  std::ifstream in(kShippedConfigs / "README.md");
+  std::ostringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find(config_schema_markdown()), std::string::npos)
+      << "regenerate the table in configs/README.md from config_schema_markdown():\n"
+      << config_schema_markdown();
 }
 
 }  // namespace
