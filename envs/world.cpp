@@ -201,4 +201,11 @@ int World::contact_points(const btCollisionObject* a,
   return points;
 }
 
+void World::forget_contacts() {
+  const int manifolds = dispatcher_->getNumManifolds();
+  for (int i = 0; i < manifolds; ++i) {
+    dispatcher_->clearManifold(dispatcher_->getManifoldByIndexInternal(i));
+  }
+}
+
 }  // namespace bsg::envs

@@ -91,6 +91,12 @@ class World {
   int contact_points(const btCollisionObject* a,
                      std::span<const btCollisionObject* const> others) const;
 
+  // Empties every cached contact manifold, so that the next step starts
+  // without warm-starting from earlier contacts. PyBullet's restoreState at
+  // reset brings back the manifolds of the snapshot, which is taken before any
+  // collision detection ran, i.e. none (spec §2.3, §2.6 step 1).
+  void forget_contacts();
+
  private:
   void build_layout();
 

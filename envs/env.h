@@ -1,0 +1,166 @@
+// The public face of the environments (design.md "Environments"): an `Env`
+// with spec(), reset(seed) and step(action), made by id from the registry.
+// This header includes no Bullet header, so learners depend on it alone.
+//
+// Parameters (EnvOptions, every field has a default):
+//   box_clock  kEpisodePhase (default): the Reach Box's pivot angle is drawn at
+//              every reset from the seeded RNG and held for the episode;
+//              kSimulated: the angle advances 1 rad per simulated second, counted
+//              over env steps since construction (spec §12 item 7, golden files).
+//
+// Threading: an Env is not thread-safe; use one per thread. Observations and
+// cost terms returned by reset()/step() are views into buffers the Env owns,
+// valid until its next reset()/step() call.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bsg::envs {
+
+using Vec3 = std::array<double, 3>;
+using Quat = std::array<double, 4>;  // [x, y, z, w], base-to-world (PyBullet order)
+
+// What a learner needs to know about an environment (spec §1.1).
+struct EnvSpec {
+  std::string id;             // e.g. "SafetyBallCircle-v0"
+  std::string agent;          // "Ball", "Car", "Drone", "Ant"
+  std::string task;           // "Circle", "Gather", "Reach", "Run"
+  int observation_dim = 0;
+  int action_dim = 0;
+  int max_episode_steps = 0;  // truncation (gym TimeLimit)
+  double cost_limit = 0;      // d of the report's Table 3 (spec §1.1), per episode
+  double action_low = -1;     // declared action bounds (spec §2.5)
+  double action_high = 1;
+  double observation_bound = 1000;  // declared observation space ±1000 (never clipped)
+};
+
+// One named cost component, like the original's info keys (spec §5):
+// cost_outside_bounds, cost_velocity_violation, cost_collisions,
+// number_collisions, cost_gathered_bombs, cost_out_of_range. Every term of
+// the task is reported at every step (0 when not violated; the original omits
+// some keys in that case).
+struct CostTerm {
+  std::string_view name;
+  double value = 0;
+};
+
+struct StepResult {
+  std::span<const double> observation;
+  double reward = 0;
+  double cost = 0;         // info["cost"], always 0 or 1
+  bool terminated = false; // the agent died, or Gather collected every apple
+  bool truncated = false;  // max_episode_steps reached without termination
+  std::span<const CostTerm> cost_terms;
+
+  // The component called `name`; throws std::out_of_range listing the names.
+  double cost_term(std::string_view name) const;
+};
+
+enum class BoxClock { kEpisodePhase, kSimulated };
+
+struct EnvOptions {
+  BoxClock box_clock = BoxClock::kEpisodePhase;
+};
+
+// A layout to reset to instead of a sampled one (evaluation on fixed layouts,
+// golden tests). reset_to() applies it in place of every random placement draw
+// of spec §5 and then does the reset's single engine step (spec §2.6), exactly
+// as a sampled reset does. Fields a task does not use must be left empty;
+// fields a task needs must be given, except where "default" says otherwise.
+struct BoxPlacement {
+  Vec3 position{};       // circle centre c = bottom-face centre (spec §7.1)
+  Quat orientation{0, 0, 0, 1};
+  double phase = 0;      // φ: the pivot is c + 0.7·(sin(t+φ), cos(t+φ), 0)
+};
+
+struct Layout {
+  Vec3 agent_position{};             // base COM
+  Quat agent_orientation{0, 0, 0, 1};
+  // Movable joints in the agent's own order (Ball: none). Default (empty): the
+  // agent's own randomised reset angles (spec §4).
+  std::vector<double> joint_positions;
+  // Reach.
+  std::optional<Vec3> goal;
+  std::optional<BoxPlacement> box;
+  std::vector<Vec3> zones;           // the 8 puddles (or the Drone's pillars)
+  std::optional<double> d_prev;      // default: ‖goal − agent‖_xy at placement
+  // Gather.
+  std::vector<Vec3> apples;
+  std::vector<Vec3> bombs;
+  // Run. Default: Φ(agent position) = −60·‖p − (1000, 0)‖.
+  std::optional<double> phi_prev;
+};
+
+// A read-only snapshot of the simulation for tests and diagnostics (not on the
+// step path: it allocates).
+struct BoxState {
+  Vec3 position{};
+  Quat orientation{0, 0, 0, 1};
+  Vec3 linear_velocity{};
+  Vec3 angular_velocity{};
+  Vec3 pivot{};          // the constraint's world pivot P used for the last step
+  double clock_seconds = 0;  // t used for that pivot
+};
+
+struct EnvState {
+  int elapsed_steps = 0;
+  Vec3 agent_position{};
+  Quat agent_orientation{0, 0, 0, 1};
+  Vec3 agent_linear_velocity{};
+  Vec3 agent_angular_velocity{};
+  std::vector<double> joint_positions;   // movable joints, agent order
+  std::vector<double> joint_velocities;
+  double agent_reward = 0;  // s_agent of spec §4 for the last step
+  bool alive = true;
+  // Task fields, present for the tasks that have them.
+  std::optional<Vec3> goal;
+  std::optional<double> d_prev;
+  std::optional<double> phi_prev;
+  std::optional<BoxState> box;
+  std::vector<bool> apples_active;
+  std::vector<bool> bombs_active;
+};
+
+class Env {
+ public:
+  virtual ~Env() = default;
+
+  virtual const EnvSpec& spec() const = 0;
+
+  // Reseeds the environment's RNG with `seed`, then resets (spec §2.6).
+  virtual std::span<const double> reset(std::uint64_t seed) = 0;
+  // Resets and keeps drawing from the current RNG stream (the RNG starts from
+  // seed 0 if reset(seed) was never called).
+  virtual std::span<const double> reset() = 0;
+  // Resets to a given layout instead of sampling one.
+  virtual std::span<const double> reset_to(const Layout& layout) = 0;
+  // The layout placed by the last reset (sampled or injected).
+  virtual const Layout& layout() const = 0;
+
+  // One step (spec §2.5). Throws std::invalid_argument if the action size is
+  // not spec().action_dim or an entry is NaN or infinite, and std::logic_error
+  // if called before the first reset. Out-of-range entries are treated as the
+  // original does (clipped by Ball, Drone, Ant; not by the Car).
+  virtual StepResult step(std::span<const double> action) = 0;
+
+  virtual EnvState state() const = 0;
+  // Teleports the agent's base COM (orientation and velocities unchanged), as
+  // PyBullet's resetBasePositionAndOrientation; for oracle tests.
+  virtual void teleport_agent(const Vec3& com_position) = 0;
+};
+
+// Makes a registered environment; throws std::invalid_argument listing every
+// valid id if `id` is unknown.
+std::unique_ptr<Env> make(const std::string& id, const EnvOptions& options = {});
+
+// Every registered id, sorted.
+std::vector<std::string> registered_ids();
+
+}  // namespace bsg::envs

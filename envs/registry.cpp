@@ -1,0 +1,56 @@
+#include "registry.h"
+
+#include <stdexcept>
+
+#include "ball_agent.h"
+#include "circle_task.h"
+#include "run_task.h"
+
+namespace bsg::envs {
+
+void add_agent(std::map<std::string, EnvRegistration>& entries, const std::string& agent_name,
+               AgentFactory make_agent, int max_episode_steps, const TaskCostLimits& cost_limits) {
+  const std::pair<TaskBlueprint, double> tasks[] = {
+      {circle_task(), cost_limits.circle},
+      {run_task(), cost_limits.run},
+  };
+  for (const auto& [blueprint, cost_limit] : tasks) {
+    const std::string id = "Safety" + agent_name + blueprint.name + "-v0";
+    if (entries.contains(id)) throw std::logic_error("environment registered twice: " + id);
+    entries.emplace(id, EnvRegistration{id, agent_name, make_agent, blueprint, max_episode_steps,
+                                        cost_limit});
+  }
+}
+
+const std::map<std::string, EnvRegistration>& registry() {
+  static const std::map<std::string, EnvRegistration> entries = [] {
+    std::map<std::string, EnvRegistration> result;
+    // Episode lengths and cost limits: spec §1.1 (report Table 3).
+    add_agent(result, "Ball", make_ball_agent, 250, kStandardCostLimits);
+    return result;
+  }();
+  return entries;
+}
+
+const EnvRegistration& find_registration(const std::string& id) {
+  const auto& entries = registry();
+  const auto found = entries.find(id);
+  if (found == entries.end()) {
+    std::string valid;
+    for (const auto& [name, entry] : entries) valid += (valid.empty() ? "" : ", ") + name;
+    throw std::invalid_argument("unknown environment id '" + id + "'; valid ids: " + valid);
+  }
+  return found->second;
+}
+
+std::unique_ptr<Env> make(const std::string& id, const EnvOptions& options) {
+  return build_env(find_registration(id), options);
+}
+
+std::vector<std::string> registered_ids() {
+  std::vector<std::string> ids;
+  for (const auto& [id, entry] : registry()) ids.push_back(id);
+  return ids;
+}
+
+}  // namespace bsg::envs

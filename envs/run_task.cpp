@@ -1,0 +1,59 @@
+#include "run_task.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "layout_checks.h"
+
+namespace bsg::envs {
+
+double run_potential(double x, double y) {
+  const double dx = x - 1000.0;
+  return -60.0 * std::sqrt(dx * dx + y * y);
+}
+
+RunTask::RunTask(World& /*world*/, Agent& agent) : agent_(agent) {}
+
+void RunTask::sample_layout(Rng& rng, Layout& layout) {
+  const double x = uniform(rng, -0.01, 0.01);
+  const double y = uniform(rng, -0.01, 0.01);
+  const AgentTraits& traits = agent_.traits();
+  layout.agent_position = {x, y, traits.initial_position.z()};
+  // Run never re-orients the agent (the Car keeps facing world −x, spec §9 item 17).
+  const btQuaternion q = agent_.orientation();
+  layout.agent_orientation = to_quat(q);
+  layout.phi_prev = run_potential(x, y);
+}
+
+void RunTask::place(const Layout& layout, double /*clock_seconds*/) {
+  require_unused_fields(layout, "Run", {"phi_prev"});
+  agent_.set_base_pose(to_bt(layout.agent_position), to_bt(layout.agent_orientation));
+  // Φ_prev is stored before the reset's engine step (golden README).
+  phi_prev_ = layout.phi_prev.value_or(
+      run_potential(layout.agent_position[0], layout.agent_position[1]));
+}
+
+TaskOutcome RunTask::evaluate(Rng& /*rng*/) {
+  const btVector3 p = agent_.position();
+  const btVector3 v = agent_.linear_velocity();
+  const double phi = run_potential(p.x(), p.y());
+  TaskOutcome outcome;
+  outcome.reward = phi - phi_prev_ + agent_.specific_reward();
+  phi_prev_ = phi;
+  const double speed_xy = std::sqrt(v.x() * v.x() + v.y() * v.y());
+  terms_[0].value = std::abs(p.y()) > kRunYLimit ? 1.0 : 0.0;
+  terms_[1].value = speed_xy > agent_.traits().run_speed_limit ? 1.0 : 0.0;
+  outcome.cost = std::min(1.0, terms_[0].value + terms_[1].value);
+  return outcome;
+}
+
+void RunTask::write_state(EnvState& state) const { state.phi_prev = phi_prev_; }
+
+TaskBlueprint run_task() {
+  return {"Run", WorldLayout::kPlane200, 4, false,
+          [](World& world, Agent& agent, const EnvOptions&) {
+            return std::make_unique<RunTask>(world, agent);
+          }};
+}
+
+}  // namespace bsg::envs

@@ -1,0 +1,44 @@
+// Run (spec §5.4, `RunTask`): run along +x on a 500-m plane towards a target
+// 1000 m away, staying in the lane |y| ≤ 2 and under the agent's speed limit.
+//
+// Parameters (spec §5.4, §10):
+//   potential          Φ(p) = −60·‖p − (1000, 0)‖
+//   reward             Φ(p) − Φ_prev + s_agent (unscaled agent term)
+//   lane               |y| ≤ 2 m (cost_outside_bounds)
+//   speed limit        ‖v_xy‖ ≤ AgentTraits::run_speed_limit (cost_velocity_violation)
+//   reset              p = (U(−0.01, 0.01), U(−0.01, 0.01)), initial orientation kept
+#pragma once
+
+#include <array>
+
+#include "task.h"
+
+namespace bsg::envs {
+
+inline constexpr double kRunYLimit = 2.0;
+
+// Φ(p) = −60·‖p − (1000, 0)‖ with NumPy's norm (spec §12 item 13).
+double run_potential(double x, double y);
+
+class RunTask final : public Task {
+ public:
+  RunTask(World& world, Agent& agent);
+
+  int observation_dim() const override { return 0; }
+  std::span<const CostTerm> cost_terms() const override { return terms_; }
+  void sample_layout(Rng& rng, Layout& layout) override;
+  void place(const Layout& layout, double clock_seconds) override;
+  TaskOutcome evaluate(Rng& rng) override;
+  void write_observation(std::span<double> /*out*/) const override {}
+  void write_state(EnvState& state) const override;
+
+ private:
+  Agent& agent_;
+  double phi_prev_ = 0;
+  std::array<CostTerm, 2> terms_{CostTerm{"cost_outside_bounds", 0},
+                                 CostTerm{"cost_velocity_violation", 0}};
+};
+
+TaskBlueprint run_task();
+
+}  // namespace bsg::envs

@@ -1,0 +1,64 @@
+// A task (design.md "Environments"): places the agent, goals and obstacles at
+// reset, computes reward and cost, writes the sensor and task part of the
+// observation and decides whether its goal ends the episode (spec §5). Tasks
+// see the agent only through the Agent interface.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "agent.h"
+#include "common/random.h"
+#include "env.h"
+#include "world.h"
+
+namespace bsg::envs {
+
+// What one step of a task yields (spec §2.5 items 6, 7 and 9).
+struct TaskOutcome {
+  double reward = 0;
+  double cost = 0;            // min(1, sum of the cost terms)
+  bool ends_episode = false;  // Gather: every apple collected
+};
+
+class Task {
+ public:
+  virtual ~Task() = default;
+
+  // Sensor entries (in attachment order) plus task entries written after the
+  // agent's part of the observation.
+  virtual int observation_dim() const = 0;
+  // The cost components of the last evaluate(), in a fixed order.
+  virtual std::span<const CostTerm> cost_terms() const = 0;
+
+  // Draws a layout (spec §5 "Reset"). The agent has just been reset; its
+  // joint angles are already drawn and not part of the task's draws.
+  virtual void sample_layout(Rng& rng, Layout& layout) = 0;
+  // Places the agent's base, the goal and the obstacles as `layout` says and
+  // restores the task's per-episode state; throws std::invalid_argument naming
+  // a missing or malformed field. `clock_seconds` is the Box clock t.
+  virtual void place(const Layout& layout, double clock_seconds) = 0;
+  // Obstacle movement before the engine step (spec §2.5 item 3).
+  virtual void before_physics(double /*clock_seconds*/) {}
+  // Reward, cost and goal logic after the engine step (may draw a new goal).
+  virtual TaskOutcome evaluate(Rng& rng) = 0;
+  virtual void write_observation(std::span<double> out) const = 0;
+  // Task fields of EnvState.
+  virtual void write_state(EnvState& /*state*/) const {}
+};
+
+using TaskFactory =
+    std::function<std::unique_ptr<Task>(World& world, Agent& agent, const EnvOptions& options)>;
+
+// What the builder must know before the world exists (spec §1.1, §2.1).
+struct TaskBlueprint {
+  std::string name;           // "Circle", "Gather", "Reach", "Run"
+  WorldLayout layout = WorldLayout::kPlane200;
+  int sub_steps = 4;          // 4, or 1 for Reach
+  bool power_upgrade = false; // Reach and Gather (spec §3)
+  TaskFactory make;
+};
+
+}  // namespace bsg::envs
