@@ -1,0 +1,135 @@
+// The interface of the five algorithms (TRPO, TRPO-L, CPO, PDO, PCPO): the
+// on-policy loop (spec §1) calls `update` once per epoch, after the rollout and
+// GAE and before the value fits; the algorithms differ only in this update
+// (design.md "Learning"). One file per algorithm implements it.
+//
+// The class is called TrustRegionAlgorithm because `bsg::Algorithm` is already
+// the enum naming the algorithm in common/run_config.h; make_algorithm.h turns
+// a RunConfig into one.
+//
+// Order inside one epoch (spec §1): the loop calls update() (which, for TRPO-L
+// and PDO, first updates lambda and then takes the policy step), then fits V
+// and, if uses_cost_value_function(), V_C, then updates the normalisers.
+//
+// This header also declares the few building blocks the five updates share
+// (rank-averaged gradients, the Fisher operator, options from the RunConfig,
+// applying the accepted step); algorithm.cpp defines them.
+#pragma once
+
+#include <Eigen/Core>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "algos/conjugate_gradient.h"
+#include "algos/fisher_vector_product.h"
+#include "algos/gaussian_policy.h"
+#include "algos/line_search.h"
+#include "algos/policy_surrogate.h"
+#include "common/mpi_context.h"
+#include "common/run_config.h"
+
+namespace bsg {
+
+// One logged scalar (a progress.csv column, spec §13.1) or one saved state value.
+struct NamedScalar {
+  std::string name;
+  double value = 0.0;
+  bool operator==(const NamedScalar&) const = default;
+};
+
+// What an update needs. All references must outlive the call.
+struct PolicyUpdateInputs {
+  GaussianPolicy& policy;       // theta is replaced by theta_old + accepted step
+  PolicySurrogate& surrogate;   // this rank's batch: normalised obs, actions, old log-probs, A, A^C
+  double mean_episode_cost;     // J_C: pooled mean undiscounted cost of the episodes completed this epoch
+  double mean_episode_length;   // L: pooled mean length of the same episodes
+  const MpiContext& mpi;
+};
+
+// Diagnostics of one update, in the fixed order of diagnostic_names(). The
+// first kCommonDiagnosticCount entries are the common columns every algorithm
+// fills (rank-LOCAL values, to be pooled by the logger as spec §9 says):
+//   Loss/Pi       loss before the update (TRPO-L: the Lagrangian loss l_L; others l_R)
+//   Loss/DeltaPi  loss after minus loss before (true value for CPO too, Q18)
+//   Entropy       entropy per action dimension
+//   KL            full-batch KL(theta_old || theta) after the update
+//   PolicyRatio   mean ratio rho after the update
+// The rest are the algorithm's own columns in spec §13.1 order (identical on
+// all ranks): Misc/AcceptanceStep, Misc/Alpha, Misc/FinalStepNorm,
+// Misc/gradient_norm, Misc/xHx, Misc/H_inv_g, then per algorithm
+// LagrangeMultiplier (TRPO-L); Misc/cost_gradient_norm, Misc/A, Misc/B, Misc/q,
+// Misc/r, Misc/s, Misc/Lambda_star, Misc/Nu_star, Misc/OptimCase (CPO, PCPO);
+// Misc/cost_gradient_norm, LagrangeMultiplier (PDO).
+struct PolicyUpdateResult {
+  std::vector<NamedScalar> diagnostics;
+  // The value of the named diagnostic; throws std::out_of_range if absent.
+  double value(std::string_view name) const;
+};
+
+inline constexpr std::size_t kCommonDiagnosticCount = 5;
+
+class TrustRegionAlgorithm {
+ public:
+  virtual ~TrustRegionAlgorithm() = default;
+
+  // "trpo", "lag-trpo", "cpo", "pdo" or "pcpo" (the config spelling).
+  virtual std::string_view name() const = 0;
+
+  // One policy update (collective: every rank must call it). On return the
+  // policy holds theta_old + accepted step; if no line-search trial was
+  // accepted, its parameters are bit-identical to before.
+  virtual PolicyUpdateResult update(const PolicyUpdateInputs& inputs) = 0;
+
+  // The names of update()'s diagnostics, in order; never changes.
+  virtual std::vector<std::string> diagnostic_names() const = 0;
+
+  // Whether the loop trains the cost value net V_C (RunConfig
+  // use_cost_value_function: false for TRPO, true for the others).
+  virtual bool uses_cost_value_function() const = 0;
+
+  // The state to checkpoint (lambda and its optimiser moments for TRPO-L and
+  // PDO; empty for the others) and its restoration. restore_state throws
+  // std::invalid_argument if the names do not match state()'s.
+  virtual std::vector<NamedScalar> state() const = 0;
+  virtual void restore_state(std::span<const NamedScalar> saved) = 0;
+};
+
+// ---------------------------------------------------------------------------
+// Building blocks shared by the five updates.
+
+// The names of the common columns, in order (Loss/Pi ... PolicyRatio).
+std::vector<std::string> common_diagnostic_names();
+
+// CG, FVP and line-search options from the RunConfig (cg_iters, cg_damping,
+// fvp_subsample, backtrack_budget, backtrack_decay, target_kl, kl_accept_factor).
+ConjugateGradientOptions conjugate_gradient_options(const RunConfig& config);
+FisherVectorProductOptions fisher_vector_product_options(const RunConfig& config);
+LineSearchOptions line_search_options(const RunConfig& config);
+
+// The LinearOperator view of a FisherVectorProduct (which must outlive it).
+LinearOperator as_linear_operator(FisherVectorProduct& fisher);
+
+// g = avg grad L_R and b = avg grad L_C at the policy's parameters, with one
+// allreduce of length 2P (spec §6.2).
+struct PolicyGradients {
+  Eigen::VectorXd reward;  // g
+  Eigen::VectorXd cost;    // b
+};
+PolicyGradients averaged_policy_gradients(const PolicyUpdateInputs& inputs);
+
+// theta <- theta_old + step if the search accepted a trial, else theta <-
+// theta_old exactly (bit-identical; no "+ 0" which could flip a -0.0).
+void apply_line_search_result(GaussianPolicy& policy, const Eigen::VectorXd& theta_old,
+                              const LineSearchResult& result);
+
+// The per-step constraint violation c = (J_C - d) / (L + 1e-8) of CPO and
+// PCPO (spec §7.4 step 4); throws if J_C or L is not finite or L < 0.
+double per_step_constraint_violation(double mean_episode_cost, double mean_episode_length, double cost_limit);
+
+// Throws std::invalid_argument naming the field if J_C is not finite (used by
+// the algorithms that read it).
+void check_mean_episode_cost(const PolicyUpdateInputs& inputs, std::string_view algorithm);
+
+}  // namespace bsg
