@@ -1,0 +1,61 @@
+// The learner's networks and normalisers (spec §1 step 5, §2, §4): the
+// Gaussian policy, the reward value net V, the cost value net V_C (always
+// built and evaluated during rollouts; trained only by algorithms that use
+// it), the observation normaliser and the return normaliser of reward
+// scaling. Parameters are identical on every rank (broadcast at start, then
+// lockstep updates), so one copy describes the whole run.
+//
+// Parameters (from RunConfig):
+//   hidden_sizes, zero_bias_init          the three MLPs (spec §2)
+//   vf_lr                                 Adam learning rate of V and V_C
+//   use_standardized_obs, obs_clip,       observation normalisation (§4.1, Q3, Q4)
+//   exact_parallel_variance
+#pragma once
+
+#include <Eigen/Core>
+
+#include "algos/gaussian_policy.h"
+#include "algos/value_function.h"
+#include "common/binary_io.h"
+#include "common/mpi_context.h"
+#include "common/random.h"
+#include "common/run_config.h"
+#include "common/running_mean_std.h"
+
+namespace bsg {
+
+struct ActorCritic {
+  // Draws the initial parameters of policy, V and V_C (in that order) from `init_rng`.
+  ActorCritic(int observation_size, int action_size, const RunConfig& config, Rng& init_rng);
+
+  GaussianPolicy policy;
+  ValueFunction value;
+  ValueFunction cost_value;
+  RunningMeanStd observation_normalizer;
+  RunningMeanStd return_normalizer;
+  bool standardize_observations = true;
+
+  int observation_size() const { return policy.observation_size(); }
+  int action_size() const { return policy.action_size(); }
+
+  // s_hat = (s - m)/(std + 1e-5) (optionally clipped), or a copy if normalisation is off.
+  void normalize_observation(const Eigen::Ref<const Eigen::VectorXd>& raw,
+                             Eigen::Ref<Eigen::VectorXd> normalized) const;
+  void normalize_observations(const Eigen::Ref<const Eigen::MatrixXd>& raw,
+                              Eigen::Ref<Eigen::MatrixXd> normalized) const;
+
+  // Every rank takes rank 0's parameters and statistics (spec §1 step 5).
+  void broadcast_from_root(const MpiContext& mpi);
+
+  // Sum of every parameter of the three nets (spec §1 step 5's consistency check).
+  double parameter_sum() const;
+  // Name of the first non-finite quantity among the nets and normalisers, or "".
+  const char* first_non_finite() const;
+
+  // Parameters, Adam states and normaliser statistics (not sigma, which the
+  // epoch sets). load() checks every size against this object's shapes.
+  void save(BinaryWriter& writer) const;
+  void load(BinaryReader& reader);
+};
+
+}  // namespace bsg

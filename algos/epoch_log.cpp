@@ -1,0 +1,122 @@
+#include "algos/epoch_log.h"
+
+#include <cctype>
+#include <map>
+#include <stdexcept>
+
+namespace bsg {
+namespace {
+
+void add(std::vector<NamedScalar>& row, std::string name, double value) { row.push_back({std::move(name), value}); }
+
+void add_pooled(std::vector<NamedScalar>& row, const std::string& prefix, const PooledStatistics& stats,
+                bool with_std) {
+  add(row, prefix + "_mean", stats.mean);
+  if (with_std) add(row, prefix + "_std", stats.std);
+  add(row, prefix + "_min", stats.min);
+  add(row, prefix + "_max", stats.max);
+}
+
+Eigen::VectorXd episode_field(const Buffer& buffer, double (*field)(const EpisodeStats&)) {
+  const std::vector<EpisodeStats>& episodes = buffer.episodes();
+  Eigen::VectorXd values(static_cast<Eigen::Index>(episodes.size()));
+  for (std::size_t i = 0; i < episodes.size(); ++i) values[static_cast<Eigen::Index>(i)] = field(episodes[i]);
+  return values;
+}
+
+}  // namespace
+
+EpisodeStatistics pool_episode_statistics(const Buffer& buffer, const MpiContext& mpi) {
+  EpisodeStatistics stats;
+  stats.episode_return =
+      pool_statistics(episode_field(buffer, [](const EpisodeStats& e) { return e.episode_return; }), mpi);
+  stats.episode_cost = pool_statistics(episode_field(buffer, [](const EpisodeStats& e) { return e.episode_cost; }), mpi);
+  stats.episode_length = pool_statistics(
+      episode_field(buffer, [](const EpisodeStats& e) { return static_cast<double>(e.episode_length); }), mpi);
+  return stats;
+}
+
+std::string progress_column_name(std::string_view diagnostic_name) {
+  static const std::map<std::string_view, std::string_view> kNames = {
+      {"Loss/Pi", "policy_loss"},
+      {"Loss/DeltaPi", "policy_loss_delta"},
+      {"Entropy", "entropy"},
+      {"KL", "kl"},
+      {"PolicyRatio", "policy_ratio"},
+      {"Misc/AcceptanceStep", "line_search_acceptance_step"},
+      {"Misc/Alpha", "step_alpha"},
+      {"Misc/FinalStepNorm", "final_step_norm"},
+      {"Misc/gradient_norm", "gradient_norm"},
+      {"Misc/xHx", "xFx"},
+      {"Misc/H_inv_g", "cg_solution_norm"},
+      {"LagrangeMultiplier", "lagrange_multiplier"},
+      {"Misc/cost_gradient_norm", "cost_gradient_norm"},
+      {"Misc/A", "cpo_A"},
+      {"Misc/B", "cpo_B"},
+      {"Misc/q", "cpo_q"},
+      {"Misc/r", "cpo_r"},
+      {"Misc/s", "cpo_s"},
+      {"Misc/Lambda_star", "cpo_lambda_star"},
+      {"Misc/Nu_star", "cpo_nu_star"},
+      {"Misc/OptimCase", "cpo_optim_case"},
+  };
+  if (const auto found = kNames.find(diagnostic_name); found != kNames.end()) return std::string(found->second);
+  std::string name(diagnostic_name);
+  for (char& c : name) c = c == '/' ? '_' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return name;
+}
+
+bool is_timing_column(std::string_view column) { return column.starts_with("time_") || column == "fps"; }
+
+std::vector<NamedScalar> make_epoch_log_row(const EpochLogInputs& in, const MpiContext& mpi) {
+  if (in.episodes == nullptr || in.buffer == nullptr || in.update == nullptr || in.value_fit == nullptr ||
+      in.return_normalizer == nullptr) {
+    throw std::invalid_argument("make_epoch_log_row: missing inputs");
+  }
+  std::vector<NamedScalar> row;
+  add(row, "epoch", in.epoch);
+  add(row, "total_env_steps", static_cast<double>(in.total_env_steps));
+  add_pooled(row, "episode_return", in.episodes->episode_return, true);
+  add_pooled(row, "episode_cost", in.episodes->episode_cost, true);
+  add_pooled(row, "episode_length", in.episodes->episode_length, true);
+  add(row, "episodes", static_cast<double>(in.episodes->episode_return.count));
+  add_pooled(row, "value", pool_statistics(in.buffer->values(), mpi), false);
+  add_pooled(row, "advantage", pool_statistics(in.buffer->advantages(), mpi), false);
+  add_pooled(row, "cost_value", pool_statistics(in.buffer->cost_values(), mpi), false);
+
+  // Rank-local losses, averaged over ranks in one reduction.
+  double losses[4] = {in.value_fit->loss_before, in.value_fit->mean_minibatch_loss - in.value_fit->loss_before, 0, 0};
+  if (in.cost_value_fit != nullptr) {
+    losses[2] = in.cost_value_fit->loss_before;
+    losses[3] = in.cost_value_fit->mean_minibatch_loss - in.cost_value_fit->loss_before;
+  }
+  mpi.average_in_place(losses, 4);
+  add(row, "value_loss", losses[0]);
+  add(row, "value_loss_delta", losses[1]);
+  if (in.cost_value_fit != nullptr) {
+    add(row, "cost_value_loss", losses[2]);
+    add(row, "cost_value_loss_delta", losses[3]);
+  }
+  add(row, "exploration_std", in.exploration_std);
+  add(row, "reward_scale_mean", in.return_normalizer->mean()[0]);
+  add(row, "reward_scale_std", in.return_normalizer->std()[0]);
+
+  // The common diagnostics are rank-local (averaged here); the rest agree on all ranks.
+  const std::vector<NamedScalar>& diagnostics = in.update->diagnostics;
+  const std::size_t common = std::min(kCommonDiagnosticCount, diagnostics.size());
+  std::vector<double> local_common(common);
+  for (std::size_t i = 0; i < common; ++i) local_common[i] = diagnostics[i].value;
+  mpi.average_in_place(local_common.data(), local_common.size());
+  for (std::size_t i = 0; i < diagnostics.size(); ++i) {
+    add(row, progress_column_name(diagnostics[i].name), i < common ? local_common[i] : diagnostics[i].value);
+  }
+
+  const double epoch_seconds = in.collect_seconds + in.update_seconds;
+  add(row, "time_collect_s", in.collect_seconds);
+  add(row, "time_update_s", in.update_seconds);
+  add(row, "time_s", in.elapsed_seconds);
+  add(row, "fps", epoch_seconds > 0 ? in.steps_per_epoch / epoch_seconds : 0.0);
+  return row;
+}
+
+}  // namespace bsg

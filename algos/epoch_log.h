@@ -1,0 +1,84 @@
+// One progress.csv row per epoch (spec §13.1, §9). The columns, in order:
+//
+//   epoch                   k, 0-based (spec "Epoch")
+//   total_env_steps         (k + 1) B, summed over ranks ("TotalEnvSteps")
+//   episode_return_{mean,std,min,max}   raw undiscounted return of the episodes
+//                           completed this epoch, pooled over ranks ("EpRet/*")
+//   episode_cost_{mean,std,min,max}     ("EpCosts/*")
+//   episode_length_{mean,std,min,max}   ("EpLen/*")
+//   episodes                number of completed episodes, all ranks
+//   value_{mean,min,max}    V(s_t) over the batch ("Values/V/*")
+//   advantage_{mean,min,max}  the reward advantages A_t (the original logs the
+//                           actions under "Values/Adv", Q18; these are the true values)
+//   cost_value_{mean,min,max}  V_C(s_t) ("Values/C/*")
+//   value_loss, value_loss_delta   full-batch loss of V before the fit and the
+//                           mean minibatch loss minus it ("Loss/Value", "Loss/DeltaValue")
+//   cost_value_loss, cost_value_loss_delta   the same for V_C, only if the
+//                           algorithm trains it ("Loss/Cost", "Loss/DeltaCost"; Q18)
+//   exploration_std         sigma_k ("Misc/ExplorationNoiseStd")
+//   reward_scale_mean, reward_scale_std   return normaliser after the update ("Misc/RewScale*")
+//   then the algorithm's diagnostics (algorithm.h), renamed by
+//   progress_column_name(): policy_loss, policy_loss_delta, entropy, kl,
+//   policy_ratio, line_search_acceptance_step, step_alpha, final_step_norm,
+//   gradient_norm, xFx, cg_solution_norm, and per algorithm
+//   lagrange_multiplier, cost_gradient_norm, cpo_A, cpo_B, cpo_q, cpo_r,
+//   cpo_s, cpo_lambda_star, cpo_nu_star, cpo_optim_case
+//   time_collect_s, time_update_s   this epoch's seconds on rank 0
+//   time_s                  seconds of training since the run started (resumes continue it)
+//   fps                     B / seconds of this epoch
+//
+// Rank-local quantities (losses, the common diagnostics) are averaged over
+// ranks; the original's constant columns Misc/Seed, Misc/StopIter and LR are
+// left out (the seed is in config.yaml).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "algos/algorithm.h"
+#include "algos/buffer.h"
+#include "algos/epoch_statistics.h"
+#include "algos/value_function.h"
+#include "common/mpi_context.h"
+#include "common/running_mean_std.h"
+
+namespace bsg {
+
+// Episode statistics of one epoch, pooled over ranks (needed before the
+// update: J_C and L feed the algorithms).
+struct EpisodeStatistics {
+  PooledStatistics episode_return;
+  PooledStatistics episode_cost;
+  PooledStatistics episode_length;
+};
+EpisodeStatistics pool_episode_statistics(const Buffer& buffer, const MpiContext& mpi);
+
+struct EpochLogInputs {
+  int epoch = 0;
+  long long total_env_steps = 0;
+  int steps_per_epoch = 0;
+  double exploration_std = 0.0;
+  const EpisodeStatistics* episodes = nullptr;
+  const Buffer* buffer = nullptr;
+  const PolicyUpdateResult* update = nullptr;
+  const ValueFitStats* value_fit = nullptr;
+  const ValueFitStats* cost_value_fit = nullptr;  // null if V_C is not trained
+  const RunningMeanStd* return_normalizer = nullptr;
+  double collect_seconds = 0.0;
+  double update_seconds = 0.0;
+  double elapsed_seconds = 0.0;
+};
+
+// Collective (every rank takes part in the reductions); every rank gets the row.
+std::vector<NamedScalar> make_epoch_log_row(const EpochLogInputs& inputs, const MpiContext& mpi);
+
+// The progress.csv column of an algorithm diagnostic ("Loss/Pi" -> "policy_loss", ...);
+// unknown names are lower-cased with '/' turned into '_'.
+std::string progress_column_name(std::string_view diagnostic_name);
+
+// True for the columns that hold wall-clock measurements (time_*, fps): the
+// only ones in which two runs with the same seed may differ.
+bool is_timing_column(std::string_view column);
+
+}  // namespace bsg

@@ -1,0 +1,86 @@
+#include "algos/evaluation.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "common/seeding.h"
+
+namespace bsg {
+
+std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, const ActorCritic& actor_critic,
+                                                       int num_episodes, std::uint64_t env_seed, int max_ep_len) {
+  const Eigen::Index observation_size = actor_critic.observation_size();
+  Eigen::VectorXd raw(observation_size);
+  Eigen::VectorXd normalized(observation_size);
+  Eigen::VectorXd action(actor_critic.action_size());
+  MlpSampleWorkspace workspace;
+  const std::span<const double> action_view(action.data(), static_cast<std::size_t>(action.size()));
+  const auto copy = [&](std::span<const double> observation) {
+    if (static_cast<Eigen::Index>(observation.size()) != observation_size) {
+      throw std::runtime_error("evaluation: the environment returned an observation of size " +
+                               std::to_string(observation.size()) + ", expected " + std::to_string(observation_size));
+    }
+    raw = Eigen::Map<const Eigen::VectorXd>(observation.data(), observation_size);
+  };
+
+  std::vector<EvaluationEpisode> episodes;
+  episodes.reserve(static_cast<std::size_t>(std::max(0, num_episodes)));
+  for (int episode = 0; episode < num_episodes; ++episode) {
+    copy(episode == 0 ? env.reset(env_seed) : env.reset());
+    EvaluationEpisode result;
+    while (true) {
+      actor_critic.normalize_observation(raw, normalized);
+      actor_critic.policy.mean_action(normalized, action, workspace);  // a = mu_theta(s_hat)
+      const envs::StepResult step = env.step(action_view);
+      result.episode_return += step.reward;
+      result.episode_cost += step.cost;
+      ++result.episode_length;
+      if (step.terminated || step.truncated || result.episode_length >= max_ep_len) break;
+      copy(step.observation);
+    }
+    episodes.push_back(result);
+  }
+  return episodes;
+}
+
+EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_critic, int total_episodes,
+                                  std::int64_t run_seed, int max_ep_len, const MpiContext& mpi) {
+  if (total_episodes < 0) {
+    throw std::invalid_argument("evaluation: the number of episodes must be >= 0, got " +
+                                std::to_string(total_episodes));
+  }
+  const int local_episodes = total_episodes / mpi.size();
+  const std::uint64_t env_seed = derive_seed(static_cast<std::uint64_t>(run_seed), SeedStream::evaluation_environment,
+                                             static_cast<std::uint64_t>(mpi.rank()));
+  const std::vector<EvaluationEpisode> local =
+      run_evaluation_episodes(env, actor_critic, local_episodes, env_seed, max_ep_len);
+
+  std::vector<double> flat;
+  flat.reserve(local.size() * 3);
+  for (const EvaluationEpisode& e : local) {
+    flat.push_back(e.episode_return);
+    flat.push_back(e.episode_cost);
+    flat.push_back(static_cast<double>(e.episode_length));
+  }
+  const std::vector<double> gathered = mpi.gather_to_root(flat);
+  EvaluationSummary summary;
+  if (!mpi.is_root()) return summary;
+  for (std::size_t i = 0; i + 2 < gathered.size(); i += 3) {
+    summary.episodes.push_back({gathered[i], gathered[i + 1], static_cast<int>(gathered[i + 2])});
+  }
+  if (!summary.episodes.empty()) {
+    for (const EvaluationEpisode& e : summary.episodes) {
+      summary.mean_return += e.episode_return;
+      summary.mean_cost += e.episode_cost;
+      summary.mean_length += e.episode_length;
+    }
+    const double n = static_cast<double>(summary.episodes.size());
+    summary.mean_return /= n;
+    summary.mean_cost /= n;
+    summary.mean_length /= n;
+  }
+  return summary;
+}
+
+}  // namespace bsg

@@ -1,0 +1,44 @@
+// Deterministic evaluation after training (spec §12): the mean action
+// mu_theta(s_hat) without noise, observations normalised with the frozen
+// statistics, each episode run until the environment terminates or truncates
+// (or max_ep_len steps). J and H are the undiscounted raw sums of reward and
+// cost per episode.
+//
+// With R ranks, each rank runs floor(episodes / R) episodes on its own
+// environment, seeded with derive_seed(run seed, evaluation_environment,
+// rank) once and then reset from its own stream; rank 0 gathers them in rank
+// order.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "algos/actor_critic.h"
+#include "common/mpi_context.h"
+#include "envs/env.h"
+
+namespace bsg {
+
+struct EvaluationEpisode {
+  double episode_return = 0.0;  // J
+  double episode_cost = 0.0;    // H
+  int episode_length = 0;
+};
+
+struct EvaluationSummary {
+  std::vector<EvaluationEpisode> episodes;  // every rank's, in rank order (rank 0 only)
+  double mean_return = 0.0;                 // J
+  double mean_cost = 0.0;                   // H
+  double mean_length = 0.0;
+};
+
+// The episodes of this rank.
+std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, const ActorCritic& actor_critic,
+                                                       int num_episodes, std::uint64_t env_seed, int max_ep_len);
+
+// floor(total_episodes / R) episodes per rank, gathered to rank 0 (others get
+// an empty summary). Collective.
+EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_critic, int total_episodes,
+                                  std::int64_t run_seed, int max_ep_len, const MpiContext& mpi);
+
+}  // namespace bsg

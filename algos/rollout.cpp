@@ -1,0 +1,77 @@
+#include "algos/rollout.h"
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace bsg {
+
+RolloutCollector::RolloutCollector(int observation_size, int action_size, RolloutOptions options)
+    : options_(options),
+      raw_observation_(Eigen::VectorXd::Zero(observation_size)),
+      normalized_observation_(Eigen::VectorXd::Zero(observation_size)),
+      action_(Eigen::VectorXd::Zero(action_size)) {
+  if (options.local_steps <= 0 || options.max_ep_len <= 0) {
+    throw std::invalid_argument("RolloutCollector: local_steps (" + std::to_string(options.local_steps) +
+                                ") and max_ep_len (" + std::to_string(options.max_ep_len) + ") must be positive");
+  }
+}
+
+void RolloutCollector::copy_observation(std::span<const double> observation) {
+  if (static_cast<Eigen::Index>(observation.size()) != raw_observation_.size()) {
+    throw std::runtime_error("rollout: the environment returned an observation of size " +
+                             std::to_string(observation.size()) + ", expected " +
+                             std::to_string(raw_observation_.size()));
+  }
+  raw_observation_ = Eigen::Map<const Eigen::VectorXd>(observation.data(), raw_observation_.size());
+}
+
+void RolloutCollector::bootstrap_values(const ActorCritic& actor_critic, double& value, double& cost_value) {
+  actor_critic.normalize_observation(raw_observation_, normalized_observation_);
+  value = actor_critic.value.predict(normalized_observation_, value_workspace_);
+  cost_value = actor_critic.cost_value.predict(normalized_observation_, cost_value_workspace_);
+}
+
+void RolloutCollector::collect(envs::Env& env, std::uint64_t epoch_env_seed, const ActorCritic& actor_critic,
+                               Rng& noise_rng, Buffer& buffer) {
+  if (buffer.capacity() != options_.local_steps) {
+    throw std::invalid_argument("RolloutCollector::collect: buffer capacity " + std::to_string(buffer.capacity()) +
+                                " differs from local_steps " + std::to_string(options_.local_steps));
+  }
+  buffer.reset();
+  const std::optional<double> reward_scale_std =
+      options_.use_reward_scaling ? std::optional<double>(actor_critic.return_normalizer.std()[0]) : std::nullopt;
+  const std::span<const double> action_view(action_.data(), static_cast<std::size_t>(action_.size()));
+
+  copy_observation(env.reset(epoch_env_seed));  // every epoch starts with a fresh episode (§5.1 step 1)
+  for (int t = 0; t < options_.local_steps; ++t) {
+    actor_critic.normalize_observation(raw_observation_, normalized_observation_);
+    const double log_prob =
+        actor_critic.policy.sample_action(normalized_observation_, action_, noise_rng, policy_workspace_);
+    const double value = actor_critic.value.predict(normalized_observation_, value_workspace_);
+    const double cost_value = actor_critic.cost_value.predict(normalized_observation_, cost_value_workspace_);
+
+    const envs::StepResult step = env.step(action_view);
+    buffer.store(raw_observation_, action_, step.reward, step.cost, value, cost_value, log_prob);
+    copy_observation(step.observation);  // o_t+1
+
+    const bool timeout = step.truncated || buffer.current_episode().episode_length >= options_.max_ep_len;
+    const bool terminal = step.terminated || timeout;
+    const bool epoch_end = t == options_.local_steps - 1;
+    if (!terminal && !epoch_end) continue;
+
+    // Bootstrap with (V, V_C)(o_t+1) at a time-out or the epoch cut; a true
+    // terminal on the last step is bootstrapped too (Q7: epoch_end wins).
+    double last_value = 0.0;
+    double last_cost_value = 0.0;
+    if (timeout || epoch_end) bootstrap_values(actor_critic, last_value, last_cost_value);
+    buffer.finish_path(last_value, last_cost_value, reward_scale_std,
+                       terminal ? PathEnd::episode_end : PathEnd::epoch_cut);
+    // The original also resets after the epoch cut; the next epoch resets
+    // again, so that reset is skipped here.
+    if (!epoch_end) copy_observation(env.reset());
+  }
+  buffer.check_ready();
+}
+
+}  // namespace bsg

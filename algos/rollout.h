@@ -1,0 +1,64 @@
+// One epoch of data collection on one rank (spec §5.1): N steps of the noisy
+// policy in one environment, with V and V_C values and log-probabilities,
+// paths closed with GAE (reward scaling §4.2) at every episode end and at the
+// epoch cut.
+//
+// Environment seeding: the environment is reset with `epoch_env_seed` at the
+// start of every epoch (spec §5.1 step 1 resets it anyway); later resets
+// within the epoch continue the environment's own RNG stream. The epoch's data
+// is therefore a function of (parameters, normalisers, sigma, epoch_env_seed,
+// noise RNG) alone, which is what makes a resumed run identical to an
+// uninterrupted one.
+//
+// Per-step work uses only buffers preallocated at construction: one
+// single-sample forward each of mu, V and V_C, no heap allocation.
+//
+// Parameters:
+//   local_steps        N = B / R
+//   max_ep_len         time limit in steps (an env truncation counts too)
+//   use_reward_scaling divide rewards by the return normaliser's std for GAE
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+
+#include "algos/actor_critic.h"
+#include "algos/buffer.h"
+#include "common/mlp.h"
+#include "common/random.h"
+#include "envs/env.h"
+
+namespace bsg {
+
+struct RolloutOptions {
+  int local_steps = 0;
+  int max_ep_len = 0;
+  bool use_reward_scaling = true;
+};
+
+class RolloutCollector {
+ public:
+  RolloutCollector(int observation_size, int action_size, RolloutOptions options);
+
+  // Fills `buffer` (reset first) with options.local_steps steps. Episode
+  // statistics of the completed episodes end up in buffer.episodes().
+  void collect(envs::Env& env, std::uint64_t epoch_env_seed, const ActorCritic& actor_critic, Rng& noise_rng,
+               Buffer& buffer);
+
+  const RolloutOptions& options() const { return options_; }
+
+ private:
+  void copy_observation(std::span<const double> observation);
+  // (V, V_C) of raw_observation_ (normalised into normalized_observation_).
+  void bootstrap_values(const ActorCritic& actor_critic, double& value, double& cost_value);
+
+  RolloutOptions options_;
+  Eigen::VectorXd raw_observation_;
+  Eigen::VectorXd normalized_observation_;
+  Eigen::VectorXd action_;
+  MlpSampleWorkspace policy_workspace_;
+  MlpSampleWorkspace value_workspace_;
+  MlpSampleWorkspace cost_value_workspace_;
+};
+
+}  // namespace bsg

@@ -1,0 +1,248 @@
+#include "algos/trainer.h"
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <ostream>
+
+#include "algos/epoch_log.h"
+#include "algos/evaluation_files.h"
+#include "algos/make_algorithm.h"
+#include "algos/progress_line.h"
+#include "common/run_config_checks.h"
+#include "common/run_config_yaml.h"
+#include "common/seeding.h"
+
+namespace bsg {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::uint64_t stream_seed(const RunConfig& config, SeedStream stream, int rank, int index) {
+  return derive_seed(static_cast<std::uint64_t>(config.seed), stream, static_cast<std::uint64_t>(rank),
+                     static_cast<std::uint64_t>(index));
+}
+
+std::unique_ptr<envs::Env> make_checked_env(const RunConfig& config) {
+  std::unique_ptr<envs::Env> env = envs::make(config.env_id);
+  if (env->spec().observation_dim <= 0 || env->spec().action_dim <= 0) {
+    throw std::runtime_error("environment " + config.env_id + " reports an empty observation or action space");
+  }
+  return env;
+}
+
+std::unique_ptr<ActorCritic> make_actor_critic(const RunConfig& config, const envs::EnvSpec& spec) {
+  Rng init_rng(stream_seed(config, SeedStream::network_init, 0, 0));
+  return std::make_unique<ActorCritic>(spec.observation_dim, spec.action_dim, config, init_rng);
+}
+
+BufferOptions buffer_options(const RunConfig& config) { return BufferOptions{config.gamma, config.lam, config.lam_c}; }
+
+int local_steps(const RunConfig& config, const MpiContext& mpi) {
+  check_run_config_for_ranks(config, mpi.size());
+  return config.steps_per_epoch / mpi.size();
+}
+
+std::optional<double> find_diagnostic(const PolicyUpdateResult& result, std::string_view name) {
+  for (const NamedScalar& d : result.diagnostics) {
+    if (d.name == name) return d.value;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi,
+                                 TrainerOptions options)
+    : config_(config),
+      directory_(std::move(directory)),
+      mpi_(mpi),
+      options_(options),
+      env_(make_checked_env(config)),
+      actor_critic_(make_actor_critic(config, env_->spec())),
+      algorithm_(make_algorithm(config)),
+      buffer_(local_steps(config, mpi), env_->spec().observation_dim, env_->spec().action_dim,
+              buffer_options(config)),
+      collector_(env_->spec().observation_dim, env_->spec().action_dim,
+                 RolloutOptions{local_steps(config, mpi), config.max_ep_len, config.use_reward_scaling}),
+      normalized_observations_(local_steps(config, mpi), env_->spec().observation_dim),
+      returns_column_(local_steps(config, mpi), 1) {
+  progress_.num_ranks = mpi_.size();
+  if (options_.resume) {
+    const TrainingProgress saved =
+        load_training_checkpoint(directory_.checkpoint(), config_, *actor_critic_, *algorithm_);
+    if (saved.num_ranks != mpi_.size() && mpi_.is_root() && options_.log != nullptr) {
+      *options_.log << "note: the checkpoint was written by a run with " << saved.num_ranks
+                    << " ranks, this one has " << mpi_.size()
+                    << "; training continues but will not reproduce the original rank count's numbers\n";
+    }
+    progress_.epochs_completed = saved.epochs_completed;
+    progress_.elapsed_seconds = saved.elapsed_seconds;
+    if (mpi_.is_root()) progress_csv_.emplace(ProgressCsv::resume(directory_.progress(), saved.epochs_completed));
+  } else {
+    actor_critic_->broadcast_from_root(mpi_);  // spec §1 step 5
+    if (mpi_.is_root()) {
+      prepare_new_run_directory(directory_);
+      write_run_config(config_, directory_.config());
+      progress_csv_.emplace(ProgressCsv::create(directory_.progress()));
+      save_checkpoint();  // spec §1 step 7: the initial model
+    }
+  }
+}
+
+OnPolicyTrainer::~OnPolicyTrainer() = default;
+
+void OnPolicyTrainer::save_checkpoint() const {
+  if (mpi_.is_root()) save_training_checkpoint(directory_.checkpoint(), config_, progress_, *actor_critic_, *algorithm_);
+}
+
+void OnPolicyTrainer::check_finite(int epoch, const char* quantity, double value) const {
+  if (!std::isfinite(value)) {
+    throw NonFiniteError(std::string("non-finite ") + quantity + " (" + std::to_string(value) + ") in epoch " +
+                         std::to_string(epoch) + "; training stopped, the last good checkpoint " +
+                         directory_.checkpoint().string() + " (after " + std::to_string(progress_.epochs_completed) +
+                         " epochs) is kept");
+  }
+}
+
+void OnPolicyTrainer::check_parameters_finite(int epoch) const {
+  const char* quantity = actor_critic_->first_non_finite();
+  if (*quantity != '\0') check_finite(epoch, quantity, std::nan(""));
+  for (const NamedScalar& entry : algorithm_->state()) check_finite(epoch, entry.name.c_str(), entry.value);
+}
+
+void OnPolicyTrainer::check_ranks_agree(int epoch) const {
+  const double sum = actor_critic_->parameter_sum();
+  const double low = mpi_.min(sum);
+  const double high = mpi_.max(sum);
+  if (low != high) {
+    throw std::runtime_error("the MPI ranks' parameters disagree after epoch " + std::to_string(epoch) +
+                             " (parameter sums from " + format_csv_number(low) + " to " + format_csv_number(high) + ")");
+  }
+}
+
+void OnPolicyTrainer::run_epoch(int epoch) {
+  const auto epoch_start = Clock::now();
+  ActorCritic& ac = *actor_critic_;
+  const int rank = mpi_.rank();
+
+  // 1. Exploration noise of this epoch (spec §3.2).
+  ac.policy.set_std(config_.use_exploration_noise_anneal ? GaussianPolicy::annealed_std(epoch, config_.epochs)
+                                                         : GaussianPolicy::kInitialStd);
+  noise_rng_.seed(stream_seed(config_, SeedStream::action_noise, rank, epoch));
+  shuffle_rng_.seed(stream_seed(config_, SeedStream::minibatch_shuffle, rank, epoch));
+
+  // 2. Rollout.
+  collector_.collect(*env_, stream_seed(config_, SeedStream::environment, rank, epoch), ac, noise_rng_, buffer_);
+  const double collect_seconds = seconds_since(epoch_start);
+  const auto update_start = Clock::now();
+
+  // 3. Policy update with the pooled J_C and L.
+  const EpisodeStatistics episodes = pool_episode_statistics(buffer_, mpi_);
+  ac.normalize_observations(buffer_.observations(), normalized_observations_);
+  PolicySurrogate surrogate(normalized_observations_, buffer_.actions(), buffer_.log_probs(), buffer_.advantages(),
+                            buffer_.cost_advantages());
+  const PolicyUpdateResult update = algorithm_->update(
+      PolicyUpdateInputs{ac.policy, surrogate, episodes.episode_cost.mean, episodes.episode_length.mean, mpi_});
+  if (const auto loss = find_diagnostic(update, "Loss/Pi")) check_finite(epoch, "policy loss", *loss);
+  check_parameters_finite(epoch);
+
+  // 4. Value fits (spec §8).
+  const ValueFitOptions fit_options{config_.train_v_iterations, config_.num_mini_batches, 16};
+  const ValueFitStats value_fit =
+      ac.value.fit(normalized_observations_, buffer_.value_targets(), shuffle_rng_, mpi_, fit_options);
+  check_finite(epoch, "value loss", value_fit.loss_before);
+  check_finite(epoch, "value minibatch loss", value_fit.mean_minibatch_loss);
+  std::optional<ValueFitStats> cost_value_fit;
+  if (algorithm_->uses_cost_value_function()) {
+    cost_value_fit =
+        ac.cost_value.fit(normalized_observations_, buffer_.cost_value_targets(), shuffle_rng_, mpi_, fit_options);
+    check_finite(epoch, "cost value loss", cost_value_fit->loss_before);
+    check_finite(epoch, "cost value minibatch loss", cost_value_fit->mean_minibatch_loss);
+  }
+
+  // 5. Normalisers last (spec §1 step 3).
+  if (ac.standardize_observations) ac.observation_normalizer.update(buffer_.observations(), mpi_);
+  if (config_.use_reward_scaling) {
+    returns_column_.col(0) = buffer_.discounted_returns();
+    ac.return_normalizer.update(returns_column_, mpi_);
+  }
+  check_parameters_finite(epoch);
+  if (epoch % config_.check_freq == 0) check_ranks_agree(epoch);
+  const double update_seconds = seconds_since(update_start);
+
+  // 6. Log and save.
+  const double epoch_seconds = seconds_since(epoch_start);
+  progress_.epochs_completed = epoch + 1;
+  progress_.elapsed_seconds += epoch_seconds;
+  seconds_this_process_ += epoch_seconds;
+  ++epochs_this_process_;
+
+  EpochLogInputs log_inputs;
+  log_inputs.epoch = epoch;
+  log_inputs.total_env_steps = static_cast<long long>(epoch + 1) * config_.steps_per_epoch;
+  log_inputs.steps_per_epoch = config_.steps_per_epoch;
+  log_inputs.exploration_std = ac.policy.std();
+  log_inputs.episodes = &episodes;
+  log_inputs.buffer = &buffer_;
+  log_inputs.update = &update;
+  log_inputs.value_fit = &value_fit;
+  log_inputs.cost_value_fit = cost_value_fit ? &*cost_value_fit : nullptr;
+  log_inputs.return_normalizer = &ac.return_normalizer;
+  log_inputs.collect_seconds = collect_seconds;
+  log_inputs.update_seconds = update_seconds;
+  log_inputs.elapsed_seconds = progress_.elapsed_seconds;
+  const std::vector<NamedScalar> row = make_epoch_log_row(log_inputs, mpi_);
+
+  if (mpi_.is_root()) {
+    progress_csv_->write_row(row);
+    if (options_.log != nullptr) {
+      ProgressLineInputs line;
+      line.epoch = epoch;
+      line.epochs = config_.epochs;
+      line.mean_return = episodes.episode_return.mean;
+      line.mean_cost = episodes.episode_cost.mean;
+      if (algorithm_->uses_cost_value_function()) line.cost_limit = config_.cost_limit;
+      line.lagrange_multiplier = find_diagnostic(update, "LagrangeMultiplier");
+      line.kl = find_diagnostic(update, "KL").value_or(std::nan(""));
+      line.epoch_seconds = epoch_seconds;
+      line.eta_seconds = seconds_this_process_ / epochs_this_process_ * (config_.epochs - epoch - 1);
+      *options_.log << format_progress_line(line) << std::endl;
+    }
+  }
+  const bool last = epoch == config_.epochs - 1;
+  const bool stopping = options_.stop_after_epochs > 0 && progress_.epochs_completed >= options_.stop_after_epochs;
+  if (epoch % config_.save_freq == 0 || last || stopping) save_checkpoint();
+}
+
+TrainingOutcome OnPolicyTrainer::run() {
+  TrainingOutcome outcome;
+  for (int epoch = progress_.epochs_completed; epoch < config_.epochs; ++epoch) {
+    if (options_.stop_after_epochs > 0 && progress_.epochs_completed >= options_.stop_after_epochs) break;
+    run_epoch(epoch);
+  }
+  outcome.epochs_completed = progress_.epochs_completed;
+  outcome.finished = progress_.epochs_completed == config_.epochs;
+  if (!outcome.finished) return outcome;
+
+  // Deterministic evaluation (spec §12) with the final statistics.
+  EvaluationSummary summary = evaluate_policy(*env_, *actor_critic_, config_.eval_episodes, config_.seed,
+                                              config_.max_ep_len, mpi_);
+  if (mpi_.is_root()) {
+    write_evaluation_files(directory_, summary);
+    if (options_.log != nullptr) {
+      *options_.log << "evaluation: " << summary.episodes.size() << " episodes  J (mean return) "
+                    << format_csv_number(summary.mean_return) << "  H (mean cost) "
+                    << format_csv_number(summary.mean_cost) << "  mean length "
+                    << format_csv_number(summary.mean_length) << std::endl;
+    }
+    outcome.evaluation = std::move(summary);
+  }
+  return outcome;
+}
+
+}  // namespace bsg

@@ -1,0 +1,110 @@
+// The on-policy training loop shared by the five algorithms (spec §1,
+// design.md "Learning"). Per epoch k, on every rank:
+//   1. sigma_k (spec §3.2) into the policy;
+//   2. collect N = B / R steps from this rank's environment (rollout.h):
+//      normalised observations, V and V_C, log-probs, GAE for reward and
+//      cost with reward scaling, bootstrap at time-outs and the epoch cut;
+//   3. pool the episode statistics over ranks (J_C, L), algorithm.update();
+//   4. fit V, and V_C if the algorithm uses it (spec §8 schedule);
+//   5. update the observation and return normalisers (last, spec §1);
+//   6. check that every parameter is finite (and, every check_freq epochs,
+//      that the ranks agree), log the epoch (rank 0 writes progress.csv and
+//      prints a line), save a checkpoint every save_freq epochs and after the
+//      last epoch.
+// After the last epoch: the deterministic evaluation (evaluation.h) and its files.
+//
+// Seeding (common/seeding.h, derive_seed(run seed, stream, rank, index)):
+//   network init     (network_init, rank 0, 0) on every rank, then the
+//                    parameters are broadcast from rank 0 anyway;
+//   environment      (environment, rank, k): reset at the start of epoch k;
+//   action noise     (action_noise, rank, k): reseeded at the start of epoch k;
+//   V/V_C shuffles   (minibatch_shuffle, rank, k): reseeded likewise;
+//   evaluation env   (evaluation_environment, rank, 0).
+// Each epoch's randomness is thus a function of (seed, rank, k) only, and a
+// run resumed from a checkpoint taken after epoch k reproduces an
+// uninterrupted run with the same seed and rank count exactly. (The
+// original seeds one stream per rank with seed + 10000 rank; a run therefore
+// does not reproduce the original's random numbers, only its statistics.)
+//
+// Errors: a non-finite loss or parameter throws NonFiniteError naming the
+// quantity and the epoch before anything of that epoch is saved, so the last
+// checkpoint stays good.
+#pragma once
+
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "algos/actor_critic.h"
+#include "algos/algorithm.h"
+#include "algos/buffer.h"
+#include "algos/evaluation.h"
+#include "algos/progress_csv.h"
+#include "algos/rollout.h"
+#include "algos/run_directory.h"
+#include "algos/training_checkpoint.h"
+#include "common/mpi_context.h"
+#include "common/run_config.h"
+#include "envs/env.h"
+
+namespace bsg {
+
+class NonFiniteError : public std::runtime_error {
+ public:
+  explicit NonFiniteError(const std::string& message) : std::runtime_error(message) {}
+};
+
+struct TrainerOptions {
+  bool resume = false;          // continue from the directory's checkpoint
+  int stop_after_epochs = 0;    // > 0: stop (with a checkpoint) once this many epochs are done
+  std::ostream* log = nullptr;  // progress lines on rank 0; null: quiet
+};
+
+struct TrainingOutcome {
+  int epochs_completed = 0;
+  bool finished = false;                      // all epochs done
+  std::optional<EvaluationSummary> evaluation;  // rank 0, if evaluated
+};
+
+class OnPolicyTrainer {
+ public:
+  // A new run writes config.yaml and an initial checkpoint into `directory`
+  // (which must not hold a run); a resumed run loads the checkpoint, which
+  // must match `config`.
+  OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi, TrainerOptions options);
+  ~OnPolicyTrainer();
+
+  TrainingOutcome run();
+
+  const ActorCritic& actor_critic() const { return *actor_critic_; }
+  const TrustRegionAlgorithm& algorithm() const { return *algorithm_; }
+  int epochs_completed() const { return progress_.epochs_completed; }
+
+ private:
+  void run_epoch(int epoch);
+  void check_finite(int epoch, const char* quantity, double value) const;
+  void check_parameters_finite(int epoch) const;
+  void check_ranks_agree(int epoch) const;
+  void save_checkpoint() const;
+
+  RunConfig config_;
+  RunDirectory directory_;
+  MpiContext mpi_;
+  TrainerOptions options_;
+  std::unique_ptr<envs::Env> env_;
+  std::unique_ptr<ActorCritic> actor_critic_;
+  std::unique_ptr<TrustRegionAlgorithm> algorithm_;
+  Buffer buffer_;
+  RolloutCollector collector_;
+  Eigen::MatrixXd normalized_observations_;
+  Eigen::MatrixXd returns_column_;
+  Rng noise_rng_;
+  Rng shuffle_rng_;
+  TrainingProgress progress_;
+  std::optional<ProgressCsv> progress_csv_;  // rank 0
+  double seconds_this_process_ = 0.0;
+  int epochs_this_process_ = 0;
+};
+
+}  // namespace bsg
