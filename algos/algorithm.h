@@ -132,4 +132,28 @@ double per_step_constraint_violation(double mean_episode_cost, double mean_episo
 // the algorithms that read it).
 void check_mean_episode_cost(const PolicyUpdateInputs& inputs, std::string_view algorithm);
 
+// The common first steps of every update (spec §7): theta_old <- theta, the
+// reference means mu_old for the KL, and the surrogates at theta_old.
+struct PolicyUpdateStart {
+  Eigen::VectorXd theta_old;
+  SurrogateValues before;  // L_R, L_C, ratio at theta_old (KL 0)
+};
+PolicyUpdateStart begin_policy_update(const PolicyUpdateInputs& inputs);
+
+// Line search A's callable for the loss l = -(reward_weight L_R + cost_weight L_C)
+// at theta_old + step (TRPO, PDO: weights (1, 0); TRPO-L: 1/(1+lambda), -lambda/(1+lambda)).
+LossEvaluator surrogate_loss_evaluator(const PolicyUpdateInputs& inputs, const Eigen::VectorXd& theta_old,
+                                       double reward_weight, double cost_weight);
+// Line search B's callable: l_R, L_C and KL at theta_old + step.
+ConstrainedEvaluator constrained_evaluator(const PolicyUpdateInputs& inputs, const Eigen::VectorXd& theta_old);
+
+// The loss l = -(reward_weight L_R + cost_weight L_C) of a surrogate evaluation.
+double weighted_surrogate_loss(const SurrogateValues& values, double reward_weight, double cost_weight);
+
+// The five common columns, evaluated after the step has been applied: Loss/Pi
+// is the weighted loss at theta_old (`before`), Loss/DeltaPi the change at the
+// policy's new parameters; KL, PolicyRatio and Entropy at the new parameters.
+std::vector<NamedScalar> common_diagnostics(const PolicyUpdateInputs& inputs, const SurrogateValues& before,
+                                            double reward_weight, double cost_weight);
+
 }  // namespace bsg

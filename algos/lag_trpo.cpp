@@ -1,0 +1,71 @@
+#include "algos/lag_trpo.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "algos/natural_gradient.h"
+#include "algos/trpo.h"
+
+namespace bsg {
+
+SurrogateWeights lagrangian_surrogate_weights(double lagrange_multiplier) {
+  if (!std::isfinite(lagrange_multiplier) || lagrange_multiplier < 0.0) {
+    throw std::invalid_argument("lagrangian_surrogate_weights: lagrange_multiplier must be finite and >= 0, got " +
+                                std::to_string(lagrange_multiplier));
+  }
+  const double normaliser = 1.0 + lagrange_multiplier;  // 1 + lambda
+  return {1.0 / normaliser, -lagrange_multiplier / normaliser};
+}
+
+LagTrpo::LagTrpo(const RunConfig& config)
+    : config_(config),
+      multiplier_(config.lagrangian_multiplier_init, config.lambda_optimizer, config.lambda_lr) {}
+
+std::vector<std::string> LagTrpo::diagnostic_names() const {
+  std::vector<std::string> names = common_diagnostic_names();
+  for (std::string& name : trpo_diagnostic_names()) names.push_back(std::move(name));
+  names.push_back("LagrangeMultiplier");
+  return names;
+}
+
+PolicyUpdateResult LagTrpo::update(const PolicyUpdateInputs& inputs) {
+  check_mean_episode_cost(inputs, "lag-trpo");
+  // 1. lambda <- max(0, lambda + alpha_lambda (J_C - d)), before the policy step.
+  const double lambda = multiplier_.update(inputs.mean_episode_cost, config_.cost_limit);
+  const SurrogateWeights weights = lagrangian_surrogate_weights(lambda);
+
+  const PolicyUpdateStart start = begin_policy_update(inputs);
+  const double loss_old = weighted_surrogate_loss(start.before, weights.reward, weights.cost);  // l_L(theta_old)
+
+  // 2. g_L = -avg grad l_L = (g - lambda b) / (1 + lambda)
+  const Eigen::Index num_parameters = inputs.policy.mean_net().num_parameters();
+  Eigen::VectorXd lagrangian_gradient(num_parameters);
+  inputs.surrogate.gradient(inputs.policy, weights.reward, weights.cost, lagrangian_gradient);
+  inputs.mpi.average_in_place(lagrangian_gradient);
+
+  // 3. x = CG(F, g_L), q = x^T F x, alpha = sqrt(2 delta / (q + 1e-8)), Delta = alpha x
+  FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
+                             fisher_vector_product_options(config_));
+  const NaturalGradientStep step = natural_gradient_step(as_linear_operator(fisher), lagrangian_gradient,
+                                                         config_.target_kl, conjugate_gradient_options(config_));
+  // Line search A on the Lagrangian loss l_L.
+  const LineSearchResult search = trpo_line_search(
+      step.full_step, loss_old, surrogate_loss_evaluator(inputs, start.theta_old, weights.reward, weights.cost),
+      inputs.mpi, line_search_options(config_));
+  apply_line_search_result(inputs.policy, start.theta_old, search);
+
+  PolicyUpdateResult result;
+  result.diagnostics = common_diagnostics(inputs, start.before, weights.reward, weights.cost);
+  result.diagnostics.insert(result.diagnostics.end(),
+                            {{"Misc/AcceptanceStep", static_cast<double>(search.acceptance_step)},
+                             {"Misc/Alpha", step.step_size},
+                             {"Misc/FinalStepNorm", search.step.norm()},
+                             {"Misc/gradient_norm", lagrangian_gradient.norm()},
+                             {"Misc/xHx", step.x_fisher_x},
+                             {"Misc/H_inv_g", step.direction.norm()},
+                             {"LagrangeMultiplier", lambda}});
+  return result;
+}
+
+}  // namespace bsg

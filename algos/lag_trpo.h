@@ -1,0 +1,44 @@
+// TRPO-L, Lagrangian TRPO (spec §7.2; the original's algs/lag-trpo):
+//   1. lambda update first, on the pooled J_C (SGD by default; see lagrange_multiplier.h)
+//   2. l_L(theta) = (-L_R(theta) + lambda L_C(theta)) / (1 + lambda), so
+//      g_L = -avg grad l_L = (g - lambda b) / (1 + lambda)
+//   3. TRPO steps 2-4 with g_L in place of g; line search A on l_L
+// The (1 + lambda) does not change the (renormalised) step, only the logged
+// losses and the interplay with CG's 1e-6. The reward itself is not modified.
+//
+// Parameters (RunConfig): those of TRPO plus cost_limit 25,
+// lagrangian_multiplier_init 0.001, lambda_optimizer SGD, lambda_lr 0.05.
+#pragma once
+
+#include "algos/algorithm.h"
+#include "algos/lagrange_multiplier.h"
+#include "common/run_config.h"
+
+namespace bsg {
+
+// Weights (w_R, w_C) with -l_L = w_R L_R + w_C L_C: (1/(1+lambda), -lambda/(1+lambda)).
+struct SurrogateWeights {
+  double reward = 1.0;
+  double cost = 0.0;
+};
+SurrogateWeights lagrangian_surrogate_weights(double lagrange_multiplier);
+
+class LagTrpo final : public TrustRegionAlgorithm {
+ public:
+  explicit LagTrpo(const RunConfig& config);
+
+  std::string_view name() const override { return "lag-trpo"; }
+  PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
+  std::vector<std::string> diagnostic_names() const override;
+  bool uses_cost_value_function() const override { return config_.use_cost_value_function; }
+  std::vector<NamedScalar> state() const override { return multiplier_.state(); }
+  void restore_state(std::span<const NamedScalar> saved) override { multiplier_.restore_state(saved); }
+
+  double lagrange_multiplier() const { return multiplier_.value(); }
+
+ private:
+  RunConfig config_;
+  LagrangeMultiplier multiplier_;
+};
+
+}  // namespace bsg

@@ -1,0 +1,47 @@
+// The Lagrange multiplier lambda >= 0 of TRPO-L (spec §7.2) and PDO (§7.3).
+// Its loss is -lambda (J_C - d), so d loss / d lambda = -(J_C - d); one step of
+// the configured optimiser per epoch, then lambda is clamped at 0 (after the
+// step; Adam's moments are kept, not reset, by the clamp).
+//   SGD:  lambda <- max(0, lambda + alpha_lambda (J_C - d))
+//   Adam: lambda <- max(0, Adam step on gradient -(J_C - d))
+// The update uses only the pooled J_C, so every rank computes the same lambda
+// without communication (spec §9).
+//
+// Parameters:
+//   initial_value   lagrangian_multiplier_init, 0.001; the original uses max(init, 1e-5)
+//   optimizer       lambda_optimizer: SGD (TRPO-L) or Adam (PDO, beta 0.9/0.999, eps 1e-8)
+//   learning_rate   lambda_lr: alpha_lambda
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "algos/algorithm.h"
+#include "common/adam.h"
+#include "common/run_config.h"
+
+namespace bsg {
+
+class LagrangeMultiplier {
+ public:
+  LagrangeMultiplier(double initial_value, LambdaOptimizer optimizer, double learning_rate);
+
+  double value() const { return lambda_; }
+  LambdaOptimizer optimizer() const { return optimizer_; }
+
+  // One step on the loss -lambda (J_C - d), then clamp at 0; returns the new lambda.
+  double update(double mean_episode_cost, double cost_limit);
+
+  // "lagrange_multiplier" and, for Adam, "lagrange_multiplier_adam_m", "..._v", "..._t".
+  std::vector<NamedScalar> state() const;
+  // Throws std::invalid_argument if the names differ from state()'s or lambda < 0.
+  void restore_state(std::span<const NamedScalar> saved);
+
+ private:
+  double lambda_;
+  LambdaOptimizer optimizer_;
+  double learning_rate_;
+  Adam adam_;  // used only with LambdaOptimizer::adam
+};
+
+}  // namespace bsg

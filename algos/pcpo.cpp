@@ -1,0 +1,118 @@
+#include "algos/pcpo.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "algos/cpo.h"
+#include "algos/natural_gradient.h"
+#include "algos/trpo.h"
+
+namespace bsg {
+
+PcpoStep pcpo_step(const LinearOperator& fisher, const Eigen::Ref<const Eigen::VectorXd>& reward_gradient,
+                   const Eigen::Ref<const Eigen::VectorXd>& cost_gradient, double constraint_violation,
+                   const PcpoStepOptions& options) {
+  if (reward_gradient.size() != cost_gradient.size()) {
+    throw std::invalid_argument("pcpo_step: reward_gradient has " + std::to_string(reward_gradient.size()) +
+                                " entries, cost_gradient " + std::to_string(cost_gradient.size()));
+  }
+  if (!std::isfinite(constraint_violation)) {
+    throw std::invalid_argument("pcpo_step: constraint_violation c is not finite: " +
+                                std::to_string(constraint_violation));
+  }
+  const double c = constraint_violation;
+  const auto& b = cost_gradient;
+
+  PcpoStep step;
+  // x = CG(F, g), q = x^T F x, eta = sqrt(2 delta / (q + 1e-8)), Delta_R = eta x
+  const NaturalGradientStep natural =
+      natural_gradient_step(fisher, reward_gradient, options.target_kl, options.conjugate_gradient);
+  step.reward_direction = natural.direction;
+  step.q = natural.x_fisher_x;
+  step.eta = natural.step_size;
+  step.reward_step = natural.full_step;
+  step.r = b.dot(step.reward_direction);                  // b^T x ~ a^T H^-1 g
+  step.violation_after_reward_step = c + step.eta * step.r;  // v = c + b^T Delta_R
+
+  if (options.projection == PcpoProjection::kl) {
+    step.projection_direction = conjugate_gradient(fisher, b, options.conjugate_gradient).solution;  // p = CG(F, b)
+  } else {
+    step.projection_direction = b;  // L^-1 a with L = I
+  }
+  step.s = b.dot(step.projection_direction);  // a^T L^-1 a
+  if (b.squaredNorm() > 1e-6) {
+    step.nu = std::max(0.0, step.violation_after_reward_step) / (step.s + 1e-8);  // nu = max(0, v) / (s + eps)
+  }
+  step.full_step = step.reward_step - step.nu * step.projection_direction;  // Delta = Delta_R - nu L^-1 a
+  if (!step.full_step.allFinite()) {
+    throw std::runtime_error("pcpo_step: the projected step is not finite (q=" + std::to_string(step.q) +
+                             " s=" + std::to_string(step.s) + " v=" +
+                             std::to_string(step.violation_after_reward_step) + ")");
+  }
+  return step;
+}
+
+Pcpo::Pcpo(const RunConfig& config) : config_(config) {}
+
+std::vector<std::string> Pcpo::diagnostic_names() const {
+  std::vector<std::string> names = common_diagnostic_names();
+  for (std::string& name : trpo_diagnostic_names()) names.push_back(std::move(name));
+  for (std::string& name : cpo_diagnostic_names()) names.push_back(std::move(name));
+  return names;
+}
+
+void Pcpo::restore_state(std::span<const NamedScalar> saved) { restore_empty_state(saved, "pcpo"); }
+
+PolicyUpdateResult Pcpo::update(const PolicyUpdateInputs& inputs) {
+  const double c = per_step_constraint_violation(inputs.mean_episode_cost, inputs.mean_episode_length,
+                                                 config_.cost_limit);  // c = (J_C - d) / (L + 1e-8)
+  const PolicyUpdateStart start = begin_policy_update(inputs);
+  const PolicyGradients gradients = averaged_policy_gradients(inputs);  // g, b
+
+  FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
+                             fisher_vector_product_options(config_));
+  PcpoStepOptions step_options;
+  step_options.target_kl = config_.target_kl;
+  step_options.projection = config_.pcpo_projection;
+  step_options.conjugate_gradient = conjugate_gradient_options(config_);
+  const PcpoStep step = pcpo_step(as_linear_operator(fisher), gradients.reward, gradients.cost, c, step_options);
+
+  LineSearchResult search;
+  if (config_.pcpo_line_search) {
+    ConstrainedLineSearchInputs search_inputs;
+    search_inputs.reward_loss_old = -start.before.reward_surrogate;
+    search_inputs.cost_surrogate_old = start.before.cost_surrogate;
+    search_inputs.constraint_violation = c;
+    search_inputs.require_reward_improvement = c < 0.0;  // the analogue of CPO cases >= 2
+    search = constrained_line_search(step.full_step, search_inputs, constrained_evaluator(inputs, start.theta_old),
+                                     inputs.mpi, line_search_options(config_));
+  } else {
+    search.step = step.full_step;  // the paper's release: apply Delta directly
+    search.acceptance_step = 1;
+  }
+  apply_line_search_result(inputs.policy, start.theta_old, search);
+
+  PolicyUpdateResult result;
+  result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
+  result.diagnostics.insert(result.diagnostics.end(),
+                            {{"Misc/AcceptanceStep", static_cast<double>(search.acceptance_step)},
+                             {"Misc/Alpha", step.eta},
+                             {"Misc/FinalStepNorm", search.step.norm()},
+                             {"Misc/gradient_norm", gradients.reward.norm()},
+                             {"Misc/xHx", step.q},
+                             {"Misc/H_inv_g", step.reward_direction.norm()},
+                             {"Misc/cost_gradient_norm", gradients.cost.norm()},
+                             {"Misc/A", 0.0},  // not defined for PCPO
+                             {"Misc/B", 0.0},  // not defined for PCPO
+                             {"Misc/q", step.q},
+                             {"Misc/r", step.r},
+                             {"Misc/s", step.s},
+                             {"Misc/Lambda_star", 0.0},  // not defined for PCPO
+                             {"Misc/Nu_star", step.nu},
+                             {"Misc/OptimCase", c >= 0.0 ? 1.0 : 2.0}});
+  return result;
+}
+
+}  // namespace bsg

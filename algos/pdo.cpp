@@ -1,0 +1,75 @@
+#include "algos/pdo.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "algos/natural_gradient.h"
+#include "algos/trpo.h"
+
+namespace bsg {
+
+Eigen::VectorXd pdo_search_direction(const Eigen::Ref<const Eigen::VectorXd>& reward_gradient,
+                                     const Eigen::Ref<const Eigen::VectorXd>& cost_gradient,
+                                     double lagrange_multiplier) {
+  if (reward_gradient.size() != cost_gradient.size()) {
+    throw std::invalid_argument("pdo_search_direction: reward_gradient has " + std::to_string(reward_gradient.size()) +
+                                " entries, cost_gradient " + std::to_string(cost_gradient.size()));
+  }
+  return reward_gradient - lagrange_multiplier * cost_gradient;  // p = g - lambda b
+}
+
+Pdo::Pdo(const RunConfig& config)
+    : config_(config),
+      multiplier_(config.lagrangian_multiplier_init, config.lambda_optimizer, config.lambda_lr) {}
+
+std::vector<std::string> Pdo::diagnostic_names() const {
+  std::vector<std::string> names = common_diagnostic_names();
+  for (std::string& name : trpo_diagnostic_names()) names.push_back(std::move(name));
+  names.push_back("Misc/cost_gradient_norm");
+  names.push_back("LagrangeMultiplier");
+  return names;
+}
+
+PolicyUpdateResult Pdo::update(const PolicyUpdateInputs& inputs) {
+  check_mean_episode_cost(inputs, "pdo");
+  // 1. Adam (or SGD) step on -lambda (J_C - d), then lambda >= 0; before the policy step.
+  const double lambda = multiplier_.update(inputs.mean_episode_cost, config_.cost_limit);
+
+  const PolicyUpdateStart start = begin_policy_update(inputs);
+  const double loss_old = -start.before.reward_surrogate;  // l_R(theta_old), local
+
+  const PolicyGradients gradients = averaged_policy_gradients(inputs);  // g, b
+  const Eigen::VectorXd direction = pdo_search_direction(gradients.reward, gradients.cost, lambda);  // p
+
+  // x = CG(F, p), q = x^T F x, alpha = sqrt(2 delta / (q + 1e-8)), Delta = alpha x
+  FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
+                             fisher_vector_product_options(config_));
+  const NaturalGradientStep step = natural_gradient_step(as_linear_operator(fisher), direction, config_.target_kl,
+                                                         conjugate_gradient_options(config_));
+
+  LineSearchResult search;
+  if (config_.pdo_line_search) {
+    // Q14: the acceptance test uses the reward-only loss l_R.
+    search = trpo_line_search(step.full_step, loss_old, surrogate_loss_evaluator(inputs, start.theta_old, 1.0, 0.0),
+                              inputs.mpi, line_search_options(config_));
+  } else {
+    search.step = step.full_step;  // the full step, as the first trial
+    search.acceptance_step = 1;
+  }
+  apply_line_search_result(inputs.policy, start.theta_old, search);
+
+  PolicyUpdateResult result;
+  result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
+  result.diagnostics.insert(result.diagnostics.end(),
+                            {{"Misc/AcceptanceStep", static_cast<double>(search.acceptance_step)},
+                             {"Misc/Alpha", step.step_size},
+                             {"Misc/FinalStepNorm", search.step.norm()},
+                             {"Misc/gradient_norm", gradients.reward.norm()},
+                             {"Misc/xHx", step.x_fisher_x},
+                             {"Misc/H_inv_g", step.direction.norm()},
+                             {"Misc/cost_gradient_norm", gradients.cost.norm()},
+                             {"LagrangeMultiplier", lambda}});
+  return result;
+}
+
+}  // namespace bsg
