@@ -58,10 +58,13 @@ void Buffer::store(const Eigen::Ref<const Eigen::VectorXd>& observation,
   if (full()) {
     throw std::length_error("Buffer::store: buffer is full (" + std::to_string(capacity()) + " steps)");
   }
-  if (observation.size() != observations_.cols() || action.size() != actions_.cols()) {
+  if (observation.size() != observations_.cols()) {
     throw std::invalid_argument("Buffer::store: observation has " + std::to_string(observation.size()) +
-                                " and action " + std::to_string(action.size()) + " entries, expected " +
-                                std::to_string(observations_.cols()) + " and " + std::to_string(actions_.cols()));
+                                " entries, expected " + std::to_string(observations_.cols()));
+  }
+  if (action.size() != actions_.cols()) {
+    throw std::invalid_argument("Buffer::store: action has " + std::to_string(action.size()) +
+                                " entries, expected " + std::to_string(actions_.cols()));
   }
   observations_.row(size_) = observation.transpose();
   actions_.row(size_) = action.transpose();

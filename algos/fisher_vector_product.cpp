@@ -32,10 +32,13 @@ FisherVectorProduct::FisherVectorProduct(const GaussianPolicy& policy,
 
 void FisherVectorProduct::apply(const Eigen::Ref<const Eigen::VectorXd>& direction,
                                 Eigen::Ref<Eigen::VectorXd> product) {
-  if (direction.size() != num_parameters() || product.size() != num_parameters()) {
+  if (direction.size() != num_parameters()) {
     throw std::invalid_argument("FisherVectorProduct::apply: direction has " + std::to_string(direction.size()) +
-                                " and product " + std::to_string(product.size()) + " entries, expected " +
-                                std::to_string(num_parameters()));
+                                " entries, the policy has " + std::to_string(num_parameters()) + " parameters");
+  }
+  if (product.size() != num_parameters()) {
+    throw std::invalid_argument("FisherVectorProduct::apply: product has " + std::to_string(product.size()) +
+                                " entries, the policy has " + std::to_string(num_parameters()) + " parameters");
   }
   if (direction.data() == product.data()) {
     throw std::invalid_argument("FisherVectorProduct::apply: product must not alias direction");

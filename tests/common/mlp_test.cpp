@@ -1,0 +1,237 @@
+// The Eigen MLP: initialisation (spec §2.2), flat layout (§2.3), forward
+// against a hand-written loop, backward and JVP against central differences.
+#include "common/mlp.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "finite_differences.h"
+
+namespace bsg {
+namespace {
+
+using testing::finite_difference_directional;
+using testing::finite_difference_gradient;
+using testing::relative_error;
+
+Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
+  Eigen::MatrixXd m(rows, cols);
+  for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = uniform(rng, -2.0, 2.0);
+  return m;
+}
+
+Eigen::VectorXd random_vector(Eigen::Index size, Rng& rng) { return random_matrix(size, 1, rng); }
+
+// Forward pass written from spec §2.1/§2.3 with explicit loops over the flat vector.
+Eigen::VectorXd reference_forward(const std::vector<int>& sizes, const Eigen::VectorXd& theta,
+                                  const Eigen::VectorXd& input) {
+  Eigen::VectorXd x = input;
+  Eigen::Index offset = 0;
+  for (std::size_t layer = 0; layer + 1 < sizes.size(); ++layer) {
+    const int in = sizes[layer];
+    const int out = sizes[layer + 1];
+    Eigen::VectorXd y(out);
+    for (int o = 0; o < out; ++o) {
+      double sum = theta[offset + out * in + o];  // b_o after the row-major W
+      for (int i = 0; i < in; ++i) sum += theta[offset + o * in + i] * x[i];
+      y[o] = layer + 2 < sizes.size() ? std::tanh(sum) : sum;
+    }
+    offset += out * in + out;
+    x = y;
+  }
+  return x;
+}
+
+TEST(Mlp, ParameterCountMatchesSpecFormula) {
+  Rng rng(1);
+  const Mlp ant_policy({33, 64, 64, 8}, rng);
+  EXPECT_EQ(ant_policy.num_parameters(), 6856);  // spec §2.1 example
+  EXPECT_EQ(ant_policy.input_size(), 33);
+  EXPECT_EQ(ant_policy.output_size(), 8);
+}
+
+TEST(Mlp, InitialWeightsAndBiasesLieWithinOneOverSqrtFanIn) {
+  Rng rng(2);
+  const Mlp net({10, 64, 64, 3}, rng);
+  for (int layer = 0; layer < net.num_layers(); ++layer) {
+    const double bound = 1.0 / std::sqrt(static_cast<double>(net.layer_sizes()[layer]));
+    EXPECT_LE(net.weights(layer).cwiseAbs().maxCoeff(), bound);
+    EXPECT_LE(net.bias(layer).cwiseAbs().maxCoeff(), bound);
+    EXPECT_GT(net.bias(layer).cwiseAbs().maxCoeff(), 0.0) << "biases are uniform by default (Q1)";
+  }
+}
+
+TEST(Mlp, InitialWeightVarianceIsOneThirdOverFanIn) {
+  Rng rng(3);
+  const Mlp net({400, 400, 1}, rng);
+  const auto w = net.weights(0);
+  const double mean = w.mean();
+  const double variance = (w.array() - mean).square().mean();
+  EXPECT_NEAR(variance, 1.0 / (3.0 * 400.0), 0.02 / (3.0 * 400.0));
+}
+
+TEST(Mlp, ZeroBiasInitGivesZeroBiases) {
+  Rng rng(4);
+  const Mlp net({5, 64, 64, 2}, rng, MlpInitOptions{.zero_bias_init = true});
+  for (int layer = 0; layer < net.num_layers(); ++layer) EXPECT_EQ(net.bias(layer).norm(), 0.0);
+  EXPECT_GT(net.weights(0).norm(), 0.0);
+}
+
+TEST(Mlp, SameSeedGivesSameParameters) {
+  Rng a(7), b(7), c(8);
+  EXPECT_EQ(Mlp({4, 8, 2}, a).parameters(), Mlp({4, 8, 2}, b).parameters());
+  Rng d(7);
+  EXPECT_NE(Mlp({4, 8, 2}, d).parameters(), Mlp({4, 8, 2}, c).parameters());
+}
+
+TEST(Mlp, FlatLayoutIsRowMajorWeightsThenBiasPerLayer) {
+  Rng rng(5);
+  Mlp net({3, 4, 2}, rng);
+  Eigen::VectorXd theta = Eigen::VectorXd::LinSpaced(net.num_parameters(), 0, net.num_parameters() - 1);
+  net.set_parameters(theta);
+  EXPECT_EQ(net.weights(0)(0, 1), 1.0);   // W_1 row 0, column 1
+  EXPECT_EQ(net.weights(0)(1, 0), 3.0);   // W_1 row 1 starts after 3 entries
+  EXPECT_EQ(net.bias(0)(0), 12.0);        // b_1 after the 4 x 3 weights
+  EXPECT_EQ(net.weights(1)(0, 0), 16.0);  // W_2 after b_1
+  EXPECT_EQ(net.bias(1)(1), 25.0);
+  EXPECT_EQ(net.num_parameters(), 26);
+}
+
+TEST(Mlp, ForwardMatchesLoopImplementationForSampleAndBatch) {
+  Rng rng(6);
+  const std::vector<int> sizes{5, 7, 6, 3};
+  const Mlp net(sizes, rng);
+  const Eigen::MatrixXd inputs = random_matrix(9, 5, rng);
+  MlpBatchWorkspace batch_workspace;
+  const Eigen::MatrixXd outputs = net.forward_batch(inputs, batch_workspace);
+  MlpSampleWorkspace sample_workspace;
+  Eigen::VectorXd output(3);
+  for (Eigen::Index i = 0; i < inputs.rows(); ++i) {
+    const Eigen::VectorXd expected = reference_forward(sizes, net.parameters(), inputs.row(i).transpose());
+    net.forward(inputs.row(i).transpose(), output, sample_workspace);
+    EXPECT_LT(relative_error(output, expected), 1e-14);
+    EXPECT_LT(relative_error(outputs.row(i).transpose(), expected), 1e-14);
+  }
+}
+
+TEST(Mlp, BackwardMatchesCentralFiniteDifferences) {
+  Rng rng(7);
+  Mlp net({4, 6, 5, 3}, rng);
+  const Eigen::MatrixXd inputs = random_matrix(8, 4, rng);
+  const Eigen::MatrixXd weights = random_matrix(8, 3, rng);  // L = sum_ij w_ij y_ij
+  const Eigen::VectorXd theta = net.parameters();
+  MlpBatchWorkspace workspace;
+  net.forward_batch(inputs, workspace);
+  Eigen::VectorXd gradient(net.num_parameters());
+  net.backward_batch(weights, workspace, gradient);
+
+  Mlp probe = net;
+  const auto loss = [&](const Eigen::VectorXd& t) {
+    probe.set_parameters(t);
+    MlpBatchWorkspace w;
+    return probe.forward_batch(inputs, w).cwiseProduct(weights).sum();
+  };
+  EXPECT_LT(relative_error(gradient, finite_difference_gradient(loss, theta, 1e-5)), 1e-6);
+}
+
+TEST(Mlp, BackwardOverwritesTheGradientAndSumsOverSamples) {
+  Rng rng(8);
+  const Mlp net({3, 4, 2}, rng);
+  const Eigen::MatrixXd inputs = random_matrix(2, 3, rng);
+  const Eigen::MatrixXd weights = random_matrix(2, 2, rng);
+  MlpBatchWorkspace workspace;
+  net.forward_batch(inputs, workspace);
+  Eigen::VectorXd both = Eigen::VectorXd::Constant(net.num_parameters(), 99.0);
+  net.backward_batch(weights, workspace, both);
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(net.num_parameters());
+  for (int i = 0; i < 2; ++i) {
+    net.forward_batch(inputs.row(i), workspace);
+    Eigen::VectorXd one(net.num_parameters());
+    net.backward_batch(weights.row(i), workspace, one);
+    sum += one;
+  }
+  EXPECT_LT(relative_error(both, sum), 1e-14);
+}
+
+TEST(Mlp, JacobianVectorProductMatchesCentralFiniteDifferences) {
+  Rng rng(9);
+  Mlp net({4, 6, 5, 3}, rng);
+  const Eigen::MatrixXd inputs = random_matrix(8, 4, rng);
+  const Eigen::VectorXd theta = net.parameters();
+  const Eigen::VectorXd direction = random_vector(net.num_parameters(), rng);
+  MlpBatchWorkspace workspace;
+  net.forward_batch(inputs, workspace);
+  const Eigen::MatrixXd jvp = net.jvp_batch(direction, workspace);
+
+  Mlp probe = net;
+  const auto outputs = [&](const Eigen::VectorXd& t) -> Eigen::MatrixXd {
+    probe.set_parameters(t);
+    MlpBatchWorkspace w;
+    return probe.forward_batch(inputs, w);
+  };
+  EXPECT_LT(relative_error(jvp, finite_difference_directional(outputs, theta, direction, 1e-5)), 1e-6);
+}
+
+TEST(Mlp, JvpAndBackwardAreAdjoint) {
+  // <J v, u> = <v, J^T u>: the two hand-written passes describe the same Jacobian.
+  Rng rng(10);
+  const Mlp net({3, 5, 4, 2}, rng);
+  const Eigen::MatrixXd inputs = random_matrix(6, 3, rng);
+  const Eigen::VectorXd v = random_vector(net.num_parameters(), rng);
+  const Eigen::MatrixXd u = random_matrix(6, 2, rng);
+  MlpBatchWorkspace workspace;
+  net.forward_batch(inputs, workspace);
+  const double left = net.jvp_batch(v, workspace).cwiseProduct(u).sum();
+  Eigen::VectorXd transpose_u(net.num_parameters());
+  net.backward_batch(u, workspace, transpose_u);
+  EXPECT_NEAR(left, v.dot(transpose_u), 1e-12 * std::abs(left));
+}
+
+TEST(Mlp, SingleLayerNetworkIsAffine) {
+  Rng rng(11);
+  Mlp net({2, 3}, rng);
+  const Eigen::Vector2d x(0.5, -1.5);
+  const Eigen::VectorXd expected = net.weights(0) * x + net.bias(0);
+  EXPECT_LT(relative_error(net.forward(x), expected), 1e-15);
+}
+
+TEST(Mlp, RejectsBadLayerSizes) {
+  Rng rng(12);
+  EXPECT_THROW(Mlp({4}, rng), std::invalid_argument);
+  EXPECT_THROW(Mlp({4, 0, 2}, rng), std::invalid_argument);
+}
+
+TEST(Mlp, WrongSizesGiveExceptionsNamingTheInput) {
+  Rng rng(13);
+  Mlp net({3, 4, 2}, rng);
+  try {
+    net.set_parameters(Eigen::VectorXd::Zero(5));
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("parameters has 5 entries"), std::string::npos) << e.what();
+  }
+  MlpSampleWorkspace sample_workspace;
+  Eigen::VectorXd output(2);
+  EXPECT_THROW(net.forward(Eigen::VectorXd::Zero(4), output, sample_workspace), std::invalid_argument);
+  Eigen::VectorXd wrong_output(3);
+  EXPECT_THROW(net.forward(Eigen::VectorXd::Zero(3), wrong_output, sample_workspace), std::invalid_argument);
+  MlpBatchWorkspace workspace;
+  try {
+    net.forward_batch(Eigen::MatrixXd::Zero(5, 4), workspace);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("inputs have 4 columns"), std::string::npos) << e.what();
+  }
+  Eigen::VectorXd gradient(net.num_parameters());
+  EXPECT_THROW(net.backward_batch(Eigen::MatrixXd::Zero(5, 2), workspace, gradient), std::logic_error);
+  net.forward_batch(Eigen::MatrixXd::Zero(5, 3), workspace);
+  EXPECT_THROW(net.backward_batch(Eigen::MatrixXd::Zero(4, 2), workspace, gradient), std::invalid_argument);
+  Eigen::VectorXd short_gradient(3);
+  EXPECT_THROW(net.backward_batch(Eigen::MatrixXd::Zero(5, 2), workspace, short_gradient), std::invalid_argument);
+  EXPECT_THROW(net.jvp_batch(Eigen::VectorXd::Zero(3), workspace), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace bsg
