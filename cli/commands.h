@@ -14,4 +14,13 @@ namespace bsg::cli {
 // Returns the process exit code.
 using Action = std::function<int()>;
 
+// bsg train CONFIG [--set k=v]... [--out DIR] | --print-config | --resume DIR (cmd_train.cpp)
+void add_train_command(CLI::App& app, Action& run);
+// bsg eval DIR [--episodes N] [--json] (cmd_eval.cpp)
+void add_eval_command(CLI::App& app, Action& run);
+// bsg sweep GRID [--jobs N] [--ranks-per-run K] [--out DIR] [--dry-run] (cmd_sweep.cpp)
+void add_sweep_command(CLI::App& app, Action& run);
+// bsg table SWEEP_DIR [--score mean|mean_minus_std] (cmd_table.cpp)
+void add_table_command(CLI::App& app, Action& run);
+
 }  // namespace bsg::cli

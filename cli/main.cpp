@@ -17,6 +17,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
 
   bsg::cli::Action run;
+  bsg::cli::add_train_command(app, run);
+  bsg::cli::add_eval_command(app, run);
+  bsg::cli::add_sweep_command(app, run);
+  bsg::cli::add_table_command(app, run);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,27 @@
+#include "algos/run_evaluation.h"
+
+#include "algos/actor_critic.h"
+#include "algos/make_algorithm.h"
+#include "algos/training_checkpoint.h"
+#include "common/run_config_yaml.h"
+
+namespace bsg {
+
+RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
+                                     const MpiContext& mpi) {
+  check_is_run_directory(directory);
+  const RunConfig config = load_resolved_run_config(directory.config(), envs::registered_ids());
+  std::unique_ptr<envs::Env> env = envs::make(config.env_id);
+  Rng unused_init(0);  // the checkpoint overwrites every parameter
+  ActorCritic actor_critic(env->spec().observation_dim, env->spec().action_dim, config, unused_init);
+  std::unique_ptr<TrustRegionAlgorithm> algorithm = make_algorithm(config);
+  const TrainingProgress progress = load_training_checkpoint(directory.checkpoint(), config, actor_critic, *algorithm);
+  RunEvaluation result;
+  result.epochs_completed = progress.epochs_completed;
+  result.epochs = config.epochs;
+  result.summary = evaluate_policy(*env, actor_critic, episodes.value_or(config.eval_episodes), config.seed,
+                                   config.max_ep_len, mpi);
+  return result;
+}
+
+}  // namespace bsg

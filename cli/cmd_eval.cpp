@@ -1,0 +1,62 @@
+// `bsg eval DIR [--episodes N] [--json]`: the deterministic evaluation of a
+// run directory's latest checkpoint; prints J (mean return) and H (mean cost),
+// with --json also every episode's figures.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "algos/evaluation_files.h"
+#include "algos/progress_csv.h"
+#include "algos/run_evaluation.h"
+#include "commands.h"
+#include "common/mpi_context.h"
+#include "mpi_abort_on_error.h"
+
+namespace bsg::cli {
+namespace {
+
+struct EvalArguments {
+  std::string run_dir;
+  std::optional<int> episodes;
+  bool json = false;
+};
+
+int evaluate(const EvalArguments& args) {
+  MpiSession session;
+  const MpiContext mpi = session.context();
+  return run_or_abort_job(mpi, [&]() {
+    const RunEvaluation result = evaluate_run_directory(RunDirectory(args.run_dir), args.episodes, mpi);
+    if (!mpi.is_root()) return 0;
+    if (args.json) {
+      std::cout << evaluation_json(result.summary, true);
+    } else {
+      if (result.epochs_completed < result.epochs) {
+        std::cout << "note: the checkpoint covers " << result.epochs_completed << " of " << result.epochs
+                  << " epochs (the run is not finished)\n";
+      }
+      std::cout << "episodes " << result.summary.episodes.size() << "\n"
+                << "J (mean return) " << format_csv_number(result.summary.mean_return) << "\n"
+                << "H (mean cost) " << format_csv_number(result.summary.mean_cost) << "\n"
+                << "mean length " << format_csv_number(result.summary.mean_length) << std::endl;
+    }
+    return 0;
+  });
+}
+
+}  // namespace
+
+void add_eval_command(CLI::App& app, Action& run) {
+  CLI::App* command =
+      app.add_subcommand("eval", "Evaluate a run's deterministic policy: bsg eval DIR [--episodes N] [--json]");
+  auto args = std::make_shared<EvalArguments>();
+  command->add_option("DIR", args->run_dir, "run directory (holds config.yaml and checkpoint.bin)")->required();
+  command->add_option("--episodes", args->episodes, "episodes in total (default: the config's eval_episodes)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_flag("--json", args->json, "print JSON with every episode's return, cost and length");
+  command->callback([&run, args]() { run = [args]() { return evaluate(*args); }; });
+}
+
+}  // namespace bsg::cli

@@ -1,0 +1,133 @@
+// `bsg train`: resolve a run's configuration, train, evaluate.
+//   bsg train CONFIG [--set key=value]... [--out DIR] [--configs DIR]
+//   bsg train --print-config CONFIG [--set key=value]...
+//   bsg train --resume DIR
+// Under `mpirun -np N` the batch is split over the N ranks (the same code runs
+// with one process and no MPI).
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "algos/run_directory.h"
+#include "algos/trainer.h"
+#include "commands.h"
+#include "common/config_error.h"
+#include "common/mpi_context.h"
+#include "common/run_config_checks.h"
+#include "common/run_config_resolve.h"
+#include "common/run_config_yaml.h"
+#include "envs/env.h"
+#include "mpi_abort_on_error.h"
+
+namespace bsg::cli {
+namespace {
+
+struct TrainArguments {
+  std::string config_file;
+  std::vector<std::string> set_arguments;
+  std::string out_dir;
+  std::string configs_dir;
+  std::string resume_dir;
+  bool print_config = false;
+  int stop_after_epochs = 0;
+  bool quiet = false;
+};
+
+RunConfig resolve_config(const TrainArguments& args) {
+  RunConfigRequest request;
+  request.run_file = args.config_file;
+  request.set_arguments = args.set_arguments;
+  request.valid_env_ids = envs::registered_ids();
+  if (!args.configs_dir.empty()) {
+    request.configs_dir = args.configs_dir;
+  } else {
+    if (!args.config_file.empty() && !std::filesystem::is_regular_file(args.config_file)) {
+      throw ConfigError("run file " + args.config_file + " does not exist");
+    }
+    const std::filesystem::path start =
+        args.config_file.empty() ? std::filesystem::current_path()
+                                 : std::filesystem::absolute(args.config_file).parent_path();
+    request.configs_dir = locate_configs_dir(start);
+  }
+  return resolve_run_config(request).config;
+}
+
+int train(const TrainArguments& args) {
+  if (args.print_config) {
+    std::cout << to_yaml(resolve_config(args));
+    return 0;
+  }
+  MpiSession session;
+  const MpiContext mpi = session.context();
+  return run_or_abort_job(mpi, [&]() {
+    const bool resume = !args.resume_dir.empty();
+    RunConfig config;
+    std::optional<RunDirectory> directory;
+    if (resume) {
+      directory.emplace(args.resume_dir);
+      check_is_run_directory(*directory);
+      config = load_resolved_run_config(directory->config(), envs::registered_ids());
+    } else {
+      config = resolve_config(args);
+      directory.emplace(args.out_dir.empty() ? default_run_directory(config) : std::filesystem::path(args.out_dir));
+    }
+    check_run_config_for_ranks(config, mpi.size());
+
+    TrainerOptions options;
+    options.resume = resume;
+    options.stop_after_epochs = args.stop_after_epochs;
+    options.log = args.quiet ? nullptr : &std::cout;
+    if (mpi.is_root() && !args.quiet) {
+      std::cout << "bsg train: " << config.env_id << " " << to_string(config.alg) << " seed " << config.seed << ", "
+                << config.epochs << " epochs of " << config.steps_per_epoch << " steps on " << mpi.size()
+                << (mpi.size() == 1 ? " rank" : " ranks") << (resume ? ", resuming " : " -> ")
+                << directory->root.string() << std::endl;
+    }
+    OnPolicyTrainer trainer(config, *directory, mpi, options);
+    const TrainingOutcome outcome = trainer.run();
+    if (mpi.is_root() && !args.quiet && !outcome.finished) {
+      std::cout << "stopped after " << outcome.epochs_completed << " of " << config.epochs
+                << " epochs; continue with: bsg train --resume " << directory->root.string() << std::endl;
+    }
+    return 0;
+  });
+}
+
+}  // namespace
+
+void add_train_command(CLI::App& app, Action& run) {
+  CLI::App* command = app.add_subcommand("train", "Train a policy: bsg train CONFIG [--set key=value]... [--out DIR]");
+  auto args = std::make_shared<TrainArguments>();
+  command->add_option("CONFIG", args->config_file, "run file (YAML) naming env_id and alg; see configs/README.md");
+  command->add_option("--set", args->set_arguments, "override one key: --set key=value (repeatable)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  auto* out = command->add_option("--out", args->out_dir,
+                                  "run directory (default: <log_dir>/<env_id>/<alg>/seed_<seed>)");
+  command->add_option("--configs", args->configs_dir,
+                      "configs directory (default: the first configs/ at or above the run file)");
+  auto* print = command->add_flag("--print-config", args->print_config,
+                                  "print the fully resolved configuration and exit");
+  auto* resume = command->add_option("--resume", args->resume_dir, "continue the run in this directory");
+  command->add_option("--stop-after", args->stop_after_epochs,
+                      "stop after this many epochs in total (with a checkpoint; continue with --resume)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_flag("--quiet", args->quiet, "no progress lines");
+  resume->excludes(out)->excludes(print);
+  command->callback([&run, args]() {
+    const bool has_config = !args->config_file.empty() || !args->set_arguments.empty();
+    if (!args->resume_dir.empty() && has_config) {
+      throw CLI::ValidationError("--resume", "takes the configuration from the run directory; give no CONFIG or --set");
+    }
+    if (args->resume_dir.empty() && !has_config) {
+      throw CLI::RequiredError("CONFIG (or --resume DIR)");
+    }
+    run = [args]() { return train(*args); };
+  });
+}
+
+}  // namespace bsg::cli
