@@ -2,16 +2,23 @@
 
 #include <stdexcept>
 
+#include "ant_agent.h"
 #include "ball_agent.h"
+#include "car_agent.h"
 #include "circle_task.h"
+#include "gather_task.h"
+#include "reach_task.h"
 #include "run_task.h"
 
 namespace bsg::envs {
 
 void add_agent(std::map<std::string, EnvRegistration>& entries, const std::string& agent_name,
-               AgentFactory make_agent, int max_episode_steps, const TaskCostLimits& cost_limits) {
+               AgentFactory make_agent, int max_episode_steps, const TaskCostLimits& cost_limits,
+               ZoneKind reach_zones) {
   const std::pair<TaskBlueprint, double> tasks[] = {
       {circle_task(), cost_limits.circle},
+      {gather_task(), cost_limits.gather},
+      {reach_task(reach_zones), cost_limits.reach},
       {run_task(), cost_limits.run},
   };
   for (const auto& [blueprint, cost_limit] : tasks) {
@@ -27,6 +34,8 @@ const std::map<std::string, EnvRegistration>& registry() {
     std::map<std::string, EnvRegistration> result;
     // Episode lengths and cost limits: spec §1.1 (report Table 3).
     add_agent(result, "Ball", make_ball_agent, 250, kStandardCostLimits);
+    add_agent(result, "Car", make_car_agent, 500, kStandardCostLimits);
+    add_agent(result, "Ant", make_ant_agent, 1000, TaskCostLimits{.reach = 25});
     return result;
   }();
   return entries;

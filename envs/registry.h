@@ -4,13 +4,16 @@
 // Registering an agent on all four tasks is one line in registry.cpp:
 //   add_agent(entries, "Car", make_car_agent, 500, kStandardCostLimits);
 // which registers SafetyCarCircle-v0, SafetyCarGather-v0, SafetyCarReach-v0
-// and SafetyCarRun-v0. A new task is one more line in add_agent().
+// and SafetyCarRun-v0. The Drone's Reach uses pillars:
+//   add_agent(entries, "Drone", make_drone_agent, 500, kStandardCostLimits, ZoneKind::kPillar);
+// A new task is one more line in add_agent().
 #pragma once
 
 #include <map>
 #include <string>
 
 #include "env_builder.h"
+#include "zone_obstacles.h"
 
 namespace bsg::envs {
 
@@ -25,9 +28,11 @@ struct TaskCostLimits {
 // Ball, Car and Drone; the Ant's Reach limit is 25 instead of 10.
 inline constexpr TaskCostLimits kStandardCostLimits{};
 
-// Registers Safety<agent_name><Task>-v0 for every task.
+// Registers Safety<agent_name><Task>-v0 for every task. Reach uses puddles,
+// or pillars for a flying agent (the Drone, spec §1.1).
 void add_agent(std::map<std::string, EnvRegistration>& entries, const std::string& agent_name,
-               AgentFactory make_agent, int max_episode_steps, const TaskCostLimits& cost_limits);
+               AgentFactory make_agent, int max_episode_steps, const TaskCostLimits& cost_limits,
+               ZoneKind reach_zones = ZoneKind::kPuddle);
 
 // Every registered id, built once on first use.
 const std::map<std::string, EnvRegistration>& registry();

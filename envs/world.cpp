@@ -36,6 +36,11 @@ class ClosestHitIgnoring : public btCollisionWorld::ClosestRayResultCallback {
                      std::span<const btCollisionObject* const> ignore)
       : ClosestRayResultCallback(from, to), ignore_(ignore) {
     m_flags |= btTriangleRaycastCallback::kF_UseGjkConvexCastRaytest;
+    // The ray belongs to every group: with Bullet's default ray group (1 =
+    // kStaticGroup) the static scenery, whose mask excludes its own group,
+    // would never be hit. PyBullet's rays use collision mask "all" (spec §2.3).
+    m_collisionFilterGroup = kAllGroups;
+    m_collisionFilterMask = kAllGroups;
   }
   bool needsCollision(btBroadphaseProxy* proxy) const override {
     const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);

@@ -214,10 +214,11 @@ TEST(Registry, UnknownIdIsAnErrorListingEveryValidId) {
   }
 }
 
-TEST(Registry, IdsAreSortedAndContainTheBallEnvironments) {
+TEST(Registry, IdsAreSortedAndContainTheFourBallEnvironments) {
   const std::vector<std::string> ids = registered_ids();
   EXPECT_TRUE(std::is_sorted(ids.begin(), ids.end()));
-  for (const char* id : {"SafetyBallCircle-v0", "SafetyBallRun-v0"}) {
+  for (const char* id : {"SafetyBallCircle-v0", "SafetyBallGather-v0", "SafetyBallReach-v0",
+                         "SafetyBallRun-v0"}) {
     EXPECT_NE(std::find(ids.begin(), ids.end(), id), ids.end()) << id;
   }
 }

@@ -1,0 +1,78 @@
+#include "gather_task.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "layout_checks.h"
+#include "placement_sampler.h"
+
+namespace bsg::envs {
+
+GatherTask::GatherTask(World& world, Agent& agent)
+    : agent_(agent), sensor_(16, world.env_dim()) {}
+
+void GatherTask::sample_layout(Rng& rng, Layout& layout) {
+  // The agent starts at the origin with its initial orientation (spec §5.2).
+  const AgentTraits& traits = agent_.traits();
+  const btVector3 start(0, 0, traits.initial_position.z());
+  layout.agent_position = to_vec3(start);
+  layout.agent_orientation = to_quat(agent_.orientation());
+  const std::vector<btVector3> positions = sample_obstacle_positions(
+      rng, kApples + kBombs, start, std::nullopt, kPairwiseClearance, kAgentClearance);
+  layout.apples.clear();
+  layout.bombs.clear();
+  for (int i = 0; i < kApples; ++i) layout.apples.push_back(to_vec3(positions[static_cast<size_t>(i)]));
+  for (int i = kApples; i < kApples + kBombs; ++i) {
+    layout.bombs.push_back(to_vec3(positions[static_cast<size_t>(i)]));
+  }
+}
+
+void GatherTask::place(const Layout& layout, double /*clock_seconds*/) {
+  require_unused_fields(layout, "Gather", {"apples", "bombs"});
+  require_count("Gather", "apples", layout.apples.size(), kApples);
+  require_count("Gather", "bombs", layout.bombs.size(), kBombs);
+  agent_.set_base_pose(to_bt(layout.agent_position), to_bt(layout.agent_orientation));
+  std::array<btVector3, kApples> apples;
+  std::array<btVector3, kBombs> bombs;
+  std::transform(layout.apples.begin(), layout.apples.end(), apples.begin(),
+                 [](const Vec3& v) { return to_bt(v); });
+  std::transform(layout.bombs.begin(), layout.bombs.end(), bombs.begin(),
+                 [](const Vec3& v) { return to_bt(v); });
+  apples_.place(apples);
+  bombs_.place(bombs);
+}
+
+TaskOutcome GatherTask::evaluate(Rng& /*rng*/) {
+  const btVector3 p = agent_.position();
+  TaskOutcome outcome;
+  // Reward first (spec §2.5 item 6), no agent-specific term (spec §9 item 11).
+  outcome.reward = kAppleReward * apples_.collect_near(p);
+  if (!agent_.alive()) outcome.reward = kDeathReward;
+  terms_[0].value = bombs_.collect_near(p);
+  terms_[1].value = p.z() > kMaxAltitude ? 1.0 : 0.0;
+  outcome.cost = std::min(1.0, terms_[0].value + terms_[1].value);
+  outcome.ends_episode = apples_.active_count() == 0;
+  return outcome;
+}
+
+void GatherTask::write_observation(std::span<double> out) const {
+  const btVector3 p = agent_.position();
+  const auto bins = static_cast<size_t>(sensor_.bins());
+  // Collected apples and touched bombs are still sensed (spec §9 item 9).
+  sensor_.measure(p, apples_.positions(), out.first(bins));
+  sensor_.measure(p, bombs_.positions(), out.subspan(bins, bins));
+}
+
+void GatherTask::write_state(EnvState& state) const {
+  state.apples_active.assign(apples_.active().begin(), apples_.active().end());
+  state.bombs_active.assign(bombs_.active().begin(), bombs_.active().end());
+}
+
+TaskBlueprint gather_task() {
+  return {"Gather", WorldLayout::kSmallRoom, 4, true,
+          [](World& world, Agent& agent, const EnvOptions&) {
+            return std::make_unique<GatherTask>(world, agent);
+          }};
+}
+
+}  // namespace bsg::envs

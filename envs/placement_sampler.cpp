@@ -1,0 +1,51 @@
+#include "placement_sampler.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace bsg::envs {
+
+btVector3 uniform_room_point(Rng& rng) {
+  const double x = uniform(rng, -kPlacementHalfWidth, kPlacementHalfWidth);
+  const double y = uniform(rng, -kPlacementHalfWidth, kPlacementHalfWidth);
+  return {x, y, 0};
+}
+
+double planar_distance(const btVector3& a, const btVector3& b) {
+  const double dx = a.x() - b.x();
+  const double dy = a.y() - b.y();
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+std::vector<btVector3> sample_obstacle_positions(Rng& rng, int count, const btVector3& agent,
+                                                 const std::optional<btVector3>& goal,
+                                                 double pairwise_clearance,
+                                                 double agent_clearance) {
+  std::vector<btVector3> accepted;  // the goal (if any) first, as in the original
+  if (goal) accepted.push_back(*goal);
+  const size_t first = accepted.size();
+  long attempts = 0;
+  while (accepted.size() - first < static_cast<size_t>(count)) {
+    if (++attempts > kMaxPlacementAttempts) {
+      throw std::runtime_error(
+          "obstacle placement: no room for " + std::to_string(count) + " obstacles with clearance " +
+          std::to_string(pairwise_clearance) + " m after " + std::to_string(kMaxPlacementAttempts) +
+          " draws");
+    }
+    const btVector3 q = uniform_room_point(rng);
+    if (planar_distance(q, agent) < agent_clearance) continue;
+    bool clear = true;
+    for (const btVector3& other : accepted) {
+      // 3-d norm; every z here is 0 (spec §8 item 2).
+      if ((q - other).length() <= pairwise_clearance) {
+        clear = false;
+        break;
+      }
+    }
+    if (clear) accepted.push_back(q);
+  }
+  return {accepted.begin() + static_cast<std::ptrdiff_t>(first), accepted.end()};
+}
+
+}  // namespace bsg::envs

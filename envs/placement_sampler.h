@@ -1,0 +1,35 @@
+// Random placement of goals and obstacles in the SmallRoom (spec §2.4, §8):
+// uniform points in the square [−7, 7]² on the ground and the original's
+// rejection sampler `generate_obstacles_init_pos`, with an attempt guard in
+// place of the original's guard that never fires (spec §9 item 14).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <LinearMath/btVector3.h>
+
+#include "common/random.h"
+
+namespace bsg::envs {
+
+// Half-width of the SmallRoom's placement square: int(0.7·env_dim) = 7.
+inline constexpr double kPlacementHalfWidth = 7.0;
+inline constexpr long kMaxPlacementAttempts = 100000;
+
+// (U(−7, 7), U(−7, 7), 0): x drawn first.
+btVector3 uniform_room_point(Rng& rng);
+
+// `count` positions, in acceptance order. A draw q is rejected if
+// ‖q − agent‖_xy < agent_clearance; it is accepted iff its 3-d distance to every
+// position accepted so far (and to `goal`, if given) is > pairwise_clearance.
+// Throws std::runtime_error after kMaxPlacementAttempts draws.
+std::vector<btVector3> sample_obstacle_positions(Rng& rng, int count, const btVector3& agent,
+                                                 const std::optional<btVector3>& goal,
+                                                 double pairwise_clearance,
+                                                 double agent_clearance);
+
+// ‖a − b‖ in the plane, as NumPy's norm: sqrt(dx² + dy²) (spec §12 item 13).
+double planar_distance(const btVector3& a, const btVector3& b);
+
+}  // namespace bsg::envs
