@@ -1,0 +1,162 @@
+// Test helpers for the five algorithms' updates: a synthetic batch on a random
+// small policy, hand-written surrogates and KL (independent of the core's
+// PolicySurrogate), dense linear operators for the 2-D oracles.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <numbers>
+
+#include "algos/algorithm.h"
+#include "algos/conjugate_gradient.h"
+#include "algos/gaussian_policy.h"
+#include "algos/policy_surrogate.h"
+#include "common/random.h"
+#include "common/run_config.h"
+
+namespace bsg::testing {
+
+// A random 3 -> 2 policy (hidden 8-8, sigma 0.4) built from `policy_seed`, and
+// N samples drawn from it with `batch_seed`: normalised observations, actions,
+// their log-probabilities, N(0,1) reward advantages and cost advantages with a
+// positive mean (a cost that grows along some directions).
+struct SyntheticBatch {
+  static constexpr int kObservationSize = 3;
+  static constexpr int kActionSize = 2;
+
+  Rng policy_rng;
+  GaussianPolicy policy;
+  Eigen::MatrixXd observations, actions;
+  Eigen::VectorXd old_log_probs, advantages, cost_advantages;
+
+  SyntheticBatch(Eigen::Index n, std::uint64_t policy_seed, std::uint64_t batch_seed)
+      : policy_rng(policy_seed),
+        policy(kObservationSize, kActionSize, {8, 8}, policy_rng),
+        observations(n, kObservationSize),
+        actions(n, kActionSize),
+        old_log_probs(n),
+        advantages(n),
+        cost_advantages(n) {
+    policy.set_std(0.4);
+    Rng rng(batch_seed);
+    MlpSampleWorkspace workspace;
+    Eigen::VectorXd action(kActionSize);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      for (int j = 0; j < kObservationSize; ++j) observations(i, j) = standard_normal(rng);
+      old_log_probs[i] = policy.sample_action(observations.row(i).transpose(), action, rng, workspace);
+      actions.row(i) = action.transpose();
+      advantages[i] = standard_normal(rng);
+      cost_advantages[i] = 0.5 + standard_normal(rng);
+    }
+  }
+
+  PolicySurrogate surrogate() const {
+    return PolicySurrogate(observations, actions, old_log_probs, advantages, cost_advantages);
+  }
+
+  Eigen::MatrixXd means() const {
+    Eigen::MatrixXd result(observations.rows(), kActionSize);
+    for (Eigen::Index i = 0; i < observations.rows(); ++i) {
+      result.row(i) = policy.mean_net().forward(observations.row(i).transpose()).transpose();
+    }
+    return result;
+  }
+
+  // Hand-written ratios rho_i = exp(log pi(a_i|s_i) - log pi_old,i) at the current parameters.
+  Eigen::VectorXd ratios() const {
+    const Eigen::MatrixXd mu = means();
+    const double sigma = policy.std();
+    Eigen::VectorXd rho(observations.rows());
+    for (Eigen::Index i = 0; i < observations.rows(); ++i) {
+      const double log_prob = -0.5 * (actions.row(i) - mu.row(i)).squaredNorm() / (sigma * sigma) -
+                              kActionSize * std::log(sigma) - 0.5 * kActionSize * std::log(2.0 * std::numbers::pi);
+      rho[i] = std::exp(log_prob - old_log_probs[i]);
+    }
+    return rho;
+  }
+  double reward_surrogate() const { return ratios().dot(advantages) / static_cast<double>(advantages.size()); }
+  double cost_surrogate() const { return ratios().dot(cost_advantages) / static_cast<double>(advantages.size()); }
+
+  // Mean KL over samples and action dims (spec §6.3) between `old_means` and the current means.
+  double kl_from(const Eigen::MatrixXd& old_means) const {
+    const double sigma = policy.std();
+    return (old_means - means()).squaredNorm() / (2.0 * sigma * sigma) /
+           static_cast<double>(old_means.rows() * old_means.cols());
+  }
+};
+
+inline const MpiContext& single_process() {
+  static const MpiContext context = MpiContext::single_process();
+  return context;
+}
+
+inline PolicyUpdateInputs inputs_for(SyntheticBatch& batch, PolicySurrogate& surrogate, double mean_episode_cost,
+                                     double mean_episode_length, const MpiContext& mpi = single_process()) {
+  return PolicyUpdateInputs{batch.policy, surrogate, mean_episode_cost, mean_episode_length, mpi};
+}
+
+// A RunConfig for `alg` with the algorithm's shipped defaults that matter here.
+inline RunConfig config_for(Algorithm alg) {
+  RunConfig config;
+  config.alg = alg;
+  config.target_kl = 0.01;
+  config.cost_limit = 25.0;
+  config.use_cost_value_function = alg != Algorithm::trpo;
+  switch (alg) {
+    case Algorithm::trpo: break;
+    case Algorithm::lag_trpo:
+      config.lambda_optimizer = LambdaOptimizer::sgd;
+      config.lambda_lr = 0.05;
+      break;
+    case Algorithm::cpo: config.backtrack_budget = 20; break;
+    case Algorithm::pdo:
+      config.lambda_optimizer = LambdaOptimizer::adam;
+      config.lambda_lr = 0.001;
+      break;
+    case Algorithm::pcpo: config.backtrack_budget = 25; break;
+  }
+  return config;
+}
+
+// The dense matrix M as a LinearOperator.
+inline LinearOperator dense_operator(const Eigen::MatrixXd& matrix) {
+  return [matrix](const Eigen::Ref<const Eigen::VectorXd>& direction, Eigen::Ref<Eigen::VectorXd> product) {
+    product = matrix * direction;
+  };
+}
+
+// A random symmetric positive definite n x n matrix with eigenvalues of order 1.
+inline Eigen::MatrixXd random_spd(int n, Rng& rng) {
+  Eigen::MatrixXd u(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) u(i, j) = uniform(rng, -1.0, 1.0);
+  return u * u.transpose() / n + 0.5 * Eigen::MatrixXd::Identity(n, n);
+}
+
+inline Eigen::VectorXd random_vector(int n, Rng& rng) {
+  Eigen::VectorXd v(n);
+  for (int i = 0; i < n; ++i) v[i] = standard_normal(rng);
+  return v;
+}
+
+inline Eigen::VectorXd vec2(double a, double b) {
+  Eigen::VectorXd v(2);
+  v << a, b;
+  return v;
+}
+
+// True if both vectors hold exactly the same bits.
+inline bool bit_identical(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  if (a.size() != b.size()) return false;
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    if (std::memcmp(&a[i], &b[i], sizeof(double)) != 0) return false;
+  }
+  return true;
+}
+
+}  // namespace bsg::testing
