@@ -6,6 +6,7 @@
 #include <ostream>
 
 #include "algos/epoch_log.h"
+#include "algos/epoch_statistics.h"
 #include "algos/evaluation_files.h"
 #include "algos/make_algorithm.h"
 #include "algos/progress_line.h"
@@ -125,6 +126,15 @@ void OnPolicyTrainer::check_ranks_agree(int epoch) const {
   }
 }
 
+void OnPolicyTrainer::standardize_advantages() {
+  // A <- (A - mean) / (std + 1e-8) and A^C <- A^C - mean^C, with the means and
+  // std pooled over ranks (what the original's disabled code would do, Q6).
+  const PooledStatistics reward = pool_statistics(advantages_, mpi_);
+  const PooledStatistics cost = pool_statistics(cost_advantages_, mpi_);
+  advantages_ = (advantages_.array() - reward.mean) / (reward.std + 1e-8);
+  cost_advantages_.array() -= cost.mean;
+}
+
 void OnPolicyTrainer::run_epoch(int epoch) {
   const auto epoch_start = Clock::now();
   ActorCritic& ac = *actor_critic_;
@@ -144,8 +154,11 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   // 3. Policy update with the pooled J_C and L.
   const EpisodeStatistics episodes = pool_episode_statistics(buffer_, mpi_);
   ac.normalize_observations(buffer_.observations(), normalized_observations_);
-  PolicySurrogate surrogate(normalized_observations_, buffer_.actions(), buffer_.log_probs(), buffer_.advantages(),
-                            buffer_.cost_advantages());
+  advantages_ = buffer_.advantages();
+  cost_advantages_ = buffer_.cost_advantages();
+  if (config_.use_standardized_advantages) standardize_advantages();
+  PolicySurrogate surrogate(normalized_observations_, buffer_.actions(), buffer_.log_probs(), advantages_,
+                            cost_advantages_);
   const PolicyUpdateResult update = algorithm_->update(
       PolicyUpdateInputs{ac.policy, surrogate, episodes.episode_cost.mean, episodes.episode_length.mean, mpi_});
   if (const auto loss = find_diagnostic(update, "Loss/Pi")) check_finite(epoch, "policy loss", *loss);
@@ -228,6 +241,13 @@ TrainingOutcome OnPolicyTrainer::run() {
   outcome.epochs_completed = progress_.epochs_completed;
   outcome.finished = progress_.epochs_completed == config_.epochs;
   if (!outcome.finished) return outcome;
+  if (config_.eval_episodes / mpi_.size() == 0) {
+    if (mpi_.is_root() && options_.log != nullptr) {
+      *options_.log << "evaluation skipped (eval_episodes = " << config_.eval_episodes << " for " << mpi_.size()
+                    << (mpi_.size() == 1 ? " rank)" : " ranks)") << std::endl;
+    }
+    return outcome;
+  }
 
   // Deterministic evaluation (spec §12) with the final statistics.
   EvaluationSummary summary = evaluate_policy(*env_, *actor_critic_, config_.eval_episodes, config_.seed,

@@ -11,6 +11,8 @@
 //      that the ranks agree), log the epoch (rank 0 writes progress.csv and
 //      prints a line), save a checkpoint every save_freq epochs and after the
 //      last epoch.
+// Advantages enter the update unnormalised (Q6) unless
+// use_standardized_advantages is set.
 // After the last epoch: the deterministic evaluation (evaluation.h) and its files.
 //
 // Seeding (common/seeding.h, derive_seed(run seed, stream, rank, index)):
@@ -83,6 +85,7 @@ class OnPolicyTrainer {
 
  private:
   void run_epoch(int epoch);
+  void standardize_advantages();
   void check_finite(int epoch, const char* quantity, double value) const;
   void check_parameters_finite(int epoch) const;
   void check_ranks_agree(int epoch) const;
@@ -99,6 +102,8 @@ class OnPolicyTrainer {
   RolloutCollector collector_;
   Eigen::MatrixXd normalized_observations_;
   Eigen::MatrixXd returns_column_;
+  Eigen::VectorXd advantages_;       // A_t as the update sees them (copy, optionally standardised)
+  Eigen::VectorXd cost_advantages_;  // A^C_t likewise
   Rng noise_rng_;
   Rng shuffle_rng_;
   TrainingProgress progress_;

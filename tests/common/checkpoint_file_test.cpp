@@ -1,0 +1,201 @@
+// The checkpoint container (common/checkpoint_file.h) and the atomic write
+// (common/atomic_file.h): round trip, and every kind of damaged file gives a
+// CheckpointError that names the file instead of loading garbage.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "common/atomic_file.h"
+#include "common/binary_io.h"
+#include "common/checkpoint_file.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class TempDir {
+ public:
+  TempDir() {
+    char pattern[] = "/tmp/bsg_checkpoint_file_test_XXXXXX";
+    path_ = mkdtemp(pattern);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::string read_all(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream contents;
+  contents << file.rdbuf();
+  return contents.str();
+}
+
+void write_all(const fs::path& path, const std::string& bytes) {
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  file << bytes;
+}
+
+// The message of the CheckpointError thrown by read_checkpoint_file(path), or "" if none.
+std::string read_error(const fs::path& path) {
+  try {
+    bsg::read_checkpoint_file(path);
+  } catch (const bsg::CheckpointError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string sample_payload() {
+  bsg::BinaryWriter writer;
+  writer.write_section("numbers");
+  writer.write_u32(7);
+  writer.write_i64(-42);
+  writer.write_f64(-0.0);
+  writer.write_vector(Eigen::VectorXd::LinSpaced(5, -1.0, 1.0));
+  writer.write_string("hello");
+  writer.write_bool(true);
+  return writer.bytes();
+}
+
+}  // namespace
+
+TEST(BinaryIo, ValuesReadBackBitExactly) {
+  const std::string payload = sample_payload();
+  bsg::BinaryReader reader(payload, "memory");
+  reader.expect_section("numbers");
+  EXPECT_EQ(reader.read_u32("u32"), 7u);
+  EXPECT_EQ(reader.read_i64("i64"), -42);
+  const double zero = reader.read_f64("f64");
+  EXPECT_TRUE(std::signbit(zero));
+  EXPECT_EQ(reader.read_vector("vector", 5), Eigen::VectorXd::LinSpaced(5, -1.0, 1.0));
+  EXPECT_EQ(reader.read_string("string"), "hello");
+  EXPECT_TRUE(reader.read_bool("bool"));
+  EXPECT_NO_THROW(reader.expect_end());
+}
+
+TEST(BinaryIo, ReadingPastTheEndNamesSourceAndField) {
+  bsg::BinaryWriter writer;
+  writer.write_u32(1);
+  bsg::BinaryReader reader(writer.bytes(), "some/file.bin");
+  try {
+    reader.read_u64("epoch count");
+    FAIL() << "expected a CheckpointError";
+  } catch (const bsg::CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("some/file.bin"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("epoch count"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BinaryIo, WrongSectionNamesExpectedAndFound) {
+  bsg::BinaryWriter writer;
+  writer.write_section("policy");
+  bsg::BinaryReader reader(writer.bytes(), "x.bin");
+  try {
+    reader.expect_section("value net");
+    FAIL() << "expected a CheckpointError";
+  } catch (const bsg::CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("'value net'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'policy'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BinaryIo, VectorOfUnexpectedLengthIsAnError) {
+  bsg::BinaryWriter writer;
+  writer.write_vector(Eigen::VectorXd::Zero(3));
+  bsg::BinaryReader reader(writer.bytes(), "x.bin");
+  EXPECT_THROW(reader.read_vector("weights", 4), bsg::CheckpointError);
+}
+
+TEST(CheckpointFile, RoundTripReturnsThePayload) {
+  TempDir dir;
+  const fs::path path = dir.path() / "checkpoint.bin";
+  const std::string payload = sample_payload();
+  bsg::write_checkpoint_file(path, payload);
+  EXPECT_EQ(bsg::read_checkpoint_file(path), payload);
+  EXPECT_FALSE(fs::exists(bsg::atomic_temporary_path(path)));
+  EXPECT_EQ(read_all(path).substr(0, 8), "BSGCKPT\n");
+}
+
+TEST(CheckpointFile, EveryTruncationIsAnErrorNamingTheFile) {
+  TempDir dir;
+  const fs::path good = dir.path() / "good.bin";
+  bsg::write_checkpoint_file(good, sample_payload());
+  const std::string bytes = read_all(good);
+  const fs::path cut = dir.path() / "cut.bin";
+  for (std::size_t length = 0; length < bytes.size(); ++length) {
+    write_all(cut, bytes.substr(0, length));
+    const std::string message = read_error(cut);
+    EXPECT_NE(message.find(cut.string()), std::string::npos) << "length " << length << ": '" << message << "'";
+  }
+}
+
+TEST(CheckpointFile, AnyFlippedPayloadByteFailsTheChecksum) {
+  TempDir dir;
+  const fs::path path = dir.path() / "checkpoint.bin";
+  bsg::write_checkpoint_file(path, sample_payload());
+  const std::string bytes = read_all(path);
+  const std::size_t header = 8 + 4 + 8;
+  for (std::size_t i = header; i + 8 < bytes.size(); ++i) {
+    std::string damaged = bytes;
+    damaged[i] = static_cast<char>(damaged[i] ^ 0x10);
+    write_all(path, damaged);
+    const std::string message = read_error(path);
+    EXPECT_NE(message.find("checksum"), std::string::npos) << "byte " << i << ": '" << message << "'";
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  }
+}
+
+TEST(CheckpointFile, ForeignFileAndOtherVersionAreRejected) {
+  TempDir dir;
+  const fs::path path = dir.path() / "checkpoint.bin";
+  write_all(path, "progress.csv is not a checkpoint\n");
+  EXPECT_NE(read_error(path).find("not a bsg checkpoint"), std::string::npos);
+
+  std::string bytes = bsg::encode_checkpoint_file(sample_payload());
+  bytes[8] = 99;  // version field
+  write_all(path, bytes);
+  EXPECT_NE(read_error(path).find("version 99"), std::string::npos) << read_error(path);
+}
+
+TEST(CheckpointFile, MissingFileIsAnErrorNamingIt) {
+  TempDir dir;
+  const fs::path path = dir.path() / "nowhere.bin";
+  EXPECT_NE(read_error(path).find(path.string()), std::string::npos);
+}
+
+TEST(AtomicFile, ReplacesTheContents) {
+  TempDir dir;
+  const fs::path path = dir.path() / "file.txt";
+  bsg::write_file_atomically(path, "old");
+  bsg::write_file_atomically(path, "new contents");
+  EXPECT_EQ(read_all(path), "new contents");
+}
+
+TEST(AtomicFile, AFailedWriteKeepsTheOldFile) {
+  TempDir dir;
+  const fs::path path = dir.path() / "checkpoint.bin";
+  bsg::write_checkpoint_file(path, "good payload");
+  // The temporary file cannot be created: a directory occupies its name.
+  fs::create_directory(bsg::atomic_temporary_path(path));
+  EXPECT_THROW(bsg::write_checkpoint_file(path, "new payload"), std::runtime_error);
+  EXPECT_EQ(bsg::read_checkpoint_file(path), "good payload");
+}
+
+TEST(AtomicFile, AStaleTemporaryFromAKilledWriterIsIgnoredAndReplaced) {
+  TempDir dir;
+  const fs::path path = dir.path() / "checkpoint.bin";
+  bsg::write_checkpoint_file(path, "good payload");
+  // A writer killed half-way leaves a partial temporary behind.
+  write_all(bsg::atomic_temporary_path(path), bsg::encode_checkpoint_file("new payload").substr(0, 10));
+  EXPECT_EQ(bsg::read_checkpoint_file(path), "good payload");
+  bsg::write_checkpoint_file(path, "next payload");
+  EXPECT_EQ(bsg::read_checkpoint_file(path), "next payload");
+}
