@@ -23,4 +23,11 @@ void add_sweep_command(CLI::App& app, Action& run);
 // bsg table SWEEP_DIR [--score mean|mean_minus_std] (cmd_table.cpp)
 void add_table_command(CLI::App& app, Action& run);
 
+// bsg envs [--json] (cmd_envs.cpp)
+void add_envs_command(CLI::App& app, Action& run);
+// bsg rollout --env ID [--policy random|zero] [--episodes N] [--seed S] [--json] (cmd_rollout.cpp)
+void add_rollout_command(CLI::App& app, Action& run);
+// bsg bench [--env ID] [--steps N] [--json] (cmd_bench.cpp)
+void add_bench_command(CLI::App& app, Action& run);
+
 }  // namespace bsg::cli

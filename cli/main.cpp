@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
   bsg::cli::add_eval_command(app, run);
   bsg::cli::add_sweep_command(app, run);
   bsg::cli::add_table_command(app, run);
+  bsg::cli::add_envs_command(app, run);
+  bsg::cli::add_rollout_command(app, run);
+  bsg::cli::add_bench_command(app, run);
 
   try {
     app.parse(argc, argv);

@@ -30,8 +30,9 @@ class AssembledEnv final : public Env {
   EnvState state() const override;
   void teleport_agent(const Vec3& com_position) override;
 
-  // For benchmarks: the world alone, to time raw physics of the same scene.
+  // For benchmarks: the world and agent alone, to time raw physics of the same scene.
   World& world() { return *world_; }
+  Agent& agent() { return *agent_; }
 
  private:
   // The shared reset path of spec §2.6; `injected` replaces the task's draws.

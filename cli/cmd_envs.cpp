@@ -1,0 +1,53 @@
+// `bsg envs [--json]`: the registered environments with their observation and
+// action sizes, episode length and cost limit (spec §1.1, report Table 3).
+#include <CLI/CLI.hpp>
+
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "envs/env.h"
+
+namespace bsg::cli {
+namespace {
+
+int list_envs(bool json) {
+  nlohmann::json list = nlohmann::json::array();
+  if (!json) {
+    std::cout << std::left << std::setw(24) << "id" << std::right << std::setw(8) << "obs"
+              << std::setw(8) << "act" << std::setw(10) << "steps" << std::setw(12) << "cost_limit"
+              << "\n";
+  }
+  for (const std::string& id : envs::registered_ids()) {
+    const envs::EnvSpec spec = envs::make(id)->spec();
+    if (json) {
+      list.push_back({{"id", spec.id},
+                      {"agent", spec.agent},
+                      {"task", spec.task},
+                      {"observation_dim", spec.observation_dim},
+                      {"action_dim", spec.action_dim},
+                      {"max_episode_steps", spec.max_episode_steps},
+                      {"cost_limit", spec.cost_limit}});
+    } else {
+      std::cout << std::left << std::setw(24) << spec.id << std::right << std::setw(8)
+                << spec.observation_dim << std::setw(8) << spec.action_dim << std::setw(10)
+                << spec.max_episode_steps << std::setw(12) << spec.cost_limit << "\n";
+    }
+  }
+  if (json) std::cout << list.dump(2) << "\n";
+  return 0;
+}
+
+}  // namespace
+
+void add_envs_command(CLI::App& app, Action& run) {
+  CLI::App* command = app.add_subcommand(
+      "envs", "List the registered environments: observation/action sizes, episode length, cost limit");
+  auto json = std::make_shared<bool>(false);
+  command->add_flag("--json", *json, "print a JSON array");
+  command->callback([&run, json]() { run = [json]() { return list_envs(*json); }; });
+}
+
+}  // namespace bsg::cli

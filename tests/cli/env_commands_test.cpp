@@ -1,0 +1,108 @@
+// `bsg envs`, `bsg rollout` and `bsg bench` end to end: output content, JSON
+// that parses, errors for unknown ids (listing the valid ones) and bad counts.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "envs/env.h"
+#include "run_bsg.h"
+
+namespace {
+
+using bsg::testing::run_bsg;
+
+// stdout and stderr are captured together; the JSON starts at the first bracket.
+nlohmann::json parse_json(const std::string& output) {
+  const size_t start = output.find_first_of("[{");
+  if (start == std::string::npos) throw std::runtime_error("no JSON in: " + output);
+  return nlohmann::json::parse(output.substr(start));
+}
+
+TEST(EnvsCommand, ListsEveryRegisteredIdWithItsSizes) {
+  const auto result = run_bsg("envs");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  for (const std::string& id : bsg::envs::registered_ids()) {
+    EXPECT_NE(result.output.find(id), std::string::npos) << id;
+  }
+  EXPECT_NE(result.output.find("SafetyBallReach-v0            57       2       250          10"),
+            std::string::npos)
+      << result.output;
+}
+
+TEST(EnvsCommand, JsonParsesAndMatchesTheSpecTable) {
+  const auto result = run_bsg("envs --json");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json list = parse_json(result.output);
+  ASSERT_EQ(list.size(), bsg::envs::registered_ids().size());
+  bool found = false;
+  for (const auto& entry : list) {
+    if (entry.at("id") == "SafetyBallGather-v0") {
+      found = true;
+      EXPECT_EQ(entry.at("observation_dim"), 39);
+      EXPECT_EQ(entry.at("action_dim"), 2);
+      EXPECT_EQ(entry.at("max_episode_steps"), 250);
+      EXPECT_EQ(entry.at("cost_limit"), 0.2);
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(RolloutCommand, PrintsEpisodesAndSummary) {
+  const auto result = run_bsg("rollout --env SafetyBallCircle-v0 --policy zero --episodes 2 --seed 3");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("mean return"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("mean cost"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("mean length 250.000"), std::string::npos) << result.output;
+}
+
+TEST(RolloutCommand, JsonIsReproducibleAcrossProcesses) {
+  const std::string command = "rollout --env SafetyBallReach-v0 --episodes 2 --seed 9 --json";
+  const auto first = run_bsg(command);
+  const auto second = run_bsg(command);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_EQ(first.output, second.output);  // same seed, new process: bit-identical
+  const nlohmann::json out = parse_json(first.output);
+  ASSERT_EQ(out.at("episodes").size(), 2u);
+  EXPECT_EQ(out.at("episodes")[0].at("length"), 250);
+  // Zero policy on the Ball: no motion, zero return and cost (spec §11 item 10).
+  const nlohmann::json zero =
+      parse_json(run_bsg("rollout --env SafetyBallRun-v0 --policy zero --json").output);
+  EXPECT_NEAR(zero.at("mean").at("return").get<double>(), 0.0, 1e-9);
+  EXPECT_EQ(zero.at("mean").at("cost").get<double>(), 0.0);
+}
+
+TEST(RolloutCommand, UnknownEnvIsAnErrorListingTheValidIds) {
+  const auto result = run_bsg("rollout --env SafetyBallDance-v0");
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.output.find("SafetyBallDance-v0"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("SafetyBallCircle-v0"), std::string::npos) << result.output;
+}
+
+TEST(RolloutCommand, BadEpisodeCountOrPolicyIsACommandLineError) {
+  EXPECT_EQ(run_bsg("rollout --env SafetyBallRun-v0 --episodes 0").exit_code, 2);
+  EXPECT_EQ(run_bsg("rollout --env SafetyBallRun-v0 --episodes many").exit_code, 2);
+  EXPECT_EQ(run_bsg("rollout --env SafetyBallRun-v0 --policy greedy").exit_code, 2);
+  EXPECT_EQ(run_bsg("rollout --episodes 2").exit_code, 2);  // --env is required
+}
+
+TEST(BenchCommand, PrintsEnvAndPhysicsRates) {
+  const auto result = run_bsg("bench --env SafetyBallRun-v0 --steps 300");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("env steps/s"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("physics steps/s"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("SafetyBallRun-v0"), std::string::npos) << result.output;
+  const nlohmann::json list = parse_json(run_bsg("bench --env SafetyBallRun-v0 --steps 300 --json").output);
+  ASSERT_EQ(list.size(), 1u);
+  EXPECT_GT(list[0].at("env_steps_per_second").get<double>(), 0);
+  EXPECT_GT(list[0].at("physics_steps_per_second").get<double>(), 0);
+}
+
+TEST(BenchCommand, UnknownEnvAndBadStepsAreErrors) {
+  const auto unknown = run_bsg("bench --env Nope-v0 --steps 10");
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_NE(unknown.output.find("SafetyBallRun-v0"), std::string::npos) << unknown.output;
+  EXPECT_EQ(run_bsg("bench --steps 0").exit_code, 2);
+}
+
+}  // namespace
