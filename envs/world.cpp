@@ -10,6 +10,7 @@
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCompoundShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 #include <BulletCollision/NarrowPhaseCollision/btRaycastCallback.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
@@ -129,12 +130,37 @@ const btCollisionObject* World::add_static_box(const btVector3& half_extents,
   auto box = std::make_unique<btBoxShape>(half_extents);
   box->setMargin(kBoxMargin);
   btCollisionShape* shape = keep_shape(std::move(box));
-  auto object = std::make_unique<btCollisionObject>();
-  object->setCollisionShape(shape);
   btTransform transform;
   transform.setIdentity();
   transform.setOrigin(centre);
   transform.setRotation(btQuaternion(btVector3(0, 0, 1), yaw));
+  return add_static_object(shape, transform, friction, restitution);
+}
+
+const btCollisionObject* World::add_static_offset_box(const btVector3& half_extents,
+                                                      const btVector3& link_origin,
+                                                      const btVector3& box_offset,
+                                                      double friction, double restitution) {
+  auto box = std::make_unique<btBoxShape>(half_extents);
+  box->setMargin(kBoxMargin);
+  btCollisionShape* box_shape = keep_shape(std::move(box));
+  auto compound = std::make_unique<btCompoundShape>();
+  btTransform child;
+  child.setIdentity();
+  child.setOrigin(box_offset);
+  compound->addChildShape(child, box_shape);
+  btCollisionShape* shape = keep_shape(std::move(compound));
+  btTransform transform;
+  transform.setIdentity();
+  transform.setOrigin(link_origin);
+  return add_static_object(shape, transform, friction, restitution);
+}
+
+const btCollisionObject* World::add_static_object(btCollisionShape* shape,
+                                                  const btTransform& transform, double friction,
+                                                  double restitution) {
+  auto object = std::make_unique<btCollisionObject>();
+  object->setCollisionShape(shape);
   object->setWorldTransform(transform);
   object->setFriction(friction);
   object->setRestitution(restitution);
@@ -144,11 +170,21 @@ const btCollisionObject* World::add_static_box(const btVector3& half_extents,
   return static_objects_.back().get();
 }
 
+const btCollisionObject* World::add_ground(const btVector3& half_extents) {
+  // The ground URDFs put the link frame on the top face (z = 0) and the
+  // collision box half a height below it. Contacts are computed in the
+  // object's frame, so this placement, not just the box's world extent,
+  // decides the last bits of every contact with the ground (measured against
+  // the golden trajectories: a box centred at -h/2 misses them by ~1e-6).
+  return add_static_offset_box(half_extents, {0, 0, 0}, {0, 0, -half_extents.z()},
+                               kGroundFriction, kGroundRestitution);
+}
+
 void World::build_layout() {
   // The ground is created first, as PyBullet's body 0 (spec §2.4).
   switch (layout_) {
     case WorldLayout::kSmallRoom: {
-      ground_ = add_static_box({10, 10, 5}, {0, 0, -5}, 0, kGroundFriction, kGroundRestitution);
+      ground_ = add_ground({10, 10, 5});
       add_static_box({10.1, 0.1, 1}, {0, 10, 1}, 0, kWallFriction, kWallRestitution);
       add_static_box({10.1, 0.1, 1}, {0, -10, 1}, 0, kWallFriction, kWallRestitution);
       add_static_box({0.1, 10, 1}, {10, 0, 1}, 0, kWallFriction, kWallRestitution);
@@ -156,7 +192,7 @@ void World::build_layout() {
       break;
     }
     case WorldLayout::kOctagon: {
-      ground_ = add_static_box({15, 15, 5}, {0, 0, -5}, 0, kGroundFriction, kGroundRestitution);
+      ground_ = add_ground({15, 15, 5});
       for (int k = 0; k < 8; ++k) {
         const double theta = k * std::numbers::pi / 4;  // θk = kπ/4, thin side radial
         add_static_box({0.1, 5, 1}, {12 * std::cos(theta), 12 * std::sin(theta), 1}, theta,
@@ -165,7 +201,7 @@ void World::build_layout() {
       break;
     }
     case WorldLayout::kPlane200: {
-      ground_ = add_static_box({250, 250, 1}, {0, 0, -1}, 0, kGroundFriction, kGroundRestitution);
+      ground_ = add_ground({250, 250, 1});
       break;
     }
   }

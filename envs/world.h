@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include <LinearMath/btTransform.h>
 #include <LinearMath/btVector3.h>
 
 class btBroadphaseInterface;
@@ -78,6 +79,13 @@ class World {
   // with half extents `half_extents` and the given friction/restitution.
   const btCollisionObject* add_static_box(const btVector3& half_extents, const btVector3& centre,
                                           double yaw, double friction, double restitution);
+  // A static box whose collision object sits at `link_origin` and whose box is
+  // offset by `box_offset` inside a compound shape: how PyBullet's URDF
+  // importer builds a link with an offset <collision> origin.
+  const btCollisionObject* add_static_offset_box(const btVector3& half_extents,
+                                                 const btVector3& link_origin,
+                                                 const btVector3& box_offset, double friction,
+                                                 double restitution);
 
   // Fraction f in [0, 1] of the segment from→to at which the closest collider
   // not in `ignore` is hit; 1 if nothing is hit (PyBullet's rayTest, spec §6.1).
@@ -99,6 +107,9 @@ class World {
 
  private:
   void build_layout();
+  const btCollisionObject* add_ground(const btVector3& half_extents);
+  const btCollisionObject* add_static_object(btCollisionShape* shape, const btTransform& transform,
+                                             double friction, double restitution);
 
   WorldLayout layout_;
   int sub_steps_;
