@@ -1,0 +1,65 @@
+// Table 1 of the report from a sweep's results: per environment (row) and
+// algorithm (column), the configuration chosen by the selection rule
+// (selection.h), its J normalised by TRPO's selected J, and H / d. The best
+// constrained algorithm of each row is marked: one that meets the cost limit
+// beats one that does not; then the higher J (or, if none meets it, the lower
+// H). Rendering is in table1_render.h.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/run_config.h"
+#include "common/selection.h"
+
+namespace bsg {
+
+struct Table1Cell {
+  Algorithm alg = Algorithm::trpo;
+  bool selected = false;  // false: no finished run of any configuration (missing)
+  std::string config_name;
+  std::string config_dir;  // <env_id>/<alg>/<config>, relative to the sweep
+  std::size_t seeds_finished = 0;
+  std::size_t seeds_expected = 0;
+  ConfigurationScore score;
+  bool constraint_met = false;    // false with selected: the lowest-violation fallback
+  bool best_constrained = false;  // the row's best constrained algorithm
+};
+
+struct Table1Row {
+  std::string env_id;
+  double cost_limit = 0.0;  // d; NaN if no run of the row has a configuration
+  std::vector<Table1Cell> cells;  // one per Table1::algorithms entry
+  // J_TRPO, the mean return of TRPO's selected configuration, if it has one.
+  std::optional<double> trpo_return() const;
+};
+
+// One line of configurations.csv: every configuration and its score.
+struct ConfigurationSummary {
+  std::string env_id;
+  Algorithm alg = Algorithm::trpo;
+  std::string config_name;
+  double cost_limit = 0.0;
+  std::size_t seeds_finished = 0;
+  std::size_t seeds_expected = 0;
+  std::optional<ConfigurationScore> score;  // nullopt: no finished run
+  bool selected = false;
+};
+
+struct Table1 {
+  SelectionScore score = SelectionScore::mean_return;
+  std::vector<Algorithm> algorithms;  // columns: those in the sweep, in kAlgorithmNames order
+  std::vector<Table1Row> rows;        // the report's row order, then other ids sorted
+  std::vector<ConfigurationSummary> configurations;
+};
+
+Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionScore score);
+
+// "BallCircle" for "SafetyBallCircle-v0" (the report's row labels).
+std::string table1_row_label(const std::string& env_id);
+// "TRPO", "TRPO-L", "CPO", "PDO", "PCPO".
+std::string table1_column_label(Algorithm alg);
+
+}  // namespace bsg

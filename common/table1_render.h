@@ -1,0 +1,24 @@
+// Table 1 (table1.h) as text: Markdown as the report prints it (J/J_TRPO
+// with H/d in parentheses, the best constrained algorithm in bold), CSV and
+// LaTeX, and the list of every configuration with its score as CSV.
+//
+// Cell marks: "missing" when no run of the (environment, algorithm) has
+// finished; a dagger when no configuration met the cost limit (the lowest
+// violation is shown); "[k/n]" when only k of the n seeds have finished;
+// "J=" with the raw return when TRPO's J is missing or zero.
+#pragma once
+
+#include <string>
+
+#include "common/table1.h"
+
+namespace bsg {
+
+std::string table1_markdown(const Table1& table);
+std::string table1_latex(const Table1& table);
+// One line per (environment, algorithm): env_id, alg, status (met |
+// infeasible | missing), config, seeds, J, H, d, J/J_TRPO, H/d, best.
+std::string table1_csv(const Table1& table);
+std::string configurations_csv(const Table1& table);
+
+}  // namespace bsg

@@ -1,0 +1,130 @@
+// Expanding a grid into runs: the count is envs x (sum over algorithms of the
+// product of their axis sizes) x seeds, the loop order is env, algorithm,
+// axes (first outermost), seed, and every run's directory names its
+// settings. The shipped grids expand and resolve against configs/.
+#include "common/grid_expansion.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include "common/config_error.h"
+
+namespace bsg {
+namespace {
+
+const std::filesystem::path kConfigs = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
+
+const char* const kTwoAlgorithms =
+    "envs: [SafetyBallCircle-v0, SafetyCarRun-v0]\n"
+    "seeds: [0, 1, 2]\n"
+    "fixed: {epochs: 2, lambda_lr: 0.5}\n"
+    "algorithms:\n"
+    "  lag-trpo:\n"
+    "    axes:\n"
+    "      target_kl: [0.0001, 0.001, 0.01]\n"
+    "      lambda_lr: [0.001, 0.1]\n"
+    "  trpo:\n";
+
+TEST(GridExpansion, CountIsTheProductOfAxesTimesSeedsSummedOverAlgorithms) {
+  const GridSpec grid = parse_grid(kTwoAlgorithms, "g.yaml");
+  EXPECT_EQ(configuration_count(grid.algorithms[0]), 6u);
+  EXPECT_EQ(configuration_count(grid.algorithms[1]), 1u);
+  EXPECT_EQ(expand_grid(grid).size(), 2u * (6u + 1u) * 3u);
+}
+
+TEST(GridExpansion, LoopOrderAndDirectoryNames) {
+  const std::vector<GridRun> runs = expand_grid(parse_grid(kTwoAlgorithms, "g.yaml"));
+  std::vector<std::string> dirs;
+  for (const GridRun& run : runs) dirs.push_back(run.relative_dir().generic_string());
+  EXPECT_EQ(dirs[0], "SafetyBallCircle-v0/lag-trpo/target_kl=0.0001,lambda_lr=0.001/seed=0");
+  EXPECT_EQ(dirs[1], "SafetyBallCircle-v0/lag-trpo/target_kl=0.0001,lambda_lr=0.001/seed=1");
+  EXPECT_EQ(dirs[3], "SafetyBallCircle-v0/lag-trpo/target_kl=0.0001,lambda_lr=0.1/seed=0");
+  EXPECT_EQ(dirs[6], "SafetyBallCircle-v0/lag-trpo/target_kl=0.001,lambda_lr=0.001/seed=0");
+  EXPECT_EQ(dirs[17], "SafetyBallCircle-v0/lag-trpo/target_kl=0.01,lambda_lr=0.1/seed=2");
+  EXPECT_EQ(dirs[18], "SafetyBallCircle-v0/trpo/default/seed=0");
+  EXPECT_EQ(dirs[21], "SafetyCarRun-v0/lag-trpo/target_kl=0.0001,lambda_lr=0.001/seed=0");
+  EXPECT_EQ(std::set<std::string>(dirs.begin(), dirs.end()).size(), dirs.size()) << "names must be unique";
+  EXPECT_EQ(runs[3].config_name, "target_kl=0.0001,lambda_lr=0.1");
+  EXPECT_EQ(runs[3].seed, 0);
+  EXPECT_EQ(runs[3].alg, Algorithm::lag_trpo);
+}
+
+TEST(GridExpansion, SetArgumentsLayerFixedThenAlgorithmThenAxes) {
+  const std::vector<GridRun> runs = expand_grid(parse_grid(kTwoAlgorithms, "g.yaml"));
+  EXPECT_EQ(runs[4].set_arguments,
+            (std::vector<std::string>{"env_id=SafetyBallCircle-v0", "alg=lag-trpo", "seed=1", "epochs=2",
+                                      "lambda_lr=0.5", "target_kl=0.0001", "lambda_lr=0.1"}));
+  // lambda_lr does not apply to TRPO: the grid-wide fixed value is left out.
+  EXPECT_EQ(runs[18].set_arguments,
+            (std::vector<std::string>{"env_id=SafetyBallCircle-v0", "alg=trpo", "seed=0", "epochs=2"}));
+}
+
+TEST(GridExpansion, RunsResolveAgainstTheConfigsDirectory) {
+  const std::vector<GridRun> runs = expand_grid(parse_grid(kTwoAlgorithms, "g.yaml"));
+  const RunConfig lag = resolve_grid_run(runs[4], kConfigs, "g.yaml");
+  EXPECT_EQ(lag.alg, Algorithm::lag_trpo);
+  EXPECT_EQ(lag.seed, 1);
+  EXPECT_EQ(lag.epochs, 2);
+  EXPECT_DOUBLE_EQ(lag.target_kl, 0.0001);
+  EXPECT_DOUBLE_EQ(lag.lambda_lr, 0.1);  // the axis wins over the grid-wide fixed value
+  EXPECT_EQ(lag.steps_per_epoch, 32000);  // from configs/envs (Table 3)
+  const RunConfig car = resolve_grid_run(runs.back(), kConfigs, "g.yaml");
+  EXPECT_EQ(car.env_id, "SafetyCarRun-v0");
+  EXPECT_EQ(car.max_ep_len, 500);
+}
+
+TEST(GridExpansion, AnUnknownEnvironmentFailsNamingTheGridAndTheRun) {
+  const GridSpec grid = parse_grid("envs: [SafetyBallFly-v0]\nseeds: [0]\nalgorithms: {trpo: }\n", "g.yaml");
+  try {
+    resolve_grid_run(expand_grid(grid).front(), kConfigs, "g.yaml");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("g.yaml: run SafetyBallFly-v0/trpo/default/seed=0"), std::string::npos) << message;
+    EXPECT_NE(message.find("SafetyBallFly-v0"), std::string::npos) << message;
+  }
+}
+
+TEST(GridExpansion, TheReportGridHasTheAppendixConfigurationsOverSixteenEnvironmentsAndFourSeeds) {
+  const GridSpec grid = load_grid_file(kConfigs / "grids" / "report.yaml");
+  ASSERT_EQ(grid.algorithms.size(), 5u);
+  std::vector<std::size_t> counts;
+  for (const AlgorithmGrid& algorithm : grid.algorithms) counts.push_back(configuration_count(algorithm));
+  EXPECT_EQ(counts, (std::vector<std::size_t>{2, 9, 9, 9, 9}));
+  EXPECT_EQ(grid.env_ids.size(), 16u);
+  EXPECT_EQ(grid.seeds, (std::vector<std::int64_t>{0, 1, 2, 3}));
+  const std::vector<GridRun> runs = expand_grid(grid);
+  EXPECT_EQ(runs.size(), 38u * 16u * 4u);
+  // Spot checks against the Appendix and Table 3.
+  for (const GridRun& run : runs) {
+    if (run.relative_dir().generic_string() == "SafetyAntReach-v0/cpo/target_kl=0.0005,lam_c=0.9/seed=3") {
+      const RunConfig config = resolve_grid_run(run, kConfigs, "report.yaml");
+      EXPECT_DOUBLE_EQ(config.target_kl, 0.0005);
+      EXPECT_DOUBLE_EQ(config.lam_c, 0.9);
+      EXPECT_EQ(config.epochs, 1500);
+      EXPECT_EQ(config.steps_per_epoch, 64000);
+      EXPECT_DOUBLE_EQ(config.cost_limit, 25.0);
+    }
+  }
+  // Every run resolves (one seed per configuration is enough: seeds only set `seed`).
+  for (const GridRun& run : runs) {
+    if (run.seed != 0) continue;
+    EXPECT_NO_THROW(resolve_grid_run(run, kConfigs, "report.yaml")) << run.relative_dir();
+  }
+}
+
+TEST(GridExpansion, TheQuickGridIsTwoConfigurationsTimesTwoSeeds) {
+  const std::vector<GridRun> runs = expand_grid(load_grid_file(kConfigs / "grids" / "quick.yaml"));
+  ASSERT_EQ(runs.size(), 4u);
+  for (const GridRun& run : runs) {
+    const RunConfig config = resolve_grid_run(run, kConfigs, "quick.yaml");
+    EXPECT_EQ(config.env_id, "SafetyBallCircle-v0");
+    EXPECT_LE(config.epochs, 5);
+  }
+}
+
+}  // namespace
+}  // namespace bsg

@@ -1,0 +1,118 @@
+// Table 1 from hand-made results: J / J_TRPO with H / d, the report's row
+// order and labels, the best constrained algorithm in bold, infeasible
+// fallbacks and incomplete or missing results marked, and the CSV and LaTeX
+// forms.
+#include "common/table1.h"
+
+#include <gtest/gtest.h>
+
+#include "common/csv_text.h"
+#include "common/table1_render.h"
+
+namespace bsg {
+namespace {
+
+ConfigurationResults config(const std::string& env, Algorithm alg, const std::string& name,
+                            std::vector<SeedResult> seeds, std::size_t expected = 2, double d = 25.0) {
+  return ConfigurationResults{env, alg, name, d, expected, std::move(seeds)};
+}
+
+::testing::AssertionResult contains(const std::string& text, const std::string& part) {
+  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "'" << part << "' not found in:\n" << text;
+}
+
+// BallRun (listed first here, last in the report) and BallCircle.
+std::vector<ConfigurationResults> results() {
+  const std::string circle = "SafetyBallCircle-v0";
+  return {
+      config("SafetyBallRun-v0", Algorithm::trpo, "default", {{0, 10, 50, {}}, {1, 10, 50, {}}}),
+      config("SafetyBallRun-v0", Algorithm::cpo, "default", {}),  // nothing finished
+      config(circle, Algorithm::trpo, "target_kl=0.001", {{0, 100, 70, {}}, {1, 100, 90, {}}}),
+      config(circle, Algorithm::trpo, "target_kl=0.01", {{0, 200, 80, {}}, {1, 200, 80, {}}}),
+      config(circle, Algorithm::lag_trpo, "a", {{0, 190, 24, {}}, {1, 194, 24.5, {}}}),
+      config(circle, Algorithm::cpo, "a", {{0, 150, 20, {}}}),  // 1 of 2 seeds
+      config(circle, Algorithm::pdo, "a", {{0, 300, 30, {}}, {1, 300, 34, {}}}),
+      config(circle, Algorithm::pdo, "b", {{0, 250, 26, {}}, {1, 250, 28, {}}}),
+  };
+}
+
+TEST(Table1, SelectsNormalisesAndOrdersRowsLikeTheReport) {
+  const Table1 table = build_table1(results(), SelectionScore::mean_return);
+  EXPECT_EQ(table.algorithms,
+            (std::vector<Algorithm>{Algorithm::trpo, Algorithm::lag_trpo, Algorithm::cpo, Algorithm::pdo}));
+  ASSERT_EQ(table.rows.size(), 2u);
+  EXPECT_EQ(table.rows[0].env_id, "SafetyBallCircle-v0");
+  EXPECT_EQ(table.rows[1].env_id, "SafetyBallRun-v0");
+  const Table1Row& circle = table.rows[0];
+  EXPECT_EQ(circle.trpo_return(), 200.0);
+  EXPECT_EQ(circle.cells[0].config_name, "target_kl=0.01");
+  EXPECT_TRUE(circle.cells[1].best_constrained);
+  EXPECT_EQ(circle.cells[3].config_name, "b");  // lowest violation
+  EXPECT_FALSE(circle.cells[3].constraint_met);
+  EXPECT_FALSE(table.rows[1].cells[2].selected);
+  EXPECT_EQ(table.configurations.size(), 8u);
+
+  const std::string markdown = table1_markdown(table);
+  EXPECT_TRUE(contains(markdown, "| Env | TRPO | TRPO-L | CPO | PDO |\n|---|---|---|---|---|\n"));
+  EXPECT_TRUE(contains(markdown, "| BallCircle | 1.00 (3.20) | **0.96 (0.97)** | 0.75 (0.80) [1/2] | "
+                                 "1.25 (1.08)\u2020 |\n"));
+  EXPECT_TRUE(contains(markdown, "| BallRun | 1.00 (2.00) | missing | missing | missing |\n"));
+}
+
+TEST(Table1, WithoutTrpoRawReturnsAreShown) {
+  const Table1 table = build_table1({config("SafetyBallReach-v0", Algorithm::cpo, "a", {{0, 12.5, 5, {}}},
+                                            1, 10.0)},
+                                    SelectionScore::mean_return);
+  EXPECT_TRUE(contains(table1_markdown(table), "| BallReach | **J=12.5 (0.50)** |"));
+}
+
+TEST(Table1, BestConstrainedPrefersMeetingTheLimitThenReturnThenLowerCost) {
+  const std::string env = "SafetyCarGather-v0";
+  Table1 table = build_table1({config(env, Algorithm::cpo, "a", {{0, 5, 0.1, {}}}, 1, 0.2),
+                               config(env, Algorithm::pdo, "a", {{0, 50, 0.3, {}}}, 1, 0.2)},
+                              SelectionScore::mean_return);
+  EXPECT_TRUE(table.rows[0].cells[0].best_constrained);
+  table = build_table1({config(env, Algorithm::cpo, "a", {{0, 5, 0.5, {}}}, 1, 0.2),
+                        config(env, Algorithm::pdo, "a", {{0, 50, 0.3, {}}}, 1, 0.2)},
+                       SelectionScore::mean_return);
+  EXPECT_TRUE(table.rows[0].cells[1].best_constrained);
+}
+
+TEST(Table1, CsvHasOneLinePerCellWithMissingFieldsEmpty) {
+  const Table1 table = build_table1(results(), SelectionScore::mean_return);
+  const std::string csv = table1_csv(table);
+  EXPECT_TRUE(contains(csv, "env_id,alg,status,config,config_dir,seeds_finished,seeds_expected,mean_return,"));
+  EXPECT_TRUE(contains(csv, "SafetyBallCircle-v0,pdo,infeasible,b,SafetyBallCircle-v0/pdo/b,2,2,250.0,27.0,25.0,1.25,1.08,false,false\n"));
+  EXPECT_TRUE(contains(csv, "SafetyBallRun-v0,cpo,missing,,,0,0,,,25.0,,,,false\n"));
+  const std::string all = configurations_csv(table);
+  EXPECT_TRUE(contains(all, "SafetyBallCircle-v0,trpo,target_kl=0.001,2,2,100.0,80.0,25.0,false,100.0,false\n"));
+}
+
+TEST(Table1, ConfigurationNamesWithCommasAreQuotedInCsv) {
+  const Table1 table = build_table1(
+      {config("SafetyBallCircle-v0", Algorithm::trpo, "target_kl=0.001,lam_c=0.5", {{0, 1, 1, {}}}, 1)},
+      SelectionScore::mean_return);
+  const std::string csv = table1_csv(table);
+  const std::string line = csv.substr(csv.find('\n') + 1, csv.find('\n', csv.find('\n') + 1) - csv.find('\n') - 1);
+  const std::vector<std::string> fields = parse_csv_fields(line);
+  ASSERT_EQ(fields.size(), 14u);
+  EXPECT_EQ(fields[3], "target_kl=0.001,lam_c=0.5");
+  EXPECT_EQ(fields[4], "SafetyBallCircle-v0/trpo/target_kl=0.001,lam_c=0.5");
+}
+
+TEST(Table1, LatexMarksBestInfeasibleAndMissing) {
+  const std::string latex = table1_latex(build_table1(results(), SelectionScore::mean_return));
+  EXPECT_TRUE(contains(latex, "\\begin{tabular}{lcccc}"));
+  EXPECT_TRUE(contains(latex, "BallCircle & 1.00 (3.20) & \\textbf{0.96 (0.97)} & 0.75 (0.80) [1/2] & "
+                              "1.25 (1.08)$^\\dagger$ \\\\\n"));
+  EXPECT_TRUE(contains(latex, "BallRun & 1.00 (2.00) & \\emph{missing}"));
+}
+
+TEST(Table1, RowLabels) {
+  EXPECT_EQ(table1_row_label("SafetyDroneGather-v0"), "DroneGather");
+  EXPECT_EQ(table1_column_label(Algorithm::lag_trpo), "TRPO-L");
+}
+
+}  // namespace
+}  // namespace bsg
