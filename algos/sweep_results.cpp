@@ -1,0 +1,129 @@
+#include "algos/sweep_results.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include "algos/run_directory.h"
+#include "algos/run_results.h"
+#include "common/run_config_yaml.h"
+#include "common/sweep_manifest.h"
+
+namespace bsg {
+
+namespace {
+
+struct RunSlot {
+  std::int64_t seed = 0;
+  std::filesystem::path run_dir;
+};
+
+struct ConfigurationSlots {
+  ConfigurationResults results;
+  std::vector<RunSlot> runs;
+};
+
+// config.yaml (the trainer's) or run.yaml (the sweep's), whichever exists.
+std::optional<RunConfig> read_run_directory_config(const std::filesystem::path& run_dir) {
+  std::error_code error;
+  for (const std::filesystem::path& file :
+       {RunDirectory(run_dir).config(), run_dir / kSweepRunFileName}) {
+    if (std::filesystem::is_regular_file(file, error)) return load_resolved_run_config(file);
+  }
+  return std::nullopt;
+}
+
+bool is_run_directory(const std::filesystem::path& dir) {
+  std::error_code error;
+  return std::filesystem::is_regular_file(RunDirectory(dir).config(), error) ||
+         std::filesystem::is_regular_file(dir / kSweepRunFileName, error) ||
+         std::filesystem::is_regular_file(RunDirectory(dir).evaluation(), error);
+}
+
+}  // namespace
+
+std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path& sweep_dir,
+                                                     bool with_episode_returns) {
+  std::error_code error;
+  if (!std::filesystem::is_directory(sweep_dir, error)) {
+    throw std::runtime_error("sweep directory " + sweep_dir.string() + " does not exist");
+  }
+  std::vector<std::string> order;  // configuration directories, first seen first
+  std::map<std::string, ConfigurationSlots> configurations;
+  auto slots_for = [&](const std::string& config_dir) -> ConfigurationSlots& {
+    auto [it, inserted] = configurations.try_emplace(config_dir);
+    if (inserted) {
+      order.push_back(config_dir);
+      it->second.results.cost_limit = std::numeric_limits<double>::quiet_NaN();
+    }
+    return it->second;
+  };
+
+  // 1. The runs the grid asks for.
+  for (const GridRun& run : read_sweep_manifest(sweep_dir)) {
+    const std::filesystem::path relative = run.relative_dir();
+    ConfigurationSlots& slots = slots_for(relative.parent_path().generic_string());
+    slots.results.env_id = run.env_id;
+    slots.results.alg = run.alg;
+    slots.results.config_name = run.config_name;
+    slots.runs.push_back({run.seed, sweep_dir / relative});
+  }
+
+  // 2. Run directories not in the manifest.
+  std::map<std::string, bool> known;
+  for (const auto& [name, slots] : configurations) {
+    for (const RunSlot& run : slots.runs) known[run.run_dir.lexically_normal().generic_string()] = true;
+  }
+  std::vector<std::filesystem::path> extra;
+  for (auto it = std::filesystem::recursive_directory_iterator(sweep_dir, error);
+       !error && it != std::filesystem::recursive_directory_iterator(); it.increment(error)) {
+    if (!it->is_directory(error) || !is_run_directory(it->path())) continue;
+    it.disable_recursion_pending();
+    if (!known.count(it->path().lexically_normal().generic_string())) extra.push_back(it->path());
+  }
+  std::sort(extra.begin(), extra.end());
+  for (const std::filesystem::path& run_dir : extra) {
+    const std::optional<RunConfig> config = read_run_directory_config(run_dir);
+    if (!config) {
+      throw std::runtime_error(run_dir.string() + ": a finished run without config.yaml or " +
+                               kSweepRunFileName + "; cannot tell its environment and algorithm");
+    }
+    const std::filesystem::path relative = std::filesystem::relative(run_dir, sweep_dir);
+    ConfigurationSlots& slots = slots_for(relative.parent_path().generic_string());
+    slots.results.env_id = config->env_id;
+    slots.results.alg = config->alg;
+    slots.results.config_name = run_dir.parent_path().filename().string();
+    slots.runs.push_back({config->seed, run_dir});
+  }
+  if (order.empty()) {
+    throw std::runtime_error("no runs found in " + sweep_dir.string() + " (no " + kSweepManifestName +
+                             " and no run directory below it)");
+  }
+
+  // 3. The finished runs' evaluations.
+  std::vector<ConfigurationResults> results;
+  for (const std::string& name : order) {
+    ConfigurationSlots& slots = configurations[name];
+    ConfigurationResults& config = slots.results;
+    config.seeds_expected = slots.runs.size();
+    for (const RunSlot& run : slots.runs) {
+      const RunDirectory directory(run.run_dir);
+      if (std::isnan(config.cost_limit) && is_run_directory(run.run_dir)) {
+        if (const std::optional<RunConfig> run_config = read_run_directory_config(run.run_dir)) {
+          config.cost_limit = run_config->cost_limit;
+        }
+      }
+      const std::optional<RunEvaluation> evaluation = read_run_evaluation(directory);
+      if (!evaluation) continue;
+      SeedResult seed{run.seed, evaluation->mean_return, evaluation->mean_cost, {}};
+      if (with_episode_returns) seed.episode_returns = read_value_per_line(directory.returns());
+      config.seeds.push_back(std::move(seed));
+    }
+    results.push_back(std::move(config));
+  }
+  return results;
+}
+
+}  // namespace bsg
