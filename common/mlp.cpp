@@ -1,5 +1,6 @@
 #include "common/mlp.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -14,6 +15,19 @@ std::string sizes_to_string(const std::vector<int>& sizes) {
   }
   return text + "]";
 }
+
+// tanh(x) = 1 - 2 / (exp(2x) + 1), in place. Eigen vectorises exp but not tanh
+// for doubles; this form is about 3x faster and within 4e-16 (absolute) of
+// std::tanh, saturating cleanly to +-1 (exp overflow gives 1 - 0).
+template <typename Derived>
+void tanh_in_place(Eigen::DenseBase<Derived>& values) {
+  values.derived().array() = 1.0 - 2.0 / ((2.0 * values.derived().array()).exp() + 1.0);
+}
+
+// Batch passes run over chunks of this many rows: every matrix product then
+// fits Eigen's stack-allocated blocking buffers (no heap allocation per call),
+// and a chunk's activations stay in cache between layers.
+constexpr Eigen::Index kBatchChunkRows = 128;
 
 void resize_if_needed(Eigen::MatrixXd& matrix, Eigen::Index rows, Eigen::Index cols) {
   if (matrix.rows() != rows || matrix.cols() != cols) matrix.resize(rows, cols);
@@ -100,7 +114,7 @@ void Mlp::forward(const Eigen::Ref<const Eigen::VectorXd>& input,
       z.noalias() = weights(layer) * outputs[layer - 1];
     }
     z += bias(layer);
-    if (layer + 1 < num_layers()) z = z.array().tanh();
+    if (layer + 1 < num_layers()) tanh_in_place(z);
   }
   output = outputs.back();
 }
@@ -127,12 +141,17 @@ const Eigen::MatrixXd& Mlp::forward_batch(const Eigen::Ref<const Eigen::MatrixXd
   if (workspace.layer_tangents.size() != layers) workspace.layer_tangents.resize(layers);
   if (workspace.layer_deltas.size() != layers) workspace.layer_deltas.resize(layers);
   for (int layer = 0; layer < num_layers(); ++layer) {
-    Eigen::MatrixXd& a = workspace.layer_outputs[layer];
-    resize_if_needed(a, rows, layer_sizes_[layer + 1]);
-    const Eigen::MatrixXd& previous = layer == 0 ? workspace.input : workspace.layer_outputs[layer - 1];
-    a.noalias() = previous * weights(layer).transpose();  // Z = A W^T + 1 b^T
-    a.rowwise() += bias(layer).transpose();
-    if (layer + 1 < num_layers()) a = a.array().tanh();
+    resize_if_needed(workspace.layer_outputs[layer], rows, layer_sizes_[layer + 1]);
+  }
+  for (Eigen::Index start = 0; start < rows; start += kBatchChunkRows) {
+    const Eigen::Index length = std::min(kBatchChunkRows, rows - start);
+    for (int layer = 0; layer < num_layers(); ++layer) {
+      const Eigen::MatrixXd& previous = layer == 0 ? workspace.input : workspace.layer_outputs[layer - 1];
+      auto a = workspace.layer_outputs[layer].middleRows(start, length);
+      a.noalias() = previous.middleRows(start, length) * weights(layer).transpose();  // Z = A W^T + 1 b^T
+      a.rowwise() += bias(layer).transpose();
+      if (layer + 1 < num_layers()) tanh_in_place(a);
+    }
   }
   return workspace.layer_outputs.back();
 }
@@ -162,23 +181,29 @@ void Mlp::backward_batch(const Eigen::Ref<const Eigen::MatrixXd>& output_gradien
                                 std::to_string(num_parameters()));
   }
   const int last = num_layers() - 1;
-  resize_if_needed(workspace.layer_deltas[last], rows, output_size());
-  workspace.layer_deltas[last] = output_gradients;  // identity output: dL/dZ_L = dL/dy
-  for (int layer = last; layer >= 0; --layer) {
-    const Eigen::MatrixXd& delta = workspace.layer_deltas[layer];
-    const Eigen::MatrixXd& previous = layer == 0 ? workspace.input : workspace.layer_outputs[layer - 1];
-    const Eigen::Index out = layer_sizes_[layer + 1];
-    const Eigen::Index in = layer_sizes_[layer];
-    Eigen::Map<RowMajorMatrixXd> weight_gradient(parameter_gradient.data() + weight_offsets_[layer],
-                                                 out, in);
-    weight_gradient.noalias() = delta.transpose() * previous;  // dL/dW = delta^T A_{l-1}
-    parameter_gradient.segment(bias_offsets_[layer], out) = delta.colwise().sum().transpose();
-    if (layer > 0) {
-      Eigen::MatrixXd& delta_previous = workspace.layer_deltas[layer - 1];
-      resize_if_needed(delta_previous, rows, in);
-      delta_previous.noalias() = delta * weights(layer);
-      // tanh'(z) = 1 - tanh(z)^2
-      delta_previous.array() *= 1.0 - workspace.layer_outputs[layer - 1].array().square();
+  for (int layer = 0; layer < num_layers(); ++layer) {
+    resize_if_needed(workspace.layer_deltas[layer], rows, layer_sizes_[layer + 1]);
+  }
+  parameter_gradient.setZero();
+  for (Eigen::Index start = 0; start < rows; start += kBatchChunkRows) {
+    const Eigen::Index length = std::min(kBatchChunkRows, rows - start);
+    // identity output: dL/dZ_L = dL/dy
+    workspace.layer_deltas[last].middleRows(start, length) = output_gradients.middleRows(start, length);
+    for (int layer = last; layer >= 0; --layer) {
+      const auto delta = workspace.layer_deltas[layer].middleRows(start, length);
+      const Eigen::MatrixXd& previous_full = layer == 0 ? workspace.input : workspace.layer_outputs[layer - 1];
+      const auto previous = previous_full.middleRows(start, length);
+      const Eigen::Index out = layer_sizes_[layer + 1];
+      const Eigen::Index in = layer_sizes_[layer];
+      Eigen::Map<RowMajorMatrixXd> weight_gradient(parameter_gradient.data() + weight_offsets_[layer], out, in);
+      weight_gradient.noalias() += delta.transpose() * previous;  // dL/dW = sum delta^T A_{l-1}
+      parameter_gradient.segment(bias_offsets_[layer], out) += delta.colwise().sum().transpose();
+      if (layer > 0) {
+        auto delta_previous = workspace.layer_deltas[layer - 1].middleRows(start, length);
+        delta_previous.noalias() = delta * weights(layer);
+        // tanh'(z) = 1 - tanh(z)^2
+        delta_previous.array() *= 1.0 - previous.array().square();
+      }
     }
   }
 }
@@ -192,20 +217,28 @@ const Eigen::MatrixXd& Mlp::jvp_batch(const Eigen::Ref<const Eigen::VectorXd>& d
   }
   const Eigen::Index rows = workspace.rows();
   for (int layer = 0; layer < num_layers(); ++layer) {
-    const Eigen::Index out = layer_sizes_[layer + 1];
-    const Eigen::Index in = layer_sizes_[layer];
-    Eigen::Map<const RowMajorMatrixXd> weight_direction(direction.data() + weight_offsets_[layer],
-                                                        out, in);
-    const auto bias_direction = direction.segment(bias_offsets_[layer], out);
-    Eigen::MatrixXd& tangent = workspace.layer_tangents[layer];
-    resize_if_needed(tangent, rows, out);
-    const Eigen::MatrixXd& previous = layer == 0 ? workspace.input : workspace.layer_outputs[layer - 1];
-    // dZ_l = dA_{l-1} W_l^T + A_{l-1} dW_l^T + 1 db_l^T
-    tangent.noalias() = previous * weight_direction.transpose();
-    if (layer > 0) tangent.noalias() += workspace.layer_tangents[layer - 1] * weights(layer).transpose();
-    tangent.rowwise() += bias_direction.transpose();
-    if (layer + 1 < num_layers()) {
-      tangent.array() *= 1.0 - workspace.layer_outputs[layer].array().square();  // dA = tanh' dZ
+    resize_if_needed(workspace.layer_tangents[layer], rows, layer_sizes_[layer + 1]);
+  }
+  for (Eigen::Index start = 0; start < rows; start += kBatchChunkRows) {
+    const Eigen::Index length = std::min(kBatchChunkRows, rows - start);
+    for (int layer = 0; layer < num_layers(); ++layer) {
+      const Eigen::Index out = layer_sizes_[layer + 1];
+      const Eigen::Index in = layer_sizes_[layer];
+      Eigen::Map<const RowMajorMatrixXd> weight_direction(direction.data() + weight_offsets_[layer], out, in);
+      const auto bias_direction = direction.segment(bias_offsets_[layer], out);
+      auto tangent = workspace.layer_tangents[layer].middleRows(start, length);
+      const Eigen::MatrixXd& previous = layer == 0 ? workspace.input : workspace.layer_outputs[layer - 1];
+      // dZ_l = dA_{l-1} W_l^T + A_{l-1} dW_l^T + 1 db_l^T
+      tangent.noalias() = previous.middleRows(start, length) * weight_direction.transpose();
+      if (layer > 0) {
+        tangent.noalias() +=
+            workspace.layer_tangents[layer - 1].middleRows(start, length) * weights(layer).transpose();
+      }
+      tangent.rowwise() += bias_direction.transpose();
+      if (layer + 1 < num_layers()) {
+        // dA = tanh'(Z) dZ = (1 - A^2) dZ
+        tangent.array() *= 1.0 - workspace.layer_outputs[layer].middleRows(start, length).array().square();
+      }
     }
   }
   return workspace.layer_tangents.back();
