@@ -13,6 +13,7 @@ packages=(
   libgtest-dev                  # tests
   libcli11-dev                  # the bsg command line
   nlohmann-json3-dev            # JSON output of bsg, golden trajectories in the tests
+  python3 python3-matplotlib    # scripts/plot_curves.py: learning curves of a sweep (Figure 2)
 )
 
 missing=()

@@ -1,0 +1,261 @@
+#!/usr/bin/python3
+"""Learning curves of a sweep in the style of the report's Figure 2.
+
+    scripts/plot_curves.py SWEEP_DIR [--out DIR] [--smooth N] [--all-configs]
+
+For each environment of the sweep, one PNG with two panels, the mean episode
+return and the mean episode cost per epoch (training episodes, as logged in
+progress.csv), one line per algorithm: the configuration `bsg table` selected
+(read from SWEEP_DIR/table1.csv, so run `bsg table SWEEP_DIR` first), the mean
+over its seeds with a band of +-1 standard deviation. The cost limit d is a
+black dashed line. An algorithm whose final deterministic policy violates the
+limit (mean evaluation cost H > d) is drawn dotted, as in Figure 2.
+
+--smooth N applies a Hann window of N epochs to each seed's curve before
+averaging (the original plot.py always used 13); the default 1 draws the raw
+values. --all-configs draws every configuration instead of the selected ones
+(one PNG per environment and algorithm), as the report's Appendix figures do.
+
+Runs with Debian's Python 3 and Matplotlib (/usr/bin/python3 with
+python3-matplotlib; see scripts/install_deps.sh). Writes SWEEP_DIR/plots/<env_id>.png by default.
+"""
+
+import argparse
+import csv
+import glob
+import math
+import os
+import sys
+import warnings
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only, no display needed
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+# progress.csv column names of bsg (algos/epoch_log.cpp), then the original's.
+EPOCH_COLUMNS = ("epoch", "Epoch")
+RETURN_COLUMNS = ("episode_return_mean", "EpRet/Mean")
+COST_COLUMNS = ("episode_cost_mean", "EpCosts/Mean")
+
+ALGORITHM_LABELS = {"trpo": "TRPO", "lag-trpo": "TRPO-L", "cpo": "CPO", "pdo": "PDO", "pcpo": "PCPO"}
+ALGORITHM_ORDER = ["trpo", "lag-trpo", "cpo", "pdo", "pcpo"]
+ALGORITHM_COLORS = {"trpo": "tab:blue", "lag-trpo": "tab:orange", "cpo": "tab:green",
+                    "pdo": "tab:red", "pcpo": "tab:purple"}
+
+
+class PlotError(Exception):
+    """An input problem; the message names the file at fault."""
+
+
+def pick_column(header, candidates, path):
+    for name in candidates:
+        if name in header:
+            return header.index(name)
+    raise PlotError(f"{path}: none of the columns {', '.join(candidates)} in its header")
+
+
+def to_number(text):
+    try:
+        return float(text)
+    except ValueError:
+        return math.nan
+
+
+def read_progress(path):
+    """(epochs, returns, costs) as arrays, one entry per logged epoch."""
+    with open(path, newline="") as file:
+        rows = list(csv.reader(file))
+    if not rows:
+        raise PlotError(f"{path}: empty file")
+    header = rows[0]
+    columns = [pick_column(header, names, path) for names in (EPOCH_COLUMNS, RETURN_COLUMNS, COST_COLUMNS)]
+    data = [[to_number(row[c]) if c < len(row) else math.nan for c in columns] for row in rows[1:] if row]
+    if not data:
+        return np.zeros(0), np.zeros(0), np.zeros(0)
+    epochs, returns, costs = (np.array(column) for column in zip(*data))
+    return epochs, returns, costs
+
+
+def smooth(values, window):
+    """Hann-window moving average that keeps the length and the ends unbiased."""
+    if window <= 1 or len(values) < 3:
+        return values
+    window = min(window, len(values) if len(values) % 2 else len(values) - 1)
+    weights = np.hanning(window + 2)[1:-1]  # no zero weights at the ends
+    filled = np.where(np.isnan(values), 0.0, values)
+    present = (~np.isnan(values)).astype(float)
+    numerator = np.convolve(filled, weights, mode="same")
+    denominator = np.convolve(present, weights, mode="same")
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return numerator / denominator
+
+
+def seed_curves(config_dir, window):
+    """Curves of the seeds below config_dir, cut to the epochs all of them logged."""
+    curves = []
+    for progress in sorted(glob.glob(os.path.join(config_dir, "*", "progress.csv"))):
+        epochs, returns, costs = read_progress(progress)
+        if len(epochs):
+            curves.append((epochs, smooth(returns, window), smooth(costs, window)))
+    if not curves:
+        return None
+    length = min(len(c[0]) for c in curves)
+    epochs = curves[0][0][:length]
+    returns = np.array([c[1][:length] for c in curves])
+    costs = np.array([c[2][:length] for c in curves])
+    return epochs, returns, costs, len(curves)
+
+
+def read_table(sweep_dir):
+    path = os.path.join(sweep_dir, "table1.csv")
+    if not os.path.exists(path):
+        raise PlotError(f"{path} not found: run 'bsg table {sweep_dir}' first (it selects the configurations)")
+    with open(path, newline="") as file:
+        return list(csv.DictReader(file))
+
+
+def read_configurations(sweep_dir):
+    path = os.path.join(sweep_dir, "configurations.csv")
+    if not os.path.exists(path):
+        raise PlotError(f"{path} not found: run 'bsg table {sweep_dir}' first")
+    with open(path, newline="") as file:
+        return list(csv.DictReader(file))
+
+
+def draw_line(axes_pair, epochs, returns, costs, label, color, dotted):
+    style = ":" if dotted else "-"
+    width = 1.5 if dotted else 2.0
+    for axes, values in zip(axes_pair, (returns, costs)):
+        with warnings.catch_warnings():  # "mean of empty slice" where every seed has NaN
+            warnings.simplefilter("ignore", category=RuntimeWarning)
+            mean = np.nanmean(values, axis=0)
+            std = np.nanstd(values, axis=0)
+        axes.plot(epochs, mean, linestyle=style, linewidth=width, color=color, label=label)
+        axes.fill_between(epochs, mean - std, mean + std, color=color, alpha=0.2, linewidth=0)
+
+
+def new_figure(title, cost_limit):
+    figure, (ax_return, ax_cost) = plt.subplots(1, 2, figsize=(10, 3.8))
+    figure.suptitle(title)
+    ax_return.set_title("Return")
+    ax_cost.set_title("Cost")
+    for axes in (ax_return, ax_cost):
+        axes.set_xlabel("Epoch")
+        axes.grid(alpha=0.3)
+    if cost_limit is not None and math.isfinite(cost_limit):
+        ax_cost.axhline(cost_limit, color="black", linestyle="--", linewidth=1.2, label=f"d = {cost_limit:g}")
+    return figure, (ax_return, ax_cost)
+
+
+def finish_figure(figure, axes_pair, path):
+    handles, labels = axes_pair[0].get_legend_handles_labels()
+    cost_handles, cost_labels = axes_pair[1].get_legend_handles_labels()
+    for handle, label in zip(cost_handles, cost_labels):
+        if label.startswith("d = "):
+            handles.append(handle)
+            labels.append(label)
+    if handles:
+        figure.legend(handles, labels, loc="lower center", ncol=min(len(labels), 6), frameon=False)
+    figure.tight_layout(rect=(0, 0.1, 1, 0.95))
+    figure.savefig(path, dpi=100)
+    plt.close(figure)
+
+
+def env_label(env_id):
+    label = env_id[len("Safety"):] if env_id.startswith("Safety") else env_id
+    return label.split("-v")[0]
+
+
+def float_or_none(text):
+    return float(text) if text not in ("", None) else None
+
+
+def plot_selected(sweep_dir, out_dir, window):
+    rows = read_table(sweep_dir)
+    envs = []
+    for row in rows:
+        if row["env_id"] not in envs:
+            envs.append(row["env_id"])
+    written = []
+    for env_id in envs:
+        env_rows = sorted((r for r in rows if r["env_id"] == env_id),
+                          key=lambda r: ALGORITHM_ORDER.index(r["alg"]) if r["alg"] in ALGORITHM_ORDER else 99)
+        cost_limit = next((float_or_none(r["cost_limit"]) for r in env_rows if r["cost_limit"]), None)
+        figure, axes_pair = new_figure(f"{env_label(env_id)} (best configuration per algorithm)", cost_limit)
+        drawn = 0
+        for row in env_rows:
+            label = ALGORITHM_LABELS.get(row["alg"], row["alg"])
+            if row["status"] == "missing":
+                print(f"plot_curves: {env_id} {label}: missing (no finished run)", file=sys.stderr)
+                continue
+            curves = seed_curves(os.path.join(sweep_dir, row["config_dir"]), window)
+            if curves is None:
+                print(f"plot_curves: {env_id} {label}: no progress.csv below {row['config_dir']}", file=sys.stderr)
+                continue
+            epochs, returns, costs, seeds = curves
+            dotted = row["feasible"] != "true"  # the final policy violates the limit
+            draw_line(axes_pair, epochs, returns, costs, f"{label} ({seeds} seeds)",
+                      ALGORITHM_COLORS.get(row["alg"]), dotted)
+            drawn += 1
+        path = os.path.join(out_dir, f"{env_id}.png")
+        finish_figure(figure, axes_pair, path)
+        written.append((path, drawn))
+    return written
+
+
+def plot_all_configurations(sweep_dir, out_dir, window):
+    configurations = read_configurations(sweep_dir)
+    groups = {}
+    for row in configurations:
+        groups.setdefault((row["env_id"], row["alg"]), []).append(row)
+    written = []
+    colors = plt.get_cmap("tab10")
+    for (env_id, alg), rows in groups.items():
+        cost_limit = next((float_or_none(r["cost_limit"]) for r in rows if r["cost_limit"]), None)
+        label = ALGORITHM_LABELS.get(alg, alg)
+        figure, axes_pair = new_figure(f"{env_label(env_id)}, {label}: all configurations", cost_limit)
+        drawn = 0
+        for index, row in enumerate(rows):
+            curves = seed_curves(os.path.join(sweep_dir, env_id, alg, row["config"]), window)
+            if curves is None:
+                continue
+            epochs, returns, costs, seeds = curves
+            dotted = row["feasible"] != "true"
+            name = row["config"] + (" (selected)" if row["selected"] == "true" else "")
+            draw_line(axes_pair, epochs, returns, costs, name, colors(index % 10), dotted)
+            drawn += 1
+        path = os.path.join(out_dir, f"{env_id}_{alg}.png")
+        finish_figure(figure, axes_pair, path)
+        written.append((path, drawn))
+    return written
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("sweep_dir", help="the --out directory of bsg sweep (after bsg table)")
+    parser.add_argument("--out", help="directory for the PNG files (default: SWEEP_DIR/plots)")
+    parser.add_argument("--smooth", type=int, default=1, help="Hann window in epochs (default 1: none)")
+    parser.add_argument("--all-configs", action="store_true",
+                        help="one PNG per environment and algorithm with every configuration")
+    args = parser.parse_args(argv)
+    if args.smooth < 1:
+        parser.error("--smooth must be at least 1")
+    out_dir = args.out or os.path.join(args.sweep_dir, "plots")
+    try:
+        if not os.path.isdir(args.sweep_dir):
+            raise PlotError(f"sweep directory {args.sweep_dir} does not exist")
+        os.makedirs(out_dir, exist_ok=True)
+        plot = plot_all_configurations if args.all_configs else plot_selected
+        written = plot(args.sweep_dir, out_dir, args.smooth)
+    except (PlotError, OSError) as error:
+        print(f"plot_curves: error: {error}", file=sys.stderr)
+        return 1
+    for path, drawn in written:
+        print(f"{path} ({drawn} curves)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
