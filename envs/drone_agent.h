@@ -15,6 +15,9 @@
 //   initial position         (0, 0, 0.17), identity orientation
 //   collision radius         0.5 m; Run speed limit 1.5 m/s
 //   LIDAR                    rotates with the drone, offset (0, 0, 0)
+//
+// colliders() lists the dummy base's (an empty shape, as PyBullet's importer
+// makes it) and then links 0–4: the body box and rotors 0–3.
 #pragma once
 
 #include <memory>

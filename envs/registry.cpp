@@ -6,6 +6,7 @@
 #include "ball_agent.h"
 #include "car_agent.h"
 #include "circle_task.h"
+#include "drone_agent.h"
 #include "gather_task.h"
 #include "reach_task.h"
 #include "run_task.h"
@@ -35,6 +36,7 @@ const std::map<std::string, EnvRegistration>& registry() {
     // Episode lengths and cost limits: spec §1.1 (report Table 3).
     add_agent(result, "Ball", make_ball_agent, 250, kStandardCostLimits);
     add_agent(result, "Car", make_car_agent, 500, kStandardCostLimits);
+    add_agent(result, "Drone", make_drone_agent, 500, kStandardCostLimits, ZoneKind::kPillar);
     add_agent(result, "Ant", make_ant_agent, 1000, TaskCostLimits{.reach = 25});
     return result;
   }();
