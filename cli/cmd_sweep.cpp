@@ -75,8 +75,10 @@ class EventLog {
 
 // The child command of one run: `bsg train RUN_FILE --out DIR` for a new run,
 // `bsg train --resume DIR` for an unfinished one, under `mpirun -np K` if K > 1.
+// The run file is fully resolved; --configs only spares `bsg train` the
+// search for a configs/ directory above the run directory.
 ChildCommand train_command(const PlannedRun& run, const std::filesystem::path& bsg_program,
-                           int ranks_per_run) {
+                           const std::filesystem::path& configs_dir, int ranks_per_run) {
   ChildCommand command;
   if (ranks_per_run > 1) {
     command.argv = {"mpirun", "-np", std::to_string(ranks_per_run)};
@@ -91,7 +93,8 @@ ChildCommand train_command(const PlannedRun& run, const std::filesystem::path& b
     command.argv.insert(command.argv.end(), {"--resume", run.dir.string()});
   } else {
     command.argv.insert(command.argv.end(),
-                        {(run.dir / kSweepRunFileName).string(), "--out", run.dir.string()});
+                        {(run.dir / kSweepRunFileName).string(), "--out", run.dir.string(), "--configs",
+                         configs_dir.string()});
   }
   command.log_file = run.dir / kSweepRunLogName;
   return command;
@@ -107,10 +110,12 @@ void clear_unstarted_run(const RunDirectory& directory) {
 
 class SweepRunner {
  public:
-  SweepRunner(SweepPlan plan, const SweepOptions& options, std::filesystem::path out_dir)
+  SweepRunner(SweepPlan plan, const SweepOptions& options, std::filesystem::path out_dir,
+              std::filesystem::path configs_dir)
       : plan_(std::move(plan)),
         options_(options),
         out_dir_(std::move(out_dir)),
+        configs_dir_(std::filesystem::absolute(configs_dir)),
         bsg_program_(current_executable()),
         events_(out_dir_ / kSweepEventsName),
         interactive_(::isatty(STDERR_FILENO) != 0) {}
@@ -131,6 +136,7 @@ class SweepRunner {
   SweepPlan plan_;
   SweepOptions options_;
   std::filesystem::path out_dir_;
+  std::filesystem::path configs_dir_;
   std::filesystem::path bsg_program_;
   EventLog events_;
   bool interactive_;
@@ -164,7 +170,7 @@ void SweepRunner::start(std::size_t index) {
   if (run.state == RunState::fresh) clear_unstarted_run(directory);
   // The resolved run file, so that the run can be reproduced by hand.
   write_file_atomically(run.dir / kSweepRunFileName, to_yaml(run.config));
-  const ChildCommand command = train_command(run, bsg_program_, options_.ranks_per_run);
+  const ChildCommand command = train_command(run, bsg_program_, configs_dir_, options_.ranks_per_run);
   {
     std::ofstream log(command.log_file, std::ios::app);
     log << "=== bsg sweep " << timestamp() << ": " << command_line_text(command.argv) << "\n";
@@ -237,7 +243,6 @@ int SweepRunner::run() {
             << "\n";
 
   std::size_t next = 0;
-  show_progress(true);
   while (next < queue.size() || !running_.empty()) {
     while (next < queue.size() && running_.size() < static_cast<std::size_t>(jobs)) {
       try {
@@ -249,7 +254,7 @@ int SweepRunner::run() {
         std::cerr << "FAILED " << run.run.relative_dir().string() << ": " << e.what() << "\n";
       }
       ++next;
-      show_progress(true);
+      if (interactive_) show_progress(true);
     }
     bool reaped = false;
     while (const std::optional<ChildExit> exit = reap_exited_child()) {
@@ -259,8 +264,10 @@ int SweepRunner::run() {
     show_progress(reaped);
     if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
-  show_progress(true);
-  if (interactive_) std::cerr << "\n";
+  if (interactive_) {
+    show_progress(true);
+    std::cerr << "\n";
+  }
 
   if (failed_.empty()) {
     std::cerr << "bsg sweep: all " << plan_.runs.size() << " runs finished; 'bsg table " << out_dir_.string()
@@ -303,7 +310,7 @@ int run_sweep(SweepOptions options) {
   std::filesystem::copy_file(grid_file, request.out_dir / kSweepGridCopyName,
                              std::filesystem::copy_options::overwrite_existing);
   write_sweep_manifest(request.out_dir, plan.all_runs);
-  return SweepRunner(std::move(plan), options, request.out_dir).run();
+  return SweepRunner(std::move(plan), options, request.out_dir, request.configs_dir).run();
 }
 
 }  // namespace

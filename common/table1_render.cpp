@@ -106,9 +106,10 @@ std::string table1_csv(const Table1& table) {
       "cost_limit,return_over_trpo,cost_over_limit,feasible,best_constrained\n";
   for (const Table1Row& row : table.rows) {
     for (const Table1Cell& cell : row.cells) {
-      const std::string status = !cell.selected ? "missing"
-                                 : cell.alg == Algorithm::trpo || cell.constraint_met ? "met"
-                                                                                      : "infeasible";
+      const std::string status = !cell.selected                ? "missing"
+                                 : cell.alg == Algorithm::trpo ? "unconstrained"
+                                 : cell.constraint_met         ? "feasible"
+                                                               : "infeasible";
       text += row.env_id + "," + std::string(to_string(cell.alg)) + "," + status + "," +
               csv_field(cell.config_name) + "," + csv_field(cell.config_dir) + "," +
               std::to_string(cell.seeds_finished) +

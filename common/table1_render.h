@@ -16,8 +16,9 @@ namespace bsg {
 
 std::string table1_markdown(const Table1& table);
 std::string table1_latex(const Table1& table);
-// One line per (environment, algorithm): env_id, alg, status (met |
-// infeasible | missing), config, seeds, J, H, d, J/J_TRPO, H/d, best.
+// One line per (environment, algorithm): env_id, alg, status (feasible |
+// infeasible | unconstrained (TRPO) | missing), config, its directory, seeds,
+// J, H, d, J/J_TRPO, H/d, whether H <= d, best constrained.
 std::string table1_csv(const Table1& table);
 std::string configurations_csv(const Table1& table);
 

@@ -1,0 +1,328 @@
+// `bsg sweep` end to end on configs/grids/quick.yaml: a sweep killed mid-way
+// (SIGKILL to its process group, children included) and started again
+// finishes every run exactly once - finished runs are not rerun, unfinished
+// ones resume from their checkpoints and log each epoch once - and then
+// `bsg table` and scripts/plot_curves.py produce the table and the plots.
+// Also the dry run, and errors naming the grid, the key or the run at fault.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "algos/run_directory.h"
+#include "algos/run_results.h"
+#include "common/csv_text.h"
+#include "common/grid_expansion.h"
+#include "common/run_config_yaml.h"
+#include "common/sweep_manifest.h"
+#include "run_bsg.h"
+
+namespace fs = std::filesystem;
+using bsg::testing::run_bsg;
+
+namespace {
+
+const fs::path kSource(BSG_SOURCE_DIR);
+const fs::path kQuickGrid = kSource / "configs" / "grids" / "quick.yaml";
+
+class TempDir {
+ public:
+  TempDir() {
+    char pattern[] = "/tmp/bsg_sweep_test_XXXXXX";
+    path_ = mkdtemp(pattern);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::string read_all(const fs::path& path) {
+  std::ifstream file(path);
+  std::ostringstream contents;
+  contents << file.rdbuf();
+  return contents.str();
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream stream(text);
+  std::string line;
+  while (std::getline(stream, line)) {
+    if (!line.empty()) lines.push_back(line);
+  }
+  return lines;
+}
+
+// The sweep in its own process group, output to `log`; returns its pid.
+pid_t start_sweep_in_own_group(const std::string& arguments, const fs::path& log) {
+  const std::string command = std::string(BSG_BINARY) + " sweep " + arguments + " > '" + log.string() + "' 2>&1";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    setpgid(0, 0);
+    execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  setpgid(pid, pid);  // also here, so that the kill below cannot race the child's call
+  return pid;
+}
+
+// Runs of the quick grid as the sweep names them.
+std::vector<fs::path> quick_run_dirs(const fs::path& out) {
+  std::vector<fs::path> dirs;
+  for (const bsg::GridRun& run : bsg::expand_grid(bsg::load_grid_file(kQuickGrid))) {
+    dirs.push_back(out / run.relative_dir());
+  }
+  return dirs;
+}
+
+// The epoch column of a progress.csv.
+std::vector<std::string> logged_epoch_values(const fs::path& progress) {
+  std::vector<std::string> epochs;
+  const std::vector<std::string> lines = lines_of(read_all(progress));
+  for (std::size_t i = 1; i < lines.size(); ++i) epochs.push_back(bsg::parse_csv_fields(lines[i]).at(0));
+  return epochs;
+}
+
+// (event, run_dir) of sweep_events.csv from line `first` on.
+std::vector<std::pair<std::string, std::string>> events_from(const fs::path& out, std::size_t first) {
+  std::vector<std::pair<std::string, std::string>> events;
+  const std::vector<std::string> lines = lines_of(read_all(out / bsg::kSweepEventsName));
+  for (std::size_t i = std::max<std::size_t>(first, 1); i < lines.size(); ++i) {
+    const std::vector<std::string> fields = bsg::parse_csv_fields(lines[i]);
+    events.emplace_back(fields.at(1), fields.at(2));
+  }
+  return events;
+}
+
+std::size_t count_events(const std::vector<std::pair<std::string, std::string>>& events,
+                         const std::string& event, const std::string& run_dir) {
+  std::size_t count = 0;
+  for (const auto& [name, dir] : events) count += name == event && dir == run_dir ? 1 : 0;
+  return count;
+}
+
+TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots) {
+  TempDir temp;
+  const fs::path out = temp.path() / "quick";
+  const std::vector<fs::path> runs = quick_run_dirs(out);
+  ASSERT_EQ(runs.size(), 4u);
+
+  // 1. Start, and kill the whole process group once one run has finished
+  //    while another is part-way through.
+  const pid_t sweep = start_sweep_in_own_group(kQuickGrid.string() + " --jobs 2 --out " + out.string(),
+                                               temp.path() / "first.log");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  bool midway = false;
+  int status = 0;
+  while (!midway && std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(sweep, &status, WNOHANG) == sweep) {
+      FAIL() << "the sweep ended before it could be killed mid-way:\n" << read_all(temp.path() / "first.log");
+    }
+    bool some_finished = false;
+    bool some_partial = false;
+    for (const fs::path& run : runs) {
+      const bsg::RunDirectory directory(run);
+      const bsg::RunState state = bsg::run_state(directory);
+      some_finished |= state == bsg::RunState::finished;
+      some_partial |= state == bsg::RunState::resumable && bsg::logged_epochs(directory) >= 1;
+    }
+    midway = some_finished && some_partial;
+    if (!midway) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(midway) << "no mid-way state within 60 s:\n" << read_all(temp.path() / "first.log");
+  ASSERT_EQ(kill(-sweep, SIGKILL), 0);
+  ASSERT_EQ(waitpid(sweep, &status, 0), sweep);
+  ASSERT_TRUE(WIFSIGNALED(status));
+
+  std::map<fs::path, bsg::RunState> state_at_kill;
+  std::size_t unfinished = 0;
+  std::size_t resumable = 0;
+  for (const fs::path& run : runs) {
+    state_at_kill[run] = bsg::run_state(bsg::RunDirectory(run));
+    unfinished += state_at_kill[run] != bsg::RunState::finished ? 1 : 0;
+    resumable += state_at_kill[run] == bsg::RunState::resumable ? 1 : 0;
+  }
+  ASSERT_GE(resumable, 1u) << "the kill should leave a run part-way through";
+  const std::size_t events_before = lines_of(read_all(out / bsg::kSweepEventsName)).size();
+
+  // 2. Start again: it finishes the rest.
+  const auto second = run_bsg("sweep " + kQuickGrid.string() + " --jobs 2 --out " + out.string());
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_NE(second.output.find(std::to_string(4 - unfinished) + " already finished"), std::string::npos)
+      << second.output;
+
+  const auto events = events_from(out, events_before);
+  for (const fs::path& run : runs) {
+    const std::string name = fs::relative(run, out).generic_string();
+    const bsg::RunDirectory directory(run);
+    ASSERT_EQ(bsg::run_state(directory), bsg::RunState::finished) << name;
+    // Each epoch logged once, in order; the evaluation written once.
+    EXPECT_EQ(logged_epoch_values(directory.progress()),
+              (std::vector<std::string>{"0", "1", "2", "3", "4", "5"}))
+        << name;
+    EXPECT_EQ(lines_of(read_all(directory.returns())).size(), 2u) << name;
+    // The resolved run file reproduces the run's configuration.
+    EXPECT_EQ(bsg::load_resolved_run_config(run / bsg::kSweepRunFileName).seed,
+              bsg::load_resolved_run_config(directory.config()).seed);
+    switch (state_at_kill[run]) {
+      case bsg::RunState::finished:  // not touched again
+        EXPECT_EQ(count_events(events, "start", name) + count_events(events, "resume", name), 0u) << name;
+        break;
+      case bsg::RunState::resumable:  // continued from its checkpoint, not restarted
+        EXPECT_EQ(count_events(events, "resume", name), 1u) << name;
+        EXPECT_EQ(count_events(events, "start", name), 0u) << name;
+        EXPECT_EQ(count_events(events, "done", name), 1u) << name;
+        break;
+      case bsg::RunState::fresh:
+        EXPECT_EQ(count_events(events, "start", name), 1u) << name;
+        EXPECT_EQ(count_events(events, "done", name), 1u) << name;
+        break;
+    }
+  }
+
+  // 3. A third start has nothing to do.
+  const std::size_t events_before_third = lines_of(read_all(out / bsg::kSweepEventsName)).size();
+  const auto third = run_bsg("sweep " + kQuickGrid.string() + " --out " + out.string());
+  EXPECT_EQ(third.exit_code, 0) << third.output;
+  EXPECT_NE(third.output.find("4 already finished, 0 to run"), std::string::npos) << third.output;
+  EXPECT_EQ(lines_of(read_all(out / bsg::kSweepEventsName)).size(), events_before_third);
+
+  // 4. Table 1 and the learning curves.
+  const auto table = run_bsg("table " + out.string());
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  EXPECT_NE(table.output.find("| Env | TRPO | TRPO-L |"), std::string::npos) << table.output;
+  EXPECT_NE(table.output.find("| BallCircle | 1.00 ("), std::string::npos) << table.output;
+  EXPECT_EQ(table.output.find("missing |"), std::string::npos) << table.output;
+  for (const char* file : {"table1.md", "table1.csv", "table1.tex", "configurations.csv"}) {
+    EXPECT_TRUE(fs::is_regular_file(out / file)) << file;
+  }
+
+  const std::string plot_command =
+      (kSource / "scripts" / "plot_curves.py").string() + " " + out.string() + " 2>&1";
+  FILE* pipe = popen(plot_command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string plot_output;
+  char chunk[512];
+  while (fgets(chunk, sizeof chunk, pipe) != nullptr) plot_output += chunk;
+  EXPECT_EQ(pclose(pipe), 0) << plot_output;
+  const fs::path png = out / "plots" / "SafetyBallCircle-v0.png";
+  ASSERT_TRUE(fs::is_regular_file(png)) << plot_output;
+  EXPECT_EQ(read_all(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_NE(plot_output.find("(2 curves)"), std::string::npos) << plot_output;
+}
+
+TEST(Sweep, DryRunListsTheRunsAndTheirCostWithoutRunningAnything) {
+  TempDir temp;
+  const auto result = run_bsg("sweep " + kQuickGrid.string() + " --dry-run --out " + (temp.path() / "q").string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("SafetyBallCircle-v0/lag-trpo/target_kl=0.01/seed=1"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("4 runs (2 configurations x seeds): 0 finished, 0 to resume, 4 new"),
+            std::string::npos)
+      << result.output;
+  // 4 runs x 6 epochs x 1000 steps.
+  EXPECT_NE(result.output.find("24 000 env steps of training in all"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(temp.path() / "q"));
+}
+
+TEST(Sweep, TheReportGridCostsWhatTable3AndTheAppendixSay) {
+  const auto result = run_bsg("sweep " + (kSource / "configs" / "grids" / "report.yaml").string() +
+                              " --dry-run --env SafetyBallRun-v0 --alg trpo --out /tmp/bsg_never_created");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  // 2 configurations x 4 seeds x 100 epochs x 32 000 steps.
+  EXPECT_NE(result.output.find("8 runs (2 configurations x seeds)"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("25 600 000 env steps of training in all"), std::string::npos) << result.output;
+}
+
+TEST(Sweep, AnUnknownKeyInTheGridIsNamedWithItsLine) {
+  TempDir temp;
+  const fs::path grid = temp.path() / "bad.yaml";
+  std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [0]\nalgorithms:\n  trpo:\n    axes:\n"
+                         "      target_kll: [0.01]\n";
+  const auto result = run_bsg("sweep " + grid.string() + " --configs " + (kSource / "configs").string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find(grid.string() + ":6:7: unknown configuration key 'target_kll'"), std::string::npos)
+      << result.output;
+}
+
+TEST(Sweep, MissingAndMalformedGridFilesAreNamed) {
+  TempDir temp;
+  auto result = run_bsg("sweep " + (temp.path() / "none.yaml").string() + " --configs " +
+                        (kSource / "configs").string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find("grid file not found: " + (temp.path() / "none.yaml").string()), std::string::npos)
+      << result.output;
+
+  const fs::path grid = temp.path() / "broken.yaml";
+  std::ofstream(grid) << "envs: [SafetyBallCircle-v0\nseeds: [0]\n";
+  result = run_bsg("sweep " + grid.string() + " --configs " + (kSource / "configs").string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find(grid.string() + ": malformed YAML"), std::string::npos) << result.output;
+}
+
+TEST(Sweep, RanksThatDoNotDivideTheBatchAreRejectedNamingTheRun) {
+  const auto result = run_bsg("sweep " + kQuickGrid.string() + " --dry-run --ranks-per-run 3");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find("run SafetyBallCircle-v0/trpo/target_kl=0.01/seed=0 with --ranks-per-run 3"),
+            std::string::npos)
+      << result.output;
+}
+
+TEST(Sweep, AFailedRunIsReportedWithItsLogAndTheExitCodeSaysSo) {
+  TempDir temp;
+  const fs::path grid = temp.path() / "one.yaml";
+  std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [7]\nfixed: {epochs: 1, steps_per_epoch: 500}\n"
+                         "algorithms: {trpo: }\n";
+  const fs::path out = temp.path() / "out";
+  // A run directory with this run's configuration but a damaged checkpoint:
+  // the sweep resumes it, and `bsg train --resume` fails.
+  const bsg::GridRun run = bsg::expand_grid(bsg::load_grid_file(grid)).front();
+  const fs::path run_dir = out / run.relative_dir();
+  fs::create_directories(run_dir);
+  bsg::RunConfig config = bsg::resolve_grid_run(run, kSource / "configs", grid.string());
+  bsg::write_run_config(config, bsg::RunDirectory(run_dir).config());
+  std::ofstream(bsg::RunDirectory(run_dir).checkpoint()) << "not a checkpoint";
+
+  const auto result = run_bsg("sweep " + grid.string() + " --configs " + (kSource / "configs").string() +
+                              " --out " + out.string());
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("FAILED SafetyBallCircle-v0/trpo/default/seed=7: exit code 1; log: " +
+                               (run_dir / bsg::kSweepRunLogName).string()),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("1 of 1 runs failed"), std::string::npos) << result.output;
+  EXPECT_NE(read_all(run_dir / bsg::kSweepRunLogName).find("checkpoint"), std::string::npos);
+}
+
+TEST(Sweep, ARunDirectoryOfAnotherConfigurationIsNotTouched) {
+  TempDir temp;
+  const fs::path grid = temp.path() / "one.yaml";
+  std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [7]\nfixed: {epochs: 1, steps_per_epoch: 500}\n"
+                         "algorithms: {trpo: }\n";
+  const fs::path out = temp.path() / "out";
+  const bsg::GridRun run = bsg::expand_grid(bsg::load_grid_file(grid)).front();
+  const fs::path run_dir = out / run.relative_dir();
+  fs::create_directories(run_dir);
+  bsg::RunConfig config = bsg::resolve_grid_run(run, kSource / "configs", grid.string());
+  config.epochs = 2;
+  bsg::write_run_config(config, bsg::RunDirectory(run_dir).config());
+
+  const auto result = run_bsg("sweep " + grid.string() + " --configs " + (kSource / "configs").string() +
+                              " --out " + out.string());
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("holds a run of another configuration"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("epochs: 2"), std::string::npos) << result.output;
+}
+
+}  // namespace

@@ -1,0 +1,192 @@
+// `bsg table` on hand-made sweep directories: the selection rule (feasible
+// best return; the lowest violation, marked, when nothing is feasible),
+// missing runs shown as missing and never as zero, the mean - std option,
+// the files written, and errors naming the file at fault.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "algos/run_directory.h"
+#include "algos/sweep_results.h"
+#include "common/grid_expansion.h"
+#include "common/run_config_yaml.h"
+#include "common/sweep_manifest.h"
+#include "run_bsg.h"
+
+namespace fs = std::filesystem;
+using bsg::testing::run_bsg;
+
+namespace {
+
+const fs::path kConfigs = fs::path(BSG_SOURCE_DIR) / "configs";
+
+class TempDir {
+ public:
+  TempDir() {
+    char pattern[] = "/tmp/bsg_table_test_XXXXXX";
+    path_ = mkdtemp(pattern);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::string read_all(const fs::path& path) {
+  std::ifstream file(path);
+  std::ostringstream contents;
+  contents << file.rdbuf();
+  return contents.str();
+}
+
+// A grid of 2 TRPO, 2 CPO and 2 PDO configurations x 2 seeds on BallCircle (d = 25).
+const char* const kGrid =
+    "envs: [SafetyBallCircle-v0]\n"
+    "seeds: [0, 1]\n"
+    "algorithms:\n"
+    "  trpo: {axes: {target_kl: [0.001, 0.01]}}\n"
+    "  cpo: {axes: {lam_c: [0.5, 0.9]}}\n"
+    "  pdo: {axes: {lambda_lr: [0.01, 0.1]}}\n";
+
+class HandMadeSweep : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    runs_ = bsg::expand_grid(bsg::parse_grid(kGrid, "hand-made grid"));
+    bsg::write_sweep_manifest(dir_.path(), runs_);
+  }
+
+  // Writes a finished run: config.yaml, evaluation.json, returns.csv, costs.csv.
+  void finish(const std::string& relative_dir, std::vector<double> returns, double mean_cost) {
+    for (const bsg::GridRun& run : runs_) {
+      if (run.relative_dir().generic_string() != relative_dir) continue;
+      const bsg::RunDirectory directory(dir_.path() / run.relative_dir());
+      fs::create_directories(directory.root);
+      bsg::write_run_config(bsg::resolve_grid_run(run, kConfigs, "hand-made grid"), directory.config());
+      double sum = 0;
+      std::string lines;
+      for (const double value : returns) {
+        sum += value;
+        lines += std::to_string(value) + "\n";
+      }
+      std::ofstream(directory.returns()) << lines;
+      std::ofstream(directory.evaluation())
+          << "{\n  \"mean_return\": " << sum / static_cast<double>(returns.size()) << ",\n  \"mean_cost\": "
+          << mean_cost << ",\n  \"episodes\": " << returns.size() << ",\n  \"mean_length\": 250\n}\n";
+      return;
+    }
+    FAIL() << "no run " << relative_dir;
+  }
+
+  TempDir dir_;
+  std::vector<bsg::GridRun> runs_;
+};
+
+TEST_F(HandMadeSweep, SelectsFeasibleBestFallsBackToLowestViolationAndShowsMissingRuns) {
+  const std::string circle = "SafetyBallCircle-v0/";
+  // TRPO: J_TRPO = 200 (target_kl=0.01), H/d = 4.
+  finish(circle + "trpo/target_kl=0.001/seed=0", {100}, 10);
+  finish(circle + "trpo/target_kl=0.001/seed=1", {100}, 10);
+  finish(circle + "trpo/target_kl=0.01/seed=0", {200}, 100);
+  finish(circle + "trpo/target_kl=0.01/seed=1", {200}, 100);
+  // CPO: lam_c=0.5 has the higher return but H = 30 > 25; lam_c=0.9 is feasible.
+  finish(circle + "cpo/lam_c=0.5/seed=0", {180}, 30);
+  finish(circle + "cpo/lam_c=0.5/seed=1", {180}, 30);
+  finish(circle + "cpo/lam_c=0.9/seed=0", {100}, 20);
+  finish(circle + "cpo/lam_c=0.9/seed=1", {60}, 25);
+  // PDO: both infeasible; lambda_lr=0.1 violates least; one of its seeds is missing.
+  finish(circle + "pdo/lambda_lr=0.01/seed=0", {150}, 60);
+  finish(circle + "pdo/lambda_lr=0.01/seed=1", {150}, 60);
+  finish(circle + "pdo/lambda_lr=0.1/seed=0", {-40}, 35);
+
+  const auto result = run_bsg("table " + dir_.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("| Env | TRPO | CPO | PDO |"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("| BallCircle | 1.00 (4.00) | **0.40 (0.90)** | -0.20 (1.40)\u2020 [1/2] |"),
+            std::string::npos)
+      << result.output;
+
+  const std::string csv = read_all(dir_.path() / "table1.csv");
+  EXPECT_NE(csv.find("SafetyBallCircle-v0,cpo,feasible,lam_c=0.9,SafetyBallCircle-v0/cpo/lam_c=0.9,2,2,80.0,22.5,"),
+            std::string::npos)
+      << csv;
+  EXPECT_NE(csv.find("SafetyBallCircle-v0,pdo,infeasible,lambda_lr=0.1,SafetyBallCircle-v0/pdo/lambda_lr=0.1,1,2,"),
+            std::string::npos)
+      << csv;
+  EXPECT_NE(read_all(dir_.path() / "table1.tex").find("\\textbf{0.40 (0.90)}"), std::string::npos);
+  EXPECT_NE(read_all(dir_.path() / "table1.md").find("**0.40 (0.90)**"), std::string::npos);
+  EXPECT_NE(read_all(dir_.path() / "configurations.csv").find("SafetyBallCircle-v0,cpo,lam_c=0.5,2,2,180.0,30.0,25.0,false,180.0,false"),
+            std::string::npos);
+}
+
+TEST_F(HandMadeSweep, AnAlgorithmWithoutFinishedRunsIsMissingNotZero) {
+  finish("SafetyBallCircle-v0/trpo/target_kl=0.01/seed=0", {-10}, 100);
+  // CPO's only finished run has a negative return and violates the limit; a
+  // missing configuration scored as zero would win instead.
+  finish("SafetyBallCircle-v0/cpo/lam_c=0.5/seed=0", {-5}, 40);
+  const auto result = run_bsg("table " + dir_.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("| BallCircle | 1.00 (4.00) [1/2] | **0.50 (1.60)\u2020 [1/2]** | missing |"),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(read_all(dir_.path() / "table1.csv").find("SafetyBallCircle-v0,pdo,missing,,,0,0,,,"),
+            std::string::npos);
+}
+
+TEST_F(HandMadeSweep, MeanMinusStdPrefersTheSteadierConfiguration) {
+  finish("SafetyBallCircle-v0/trpo/target_kl=0.01/seed=0", {100}, 10);
+  // lam_c=0.5: mean 60, std 50 -> 10; lam_c=0.9: mean 50, std 1 -> 49. Both feasible.
+  finish("SafetyBallCircle-v0/cpo/lam_c=0.5/seed=0", {10, 110}, 10);
+  finish("SafetyBallCircle-v0/cpo/lam_c=0.9/seed=0", {49, 51}, 10);
+  auto result = run_bsg("table " + dir_.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("**0.60 (0.40) [1/2]**"), std::string::npos) << result.output;
+  result = run_bsg("table " + dir_.path().string() + " --score mean_minus_std");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("**0.50 (0.40) [1/2]**"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("Selection score: mean_minus_std"), std::string::npos) << result.output;
+}
+
+TEST_F(HandMadeSweep, RunDirectoriesWithoutAManifestAreFoundByTheirFiles) {
+  finish("SafetyBallCircle-v0/trpo/target_kl=0.01/seed=0", {100}, 10);
+  finish("SafetyBallCircle-v0/cpo/lam_c=0.9/seed=1", {50}, 10);
+  fs::remove(dir_.path() / bsg::kSweepManifestName);
+  const std::vector<bsg::ConfigurationResults> results = bsg::load_sweep_results(dir_.path(), false);
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_EQ(results[0].config_name, "lam_c=0.9");
+  EXPECT_EQ(results[0].alg, bsg::Algorithm::cpo);
+  EXPECT_EQ(results[0].seeds_expected, 1u);
+  ASSERT_EQ(results[0].seeds.size(), 1u);
+  EXPECT_EQ(results[0].seeds[0].seed, 1);
+  EXPECT_DOUBLE_EQ(results[0].cost_limit, 25.0);
+  EXPECT_EQ(results[1].config_name, "target_kl=0.01");
+}
+
+TEST_F(HandMadeSweep, MalformedEvaluationIsAnErrorNamingTheFile) {
+  finish("SafetyBallCircle-v0/trpo/target_kl=0.01/seed=0", {100}, 10);
+  const fs::path evaluation = dir_.path() / "SafetyBallCircle-v0/trpo/target_kl=0.01/seed=0/evaluation.json";
+  std::ofstream(evaluation) << "{\"mean_return\": 1.0, \"episodes\": 2}";
+  const auto result = run_bsg("table " + dir_.path().string());
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find(evaluation.string() + ": missing \"mean_cost\""), std::string::npos) << result.output;
+}
+
+TEST(Table, AMissingSweepDirectoryIsNamed) {
+  const auto result = run_bsg("table /nonexistent/sweep");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find("sweep directory /nonexistent/sweep does not exist"), std::string::npos)
+      << result.output;
+}
+
+TEST(Table, AnUnknownScoreIsACommandLineError) {
+  const auto result = run_bsg("table /tmp --score median");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_NE(result.output.find("median"), std::string::npos) << result.output;
+}
+
+}  // namespace
