@@ -19,6 +19,7 @@
 #include "child_process.h"
 #include "commands.h"
 #include "common/atomic_file.h"
+#include "common/csv_text.h"
 #include "common/run_config_resolve.h"
 #include "common/run_config_yaml.h"
 #include "common/sweep_manifest.h"
@@ -49,27 +50,22 @@ std::string timestamp() {
   return text;
 }
 
+// sweep_events.csv: one line per scheduling event, appended and flushed.
 class EventLog {
  public:
-  explicit EventLog(const std::filesystem::path& path) : path_(path) {
+  explicit EventLog(const std::filesystem::path& path) {
     const bool is_new = !std::filesystem::exists(path);
     file_.open(path, std::ios::app);
     if (!file_) throw std::runtime_error("cannot write " + path.string());
     if (is_new) file_ << "time,event,run_dir,detail\n" << std::flush;
   }
   void record(const std::string& event, const std::filesystem::path& run_dir, const std::string& detail) {
-    file_ << timestamp() << "," << event << "," << csv_quote(run_dir.generic_string()) << ","
-          << csv_quote(detail) << "\n"
+    file_ << timestamp() << "," << event << "," << csv_field(run_dir.generic_string()) << ","
+          << csv_field(detail) << "\n"
           << std::flush;
   }
 
  private:
-  static std::string csv_quote(const std::string& text) {
-    std::string quoted = "\"";
-    for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return quoted + "\"";
-  }
-  std::filesystem::path path_;
   std::ofstream file_;
 };
 
@@ -149,15 +145,15 @@ class SweepRunner {
   Clock::time_point last_shown_{};
 };
 
+// Env steps done: all of a finished run's, the logged epochs of a running
+// one (read now), and for the others what the plan found.
 double SweepRunner::steps_done_now() const {
   double done = 0;
-  for (const PlannedRun& run : plan_.runs) {
-    if (run.state == RunState::finished) {
-      done += static_cast<double>(run.training_steps());
-    } else {
-      const int epochs = std::min(logged_epochs(RunDirectory(run.dir)), run.config.epochs);
-      done += static_cast<double>(epochs) * run.config.steps_per_epoch;
-    }
+  for (const PlannedRun& run : plan_.runs) done += static_cast<double>(run.steps_logged());
+  for (const auto& [pid, running] : running_) {
+    const PlannedRun& run = plan_.runs[running.index];
+    const int epochs = std::min(logged_epochs(RunDirectory(run.dir)), run.config.epochs);
+    done += static_cast<double>(epochs) * run.config.steps_per_epoch - static_cast<double>(run.steps_logged());
   }
   return done;
 }
@@ -188,7 +184,8 @@ void SweepRunner::start(std::size_t index) {
 void SweepRunner::finish(const ChildExit& exit) {
   const auto found = running_.find(exit.pid);
   if (found == running_.end()) return;  // not ours (e.g. a grandchild reparented)
-  PlannedRun& run = plan_.runs[found->second.index];
+  const std::size_t index = found->second.index;
+  PlannedRun& run = plan_.runs[index];
   const double seconds = std::chrono::duration<double>(Clock::now() - found->second.started).count();
   running_.erase(found);
   run.state = run_state(RunDirectory(run.dir));
@@ -201,7 +198,7 @@ void SweepRunner::finish(const ChildExit& exit) {
     }
     return;
   }
-  failed_.push_back(static_cast<std::size_t>(&run - plan_.runs.data()));
+  failed_.push_back(index);
   const std::string why = exit.exit_code == 0 ? "exit code 0 but no " + RunDirectory(run.dir).evaluation().filename().string()
                                               : describe(exit);
   events_.record("failed", run.run.relative_dir(), why);

@@ -137,8 +137,8 @@ std::string dry_run_listing(const SweepPlan& plan) {
     ++counts[static_cast<int>(run.state)];
     configurations.insert(run.run.relative_dir().parent_path().string());
   }
-  text += std::string("\n") + std::to_string(plan.runs.size()) + " runs (" + std::to_string(configurations.size()) +
-          " configurations x seeds): " + std::to_string(counts[static_cast<int>(RunState::finished)]) +
+  text += std::string("\n") + std::to_string(plan.runs.size()) + " runs of " + std::to_string(configurations.size()) +
+          " configurations: " + std::to_string(counts[static_cast<int>(RunState::finished)]) +
           " finished, " + std::to_string(counts[static_cast<int>(RunState::resumable)]) + " to resume, " +
           std::to_string(counts[static_cast<int>(RunState::fresh)]) + " new\n";
   text += "cost: " + format_count(total) + " env steps of training in all, " + format_count(total - logged) +

@@ -228,7 +228,7 @@ TEST(Sweep, DryRunListsTheRunsAndTheirCostWithoutRunningAnything) {
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("SafetyBallCircle-v0/lag-trpo/target_kl=0.01/seed=1"), std::string::npos)
       << result.output;
-  EXPECT_NE(result.output.find("4 runs (2 configurations x seeds): 0 finished, 0 to resume, 4 new"),
+  EXPECT_NE(result.output.find("4 runs of 2 configurations: 0 finished, 0 to resume, 4 new"),
             std::string::npos)
       << result.output;
   // 4 runs x 6 epochs x 1000 steps.
@@ -241,7 +241,7 @@ TEST(Sweep, TheReportGridCostsWhatTable3AndTheAppendixSay) {
                               " --dry-run --env SafetyBallRun-v0 --alg trpo --out /tmp/bsg_never_created");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   // 2 configurations x 4 seeds x 100 epochs x 32 000 steps.
-  EXPECT_NE(result.output.find("8 runs (2 configurations x seeds)"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("8 runs of 2 configurations"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("25 600 000 env steps of training in all"), std::string::npos) << result.output;
 }
 
