@@ -28,10 +28,10 @@ std::uint64_t stream_seed(const RunConfig& config, SeedStream stream, int rank, 
                      static_cast<std::uint64_t>(index));
 }
 
-std::unique_ptr<envs::Env> make_checked_env(const RunConfig& config) {
-  std::unique_ptr<envs::Env> env = envs::make(config.env_id);
+std::unique_ptr<envs::Env> checked_env(std::unique_ptr<envs::Env> env) {
+  if (env == nullptr) throw std::invalid_argument("OnPolicyTrainer: no environment");
   if (env->spec().observation_dim <= 0 || env->spec().action_dim <= 0) {
-    throw std::runtime_error("environment " + config.env_id + " reports an empty observation or action space");
+    throw std::runtime_error("environment " + env->spec().id + " reports an empty observation or action space");
   }
   return env;
 }
@@ -59,11 +59,15 @@ std::optional<double> find_diagnostic(const PolicyUpdateResult& result, std::str
 
 OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi,
                                  TrainerOptions options)
+    : OnPolicyTrainer(config, std::move(directory), mpi, options, envs::make(config.env_id)) {}
+
+OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi,
+                                 TrainerOptions options, std::unique_ptr<envs::Env> env)
     : config_(config),
       directory_(std::move(directory)),
       mpi_(mpi),
       options_(options),
-      env_(make_checked_env(config)),
+      env_(checked_env(std::move(env))),
       actor_critic_(make_actor_critic(config, env_->spec())),
       algorithm_(make_algorithm(config)),
       buffer_(local_steps(config, mpi), env_->spec().observation_dim, env_->spec().action_dim,
@@ -83,6 +87,7 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
     }
     progress_.epochs_completed = saved.epochs_completed;
     progress_.elapsed_seconds = saved.elapsed_seconds;
+    checkpoint_epochs_ = saved.epochs_completed;
     if (mpi_.is_root()) progress_csv_.emplace(ProgressCsv::resume(directory_.progress(), saved.epochs_completed));
   } else {
     actor_critic_->broadcast_from_root(mpi_);  // spec §1 step 5
@@ -97,17 +102,24 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
 
 OnPolicyTrainer::~OnPolicyTrainer() = default;
 
-void OnPolicyTrainer::save_checkpoint() const {
+void OnPolicyTrainer::save_checkpoint() {
   if (mpi_.is_root()) save_training_checkpoint(directory_.checkpoint(), config_, progress_, *actor_critic_, *algorithm_);
+  checkpoint_epochs_ = progress_.epochs_completed;
 }
 
 void OnPolicyTrainer::check_finite(int epoch, const char* quantity, double value) const {
   if (!std::isfinite(value)) {
     throw NonFiniteError(std::string("non-finite ") + quantity + " (" + std::to_string(value) + ") in epoch " +
                          std::to_string(epoch) + "; training stopped, the last good checkpoint " +
-                         directory_.checkpoint().string() + " (after " + std::to_string(progress_.epochs_completed) +
+                         directory_.checkpoint().string() + " (after " + std::to_string(checkpoint_epochs_) +
                          " epochs) is kept");
   }
+}
+
+void OnPolicyTrainer::check_rollout_finite(int epoch) const {
+  if (!buffer_.observations().allFinite()) check_finite(epoch, "observation from the environment", std::nan(""));
+  if (!buffer_.rewards().allFinite()) check_finite(epoch, "reward from the environment", std::nan(""));
+  if (!buffer_.costs().allFinite()) check_finite(epoch, "cost from the environment", std::nan(""));
 }
 
 void OnPolicyTrainer::check_parameters_finite(int epoch) const {
@@ -148,6 +160,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
 
   // 2. Rollout.
   collector_.collect(*env_, stream_seed(config_, SeedStream::environment, rank, epoch), ac, noise_rng_, buffer_);
+  check_rollout_finite(epoch);
   const double collect_seconds = seconds_since(epoch_start);
   const auto update_start = Clock::now();
 
@@ -236,7 +249,13 @@ TrainingOutcome OnPolicyTrainer::run() {
   TrainingOutcome outcome;
   for (int epoch = progress_.epochs_completed; epoch < config_.epochs; ++epoch) {
     if (options_.stop_after_epochs > 0 && progress_.epochs_completed >= options_.stop_after_epochs) break;
-    run_epoch(epoch);
+    try {
+      run_epoch(epoch);
+    } catch (const NonFiniteError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw std::runtime_error("epoch " + std::to_string(epoch) + ": " + e.what());
+    }
   }
   outcome.epochs_completed = progress_.epochs_completed;
   outcome.finished = progress_.epochs_completed == config_.epochs;

@@ -28,9 +28,12 @@
 // original seeds one stream per rank with seed + 10000 rank; a run therefore
 // does not reproduce the original's random numbers, only its statistics.)
 //
-// Errors: a non-finite loss or parameter throws NonFiniteError naming the
-// quantity and the epoch before anything of that epoch is saved, so the last
-// checkpoint stays good.
+// Errors: non-finite data from the environment, a non-finite loss or a
+// non-finite parameter (a non-finite gradient shows in the parameters or the
+// Adam moments) throws NonFiniteError naming the quantity and the epoch
+// before anything of that epoch is saved, so the last checkpoint stays good.
+// Any other error inside an epoch is rethrown as std::runtime_error with the
+// epoch prepended.
 #pragma once
 
 #include <iosfwd>
@@ -75,6 +78,10 @@ class OnPolicyTrainer {
   // (which must not hold a run); a resumed run loads the checkpoint, which
   // must match `config`.
   OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi, TrainerOptions options);
+  // The same with a given environment instead of envs::make(config.env_id)
+  // (tests use scripted environments).
+  OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi, TrainerOptions options,
+                  std::unique_ptr<envs::Env> env);
   ~OnPolicyTrainer();
 
   TrainingOutcome run();
@@ -86,10 +93,11 @@ class OnPolicyTrainer {
  private:
   void run_epoch(int epoch);
   void standardize_advantages();
+  void check_rollout_finite(int epoch) const;
   void check_finite(int epoch, const char* quantity, double value) const;
   void check_parameters_finite(int epoch) const;
   void check_ranks_agree(int epoch) const;
-  void save_checkpoint() const;
+  void save_checkpoint();
 
   RunConfig config_;
   RunDirectory directory_;
@@ -108,6 +116,7 @@ class OnPolicyTrainer {
   Rng shuffle_rng_;
   TrainingProgress progress_;
   std::optional<ProgressCsv> progress_csv_;  // rank 0
+  int checkpoint_epochs_ = 0;  // epochs covered by the last checkpoint saved or loaded
   double seconds_this_process_ = 0.0;
   int epochs_this_process_ = 0;
 };

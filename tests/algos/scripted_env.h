@@ -2,9 +2,12 @@
 // observation (t, episode step, seed-dependent offset), reward 1 + 0.01 t,
 // cost 1 on every `cost_period`-th episode step, truncation after
 // `episode_length` steps and an optional termination after
-// `terminate_after` steps. It records every reset.
+// `terminate_after` steps. It records every reset. Setting
+// `nan_reward_after_steps` makes every reward after that many steps (in
+// total) NaN, to test the training loop's safety net.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -50,6 +53,7 @@ class ScriptedEnv : public envs::Env {
     ++total_steps;
     envs::StepResult result;
     result.reward = 1.0 + 0.01 * static_cast<double>(episode_step_);
+    if (nan_reward_after_steps && total_steps > *nan_reward_after_steps) result.reward = std::nan("");
     result.cost = episode_step_ % cost_period_ == 0 ? 1.0 : 0.0;
     result.terminated = terminate_after_ && episode_step_ >= *terminate_after_;
     result.truncated = !result.terminated && episode_step_ >= spec_.max_episode_steps;
@@ -64,6 +68,7 @@ class ScriptedEnv : public envs::Env {
   std::vector<std::uint64_t> seeded_resets;
   int unseeded_resets = 0;
   long long total_steps = 0;
+  std::optional<long long> nan_reward_after_steps;
 
  private:
   std::span<const double> start_episode() {
