@@ -310,7 +310,7 @@ TEST_P(GoldenAlignment, ResetAndBothSequencesMatchTheOriginalWithinTheReadmeWind
                     select(after.at("joint_qd"), movable), golden.at("reset_obs"), false);
       if (golden.at("initial_state").contains("box")) {
         const json& box = golden.at("initial_state").at("box").at("after_reset");
-        const BoxState& state = env->state().box.value();
+        const BoxState state = env->state().box.value();
         d.note(d.position, max_diff(state.position, vec3(box.at("pos"))), "box_pos");
         d.note(d.velocity_obs, max_diff(state.linear_velocity, vec3(box.at("lin_vel"))),
                "box_lin_vel");
