@@ -214,3 +214,25 @@ TEST(Eval, ADirectoryWithoutARunIsAnError) {
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find(dir.path().string()), std::string::npos) << result.output;
 }
+
+TEST(Train, AnErrorOnOneMpiRankEndsTheWholeJob) {
+  TempDir dir;
+  const std::string command = "train " + tiny_run_file(dir, 1) + kConfigs + " --quiet --out " + dir.str("run");
+  ASSERT_EQ(run_bsg(command).exit_code, 0);
+  // Only rank 0 checks the run directory: rank 1 goes on into the first
+  // collective and must be ended by rank 0's abort, not left waiting.
+  const std::string mpi_command = "timeout 120 mpirun -np 2 --oversubscribe " + std::string(BSG_BINARY) + " " +
+                                  command + " 2>&1";
+  FILE* pipe = popen(mpi_command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char chunk[4096];
+  std::size_t n = 0;
+  while ((n = fread(chunk, 1, sizeof(chunk), pipe)) > 0) output.append(chunk, n);
+  const int status = pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_NE(WEXITSTATUS(status), 0) << output;
+  EXPECT_NE(WEXITSTATUS(status), 124) << "timed out (a rank hung):\n" << output;
+  EXPECT_NE(output.find("already holds a run"), std::string::npos) << output;
+  EXPECT_NE(output.find("rank 0"), std::string::npos) << output;
+}
