@@ -34,6 +34,7 @@ pid_t start_child(const ChildCommand& command) {
     if (null_fd >= 0) ::dup2(null_fd, STDIN_FILENO);
     ::dup2(log_fd, STDOUT_FILENO);
     ::dup2(log_fd, STDERR_FILENO);
+    if (command.inherited_fd >= 0) ::fcntl(command.inherited_fd, F_SETFD, 0);  // survives exec
     for (const auto& [name, value] : command.environment) ::setenv(name.c_str(), value.c_str(), 1);
     if (!dir.empty() && ::chdir(dir.c_str()) != 0) ::_exit(127);
     ::execvp(argv[0], argv.data());

@@ -19,6 +19,7 @@ struct ChildCommand {
   std::vector<std::pair<std::string, std::string>> environment;  // added to ours
   std::filesystem::path working_dir;  // empty: ours
   std::filesystem::path log_file;     // stdout and stderr, appended; stdin is /dev/null
+  int inherited_fd = -1;              // a descriptor the program keeps open (e.g. a lock)
 };
 
 // Throws std::runtime_error naming the program or log file if it cannot start.

@@ -17,6 +17,7 @@
 
 #include "algos/run_directory.h"
 #include "child_process.h"
+#include "run_lock.h"
 #include "commands.h"
 #include "common/atomic_file.h"
 #include "common/csv_text.h"
@@ -161,12 +162,23 @@ double SweepRunner::steps_done_now() const {
 void SweepRunner::start(std::size_t index) {
   PlannedRun& run = plan_.runs[index];
   std::filesystem::create_directories(run.dir);
+  const std::optional<RunLock> lock = RunLock::try_acquire(run.dir);
+  if (!lock) {
+    throw std::runtime_error("another process is running it (it holds " + (run.dir / kRunLockName).string() +
+                             "); run the sweep again once it has ended");
+  }
   const RunDirectory directory(run.dir);
   run.state = run_state(directory);
+  if (run.state == RunState::finished) {  // finished since the plan was made
+    ++finished_;
+    events_.record("skip", run.run.relative_dir(), "finished by another process");
+    return;
+  }
   if (run.state == RunState::fresh) clear_unstarted_run(directory);
   // The resolved run file, so that the run can be reproduced by hand.
   write_file_atomically(run.dir / kSweepRunFileName, to_yaml(run.config));
-  const ChildCommand command = train_command(run, bsg_program_, configs_dir_, options_.ranks_per_run);
+  ChildCommand command = train_command(run, bsg_program_, configs_dir_, options_.ranks_per_run);
+  command.inherited_fd = lock->fd();  // the child holds the lock until it ends
   {
     std::ofstream log(command.log_file, std::ios::app);
     log << "=== bsg sweep " << timestamp() << ": " << command_line_text(command.argv) << "\n";

@@ -14,6 +14,7 @@
 //                              before it starts: `bsg train run.yaml --out .`
 //                              reproduces it by hand
 //                 train.log    the output of `bsg train`
+//                 train.lock   flock()ed by the `bsg train` child while it runs
 //                 + the trainer's files (algos/run_directory.h)
 #pragma once
 

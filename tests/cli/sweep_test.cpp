@@ -5,7 +5,9 @@
 // `bsg table` and scripts/plot_curves.py produce the table and the plots.
 // Also the dry run, and errors naming the grid, the key or the run at fault.
 #include <gtest/gtest.h>
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -323,6 +325,31 @@ TEST(Sweep, ARunDirectoryOfAnotherConfigurationIsNotTouched) {
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_NE(result.output.find("holds a run of another configuration"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("epochs: 2"), std::string::npos) << result.output;
+}
+
+TEST(Sweep, ARunLockedByAnotherProcessIsNotStartedTwice) {
+  TempDir temp;
+  const fs::path grid = temp.path() / "one.yaml";
+  std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [7]\nfixed: {epochs: 1, steps_per_epoch: 500}\n"
+                         "algorithms: {trpo: }\n";
+  const fs::path out = temp.path() / "out";
+  const fs::path run_dir = out / bsg::expand_grid(bsg::load_grid_file(grid)).front().relative_dir();
+  fs::create_directories(run_dir);
+  // As a `bsg train` left running by a killed sweep would hold it.
+  const int fd = open((run_dir / "train.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
+  const std::string command = "sweep " + grid.string() + " --configs " + (kSource / "configs").string() +
+                              " --out " + out.string();
+  auto result = run_bsg(command);
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("FAILED SafetyBallCircle-v0/trpo/default/seed=7: another process is running it"),
+            std::string::npos)
+      << result.output;
+  EXPECT_FALSE(fs::exists(bsg::RunDirectory(run_dir).progress()));
+  close(fd);  // that process has ended: the run can start
+  result = run_bsg(command);
+  EXPECT_EQ(result.exit_code, 0) << result.output;
 }
 
 }  // namespace
