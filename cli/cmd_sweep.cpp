@@ -337,8 +337,10 @@ void add_sweep_command(CLI::App& app, Action& run) {
   sweep->add_option("--out", options->out_dir, "sweep directory (default: sweeps/<grid name>)");
   sweep->add_option("--configs", options->configs_dir,
                     "configs directory (default: the one at or above the grid file)");
-  sweep->add_option("--env", options->only_env_ids, "run only this environment of the grid (repeatable)");
-  sweep->add_option("--alg", options->only_algorithms, "run only this algorithm of the grid (repeatable)");
+  sweep->add_option("--env", options->only_env_ids, "run only this environment of the grid (repeatable)")
+      ->allow_extra_args(false);  // one value per --env: `--env ID GRID` leaves GRID alone
+  sweep->add_option("--alg", options->only_algorithms, "run only this algorithm of the grid (repeatable)")
+      ->allow_extra_args(false);
   sweep->add_flag("--dry-run", options->dry_run, "list the runs and their cost in env steps; run nothing");
   sweep->callback([options, &run] { run = [options] { return run_sweep(*options); }; });
 }
