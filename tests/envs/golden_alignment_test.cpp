@@ -83,15 +83,9 @@ struct KnownDeviation {
 };
 
 const std::vector<KnownDeviation>& known_deviations() {
-  static const std::vector<KnownDeviation> deviations = {
-      // Ball Reach (1 sub-step of 1/60 s): bit-exact up to t = 12; at t = 13 the
-      // ball-ground contact manifold drops a stale point at a different step
-      // than PyBullet's Bullet build, a one-off 0.3 % difference in that step's
-      // rolling resistance. Afterwards the error stays at ~1e-2 rad/s and the
-      // position drifts to 3e-3 m by t = 119. Not yet explained (open issue).
-      {"SafetyBallReach-v0", {"sine", 13, kForever, 5e-3, 2e-2, 1e-4, 1e-4, true, false},
-       "contact-manifold point refresh differs from the original's Bullet build"},
-  };
+  // None at present. (Ball Reach diverged from t = 13 until the ground became
+  // PyBullet's URDF link with its box offset in a compound shape, df8088f.)
+  static const std::vector<KnownDeviation> deviations = {};
   return deviations;
 }
 
