@@ -221,8 +221,10 @@ TEST(Train, AnErrorOnOneMpiRankEndsTheWholeJob) {
   ASSERT_EQ(run_bsg(command).exit_code, 0);
   // Only rank 0 checks the run directory: rank 1 goes on into the first
   // collective and must be ended by rank 0's abort, not left waiting.
-  const std::string mpi_command = "timeout 120 mpirun -np 2 --oversubscribe " + std::string(BSG_BINARY) + " " +
-                                  command + " 2>&1";
+  // Open MPI refuses to run as root without these (CI runs as root).
+  const std::string mpi_command = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 120 "
+                                  "mpirun -np 2 --oversubscribe " +
+                                  std::string(BSG_BINARY) + " " + command + " 2>&1";
   FILE* pipe = popen(mpi_command.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   std::string output;
