@@ -1,6 +1,7 @@
 #include "algos/evaluation.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -69,7 +70,9 @@ EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_criti
   for (std::size_t i = 0; i + 2 < gathered.size(); i += 3) {
     summary.episodes.push_back({gathered[i], gathered[i + 1], static_cast<int>(gathered[i + 2])});
   }
-  if (!summary.episodes.empty()) {
+  if (summary.episodes.empty()) {
+    summary.mean_return = summary.mean_cost = summary.mean_length = std::nan("");
+  } else {
     for (const EvaluationEpisode& e : summary.episodes) {
       summary.mean_return += e.episode_return;
       summary.mean_cost += e.episode_cost;

@@ -27,7 +27,7 @@ struct EvaluationEpisode {
 
 struct EvaluationSummary {
   std::vector<EvaluationEpisode> episodes;  // every rank's, in rank order (rank 0 only)
-  double mean_return = 0.0;                 // J
+  double mean_return = 0.0;                 // J (NaN without episodes)
   double mean_cost = 0.0;                   // H
   double mean_length = 0.0;
 };
