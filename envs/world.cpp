@@ -70,6 +70,10 @@ World::World(WorldLayout layout, int sub_steps) : layout_(layout), sub_steps_(su
       dispatcher_.get(), broadphase_.get(), solver_.get(), collision_configuration_.get());
   dynamics_->setGravity(btVector3(0, 0, kGravity));
   dynamics_->getDispatchInfo().m_deterministicOverlappingPairs = true;
+  // Bullet recomputes every object's bounding box at every internal step by
+  // default; the ground and walls never move, so only moving bodies need it
+  // (about 8 % of a Ball step; contacts are unchanged).
+  dynamics_->setForceUpdateAllAabbs(false);
 
   btContactSolverInfo& info = dynamics_->getSolverInfo();
   info.m_numIterations = 5;
