@@ -115,7 +115,9 @@ TEST(ReachTask, RewardIsProgressTowardsTheGoalPlusOneHundredthOfTheAgentTerm) {
     const StepResult result = env->step(std::vector<double>{0.4, -0.2});
     const EnvState state = env->state();
     const double d = planar(state.goal.value(), state.agent_position);
-    if (result.reward < 4) EXPECT_NEAR(result.reward, d_prev - d + 0.01 * state.agent_reward, 1e-12);
+    if (result.reward < 4) {
+      EXPECT_NEAR(result.reward, d_prev - d + 0.01 * state.agent_reward, 1e-12);
+    }
   }
 }
 
