@@ -5,9 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include <LinearMath/btMatrix3x3.h>
-
 #include "agent.h"
+#include "ray_fan.h"
 #include "world.h"
 
 namespace bsg::envs {
@@ -23,20 +22,35 @@ LidarSensor::LidarSensor(const World& world, int rays, double range_m)
   }
 }
 
-void LidarSensor::measure(const Agent& agent, std::span<double> out) const {
+LidarSensor::Mount LidarSensor::mount(const Agent& agent) const {
   const AgentTraits& traits = agent.traits();
-  btVector3 start = agent.position();
-  btMatrix3x3 rotation = btMatrix3x3::getIdentity();
-  if (traits.sensor_rotates) {
-    rotation.setRotation(agent.orientation());
-    start += rotation * traits.sensor_offset;
+  Mount mount{agent.position(), btMatrix3x3::getIdentity(), traits.sensor_rotates};
+  if (mount.rotates) {
+    mount.rotation.setRotation(agent.orientation());
+    mount.origin += mount.rotation * traits.sensor_offset;
   } else {
-    start += traits.sensor_offset;
+    mount.origin += traits.sensor_offset;
   }
+  return mount;
+}
+
+btVector3 LidarSensor::ray_end(const Mount& mount, size_t i) const {
+  return mount.origin +
+         (mount.rotates ? mount.rotation * directions_[i] : directions_[i]) * range_m_;
+}
+
+void LidarSensor::measure(const Agent& agent, std::span<double> out) const {
+  const Mount sensor = mount(agent);
+  const RayFan colliders(world_, sensor.origin, range_m_, agent.colliders());
   for (size_t i = 0; i < directions_.size(); ++i) {
-    const btVector3 end = start + (traits.sensor_rotates ? rotation * directions_[i]
-                                                         : directions_[i]) * range_m_;
-    out[i] = 1.0 - world_.ray_hit_fraction(start, end, agent.colliders());
+    out[i] = 1.0 - colliders.hit_fraction(ray_end(sensor, i));
+  }
+}
+
+void LidarSensor::measure_reference(const Agent& agent, std::span<double> out) const {
+  const Mount sensor = mount(agent);
+  for (size_t i = 0; i < directions_.size(); ++i) {
+    out[i] = 1.0 - world_.ray_hit_fraction(sensor.origin, ray_end(sensor, i), agent.colliders());
   }
 }
 

@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include <LinearMath/btMatrix3x3.h>
 #include <LinearMath/btVector3.h>
 
 namespace bsg::envs {
@@ -26,10 +27,24 @@ class LidarSensor {
   int rays() const { return static_cast<int>(directions_.size()); }
   double range_m() const { return range_m_; }
 
-  // Writes rays() values for the agent's current pose.
+  // Writes rays() values for the agent's current pose. The rays share one
+  // collection of nearby colliders (RayFan) instead of one broadphase walk each.
   void measure(const Agent& agent, std::span<double> out) const;
+  // The same values, bit for bit, from World::ray_hit_fraction per ray (one
+  // Bullet rayTest each): the straightforward path, kept as the oracle of
+  // measure() in tests.
+  void measure_reference(const Agent& agent, std::span<double> out) const;
 
  private:
+  // Where the sensor sits for the agent's pose; ray_end() gives ray i's end.
+  struct Mount {
+    btVector3 origin;
+    btMatrix3x3 rotation;
+    bool rotates;
+  };
+  Mount mount(const Agent& agent) const;
+  btVector3 ray_end(const Mount& mount, size_t i) const;
+
   const World& world_;
   double range_m_;
   std::vector<btVector3> directions_;  // unit, world frame for a non-rotating mount
