@@ -5,8 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Core>
 #include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -89,6 +90,32 @@ struct SyntheticBatch {
            static_cast<double>(old_means.rows() * old_means.cols());
   }
 };
+
+// The batch's surrogates and policy means before a constrained update (CPO,
+// PCPO), and the end-to-end constrained tests an accepted update must pass
+// (spec §14.2): the KL stays within 1.5 target_kl, the cost surrogate rises
+// by at most max(-c, 0), and while feasible (c < 0) the reward surrogate does
+// not fall. c is the normalised constraint value the update was given.
+struct BeforeConstrainedUpdate {
+  explicit BeforeConstrainedUpdate(const SyntheticBatch& batch)
+      : reward_surrogate(batch.reward_surrogate()),
+        cost_surrogate(batch.cost_surrogate()),
+        means(batch.means()) {}
+
+  double reward_surrogate;
+  double cost_surrogate;
+  Eigen::MatrixXd means;
+};
+
+inline void expect_passes_constrained_tests(const SyntheticBatch& batch,
+                                            const BeforeConstrainedUpdate& before, double c,
+                                            double target_kl) {
+  EXPECT_LE(batch.kl_from(before.means), 1.5 * target_kl);
+  EXPECT_LE(batch.cost_surrogate() - before.cost_surrogate, std::max(-c, 0.0) + 1e-15);
+  if (c < 0.0) {
+    EXPECT_GE(batch.reward_surrogate(), before.reward_surrogate);
+  }
+}
 
 inline const MpiContext& single_process() {
   static const MpiContext context = MpiContext::single_process();

@@ -115,9 +115,7 @@ TEST(Pcpo, EndToEndStepPassesTheConstrainedTests) {
       RunConfig config = testing::config_for(Algorithm::pcpo);
       config.pcpo_projection = projection;
       const double c = (mean_episode_cost - 25.0) / (100.0 + 1e-8);
-      const double reward_before = batch.reward_surrogate();
-      const double cost_before = batch.cost_surrogate();
-      const Eigen::MatrixXd old_means = batch.means();
+      const testing::BeforeConstrainedUpdate before(batch);
 
       PolicySurrogate surrogate = batch.surrogate();
       Pcpo pcpo(config);
@@ -126,11 +124,7 @@ TEST(Pcpo, EndToEndStepPassesTheConstrainedTests) {
       EXPECT_EQ(result.value("Misc/OptimCase"), c >= 0.0 ? 1.0 : 2.0);
       if (result.value("Misc/AcceptanceStep") == 0.0) continue;
       ++accepted_updates;
-      EXPECT_LE(batch.kl_from(old_means), 1.5 * config.target_kl);
-      EXPECT_LE(batch.cost_surrogate() - cost_before, std::max(-c, 0.0) + 1e-15);
-      if (c < 0.0) {
-        EXPECT_GE(batch.reward_surrogate(), reward_before);
-      }
+      testing::expect_passes_constrained_tests(batch, before, c, config.target_kl);
     }
   }
   EXPECT_EQ(accepted_updates, 4);

@@ -2,41 +2,21 @@
 // (algos/epoch_statistics.h), the column names (algos/epoch_log.h) and the
 // console line (algos/progress_line.h).
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "../test_support.h"
 #include "algos/epoch_log.h"
 #include "algos/epoch_statistics.h"
 #include "algos/progress_csv.h"
 #include "algos/progress_line.h"
 
 namespace fs = std::filesystem;
+using bsg::testing::read_text_file;
+using bsg::testing::TemporaryDirectory;
 
 namespace {
-
-class TempDir {
- public:
-  TempDir() {
-    char pattern[] = "/tmp/bsg_progress_test_XXXXXX";
-    path_ = mkdtemp(pattern);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-std::string read_all(const fs::path& path) {
-  std::ifstream file(path);
-  std::ostringstream contents;
-  contents << file.rdbuf();
-  return contents.str();
-}
 
 std::vector<bsg::NamedScalar> row(double epoch, double value) { return {{"epoch", epoch}, {"x", value}}; }
 
@@ -61,24 +41,24 @@ TEST(PoolStatistics, NoValuesGiveNan) {
 }
 
 TEST(ProgressCsv, HeaderFromTheFirstRowThenValuesThatReadBackExactly) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const fs::path path = dir.path() / "progress.csv";
   bsg::ProgressCsv csv = bsg::ProgressCsv::create(path);
   csv.write_row(row(0, 0.1));
   csv.write_row(row(1, 1.0 / 3.0));
-  EXPECT_EQ(read_all(path), "epoch,x\n0,0.1\n1,0.3333333333333333\n");
+  EXPECT_EQ(read_text_file(path), "epoch,x\n0,0.1\n1,0.3333333333333333\n");
   EXPECT_EQ(std::stod(bsg::format_csv_number(1.0 / 3.0)), 1.0 / 3.0);
 }
 
 TEST(ProgressCsv, ARowWithOtherColumnsIsAnError) {
-  TempDir dir;
+  TemporaryDirectory dir;
   bsg::ProgressCsv csv = bsg::ProgressCsv::create(dir.path() / "progress.csv");
   csv.write_row(row(0, 1));
   EXPECT_THROW(csv.write_row({{"epoch", 1}, {"y", 2}}), std::logic_error);
 }
 
 TEST(ProgressCsv, ResumeDropsRowsAfterTheCheckpointAndAppends) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const fs::path path = dir.path() / "progress.csv";
   {
     bsg::ProgressCsv csv = bsg::ProgressCsv::create(path);
@@ -86,12 +66,12 @@ TEST(ProgressCsv, ResumeDropsRowsAfterTheCheckpointAndAppends) {
   }
   bsg::ProgressCsv resumed = bsg::ProgressCsv::resume(path, 3);  // checkpoint after 3 epochs
   resumed.write_row(row(3, 99));
-  EXPECT_EQ(read_all(path), "epoch,x\n0,0\n1,10\n2,20\n3,99\n");
+  EXPECT_EQ(read_text_file(path), "epoch,x\n0,0\n1,10\n2,20\n3,99\n");
   EXPECT_THROW(resumed.write_row({{"epoch", 4}}), std::logic_error);
 }
 
 TEST(ProgressCsv, ResumeWithFewerRowsThanTheCheckpointIsAnError) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const fs::path path = dir.path() / "progress.csv";
   {
     bsg::ProgressCsv csv = bsg::ProgressCsv::create(path);

@@ -9,23 +9,24 @@
 //   CPO/PCPO the optimisation case says "infeasible" exactly when J_C >= d.
 // The runs are deterministic; the margins are wide (see the comments).
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <numeric>
 #include <string>
 #include <vector>
 
+#include "../test_support.h"
 #include "algos/progress_csv.h"
 #include "algos/trainer.h"
 #include "common/mpi_context.h"
 #include "common/run_config_resolve.h"
 
 namespace fs = std::filesystem;
+using bsg::testing::read_csv_rows;
+using bsg::testing::TemporaryDirectory;
 
 namespace {
 
@@ -34,14 +35,13 @@ constexpr double kCostLimit = 2.0;
 using Columns = std::map<std::string, std::vector<double>>;
 
 Columns read_progress(const fs::path& path) {
-  std::ifstream file(path);
-  std::string line;
-  std::getline(file, line);
-  const std::vector<std::string> names = bsg::split_csv_line(line);
+  const std::vector<std::vector<std::string>> rows = read_csv_rows(path);
   Columns columns;
-  while (std::getline(file, line)) {
-    const std::vector<std::string> values = bsg::split_csv_line(line);
-    for (std::size_t i = 0; i < names.size(); ++i) columns[names[i]].push_back(std::stod(values.at(i)));
+  for (std::size_t row = 1; row < rows.size(); ++row) {
+    const std::vector<std::string>& names = rows.front();
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      columns[names[i]].push_back(std::stod(rows[row].at(i)));
+    }
   }
   return columns;
 }
@@ -63,14 +63,12 @@ SmokeRun train(const std::string& alg, const std::vector<std::string>& overrides
   request.set_arguments.insert(request.set_arguments.end(), overrides.begin(), overrides.end());
   SmokeRun run;
   run.config = bsg::resolve_run_config(request).config;
-  char pattern[] = "/tmp/bsg_trainer_smoke_test_XXXXXX";
-  const fs::path directory = mkdtemp(pattern);
-  bsg::OnPolicyTrainer trainer(run.config, bsg::RunDirectory(directory / "run"), bsg::MpiContext::single_process(),
-                               {});
+  const TemporaryDirectory directory;
+  bsg::OnPolicyTrainer trainer(run.config, bsg::RunDirectory(directory.path() / "run"),
+                               bsg::MpiContext::single_process(), {});
   const bsg::TrainingOutcome outcome = trainer.run();
   EXPECT_TRUE(outcome.finished);
-  run.progress = read_progress(directory / "run" / "progress.csv");
-  fs::remove_all(directory);
+  run.progress = read_progress(directory.path() / "run" / "progress.csv");
   return run;
 }
 

@@ -2,35 +2,22 @@
 // safety net for non-finite values keeps the last good checkpoint, and
 // epochs resumed in process continue exactly.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 
+#include "../test_support.h"
 #include "algos/make_algorithm.h"
 #include "algos/trainer.h"
 #include "algos/training_checkpoint.h"
 #include "scripted_env.h"
 
 namespace fs = std::filesystem;
+using bsg::testing::read_text_file;
 using bsg::testing::ScriptedEnv;
+using bsg::testing::TemporaryDirectory;
 
 namespace {
-
-class TempDir {
- public:
-  TempDir() {
-    char pattern[] = "/tmp/bsg_trainer_test_XXXXXX";
-    path_ = mkdtemp(pattern);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 bsg::RunConfig scripted_config() {
   bsg::RunConfig config;
@@ -47,17 +34,10 @@ bsg::RunConfig scripted_config() {
   return config;
 }
 
-std::string read_all(const fs::path& path) {
-  std::ifstream file(path);
-  std::ostringstream contents;
-  contents << file.rdbuf();
-  return contents.str();
-}
-
 }  // namespace
 
 TEST(Trainer, RunsEveryEpochThenEvaluates) {
-  TempDir dir;
+  TemporaryDirectory dir;
   bsg::OnPolicyTrainer trainer(scripted_config(), bsg::RunDirectory(dir.path() / "run"),
                                bsg::MpiContext::single_process(), {}, std::make_unique<ScriptedEnv>(100));
   const bsg::TrainingOutcome outcome = trainer.run();
@@ -69,12 +49,12 @@ TEST(Trainer, RunsEveryEpochThenEvaluates) {
   EXPECT_NEAR(outcome.evaluation->mean_return, 100 + 0.01 * 5050, 1e-9);  // the scripted reward ignores actions
   EXPECT_NEAR(outcome.evaluation->mean_cost, 10.0, 1e-12);
   // Epoch 0's exploration noise is sigma_0 = 0.499 (1 - 0/5) + 0.01.
-  const std::string progress = read_all(dir.path() / "run" / "progress.csv");
+  const std::string progress = read_text_file(dir.path() / "run" / "progress.csv");
   EXPECT_NE(progress.find(",0.509,"), std::string::npos) << progress.substr(0, 400);
 }
 
 TEST(Trainer, ANonFiniteRewardStopsTheRunAndKeepsTheLastCheckpoint) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const bsg::RunConfig config = scripted_config();
   auto env = std::make_unique<ScriptedEnv>(100);
   env->nan_reward_after_steps = 2 * 400 + 50;  // in epoch 2
@@ -100,7 +80,7 @@ TEST(Trainer, ANonFiniteRewardStopsTheRunAndKeepsTheLastCheckpoint) {
 }
 
 TEST(Trainer, ResumingInProcessContinuesWithTheSameNumbers) {
-  TempDir dir;
+  TemporaryDirectory dir;
   bsg::RunConfig config = scripted_config();
   config.save_freq = 10;  // only the stop and the end save
   bsg::OnPolicyTrainer whole(config, bsg::RunDirectory(dir.path() / "whole"), bsg::MpiContext::single_process(), {},

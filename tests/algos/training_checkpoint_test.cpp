@@ -3,12 +3,10 @@
 // algorithm's state bit for bit; a checkpoint of another configuration or a
 // damaged file is an error naming the file.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "../test_support.h"
 #include "algos/actor_critic.h"
 #include "algos/make_algorithm.h"
 #include "algos/training_checkpoint.h"
@@ -16,21 +14,9 @@
 #include "common/checkpoint_file.h"
 
 namespace fs = std::filesystem;
+using bsg::testing::TemporaryDirectory;
 
 namespace {
-
-class TempDir {
- public:
-  TempDir() {
-    char pattern[] = "/tmp/bsg_training_checkpoint_test_XXXXXX";
-    path_ = mkdtemp(pattern);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 bsg::RunConfig lag_trpo_config() {
   bsg::RunConfig config;
@@ -87,7 +73,7 @@ std::string error_of(const std::function<void()>& action) {
 }  // namespace
 
 TEST(TrainingCheckpoint, SaveThenLoadRestoresEverythingExactly) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const bsg::RunConfig config = lag_trpo_config();
   bsg::Rng rng_a(1);
   bsg::ActorCritic saved(5, 2, config, rng_a);
@@ -114,7 +100,7 @@ TEST(TrainingCheckpoint, SaveThenLoadRestoresEverythingExactly) {
 }
 
 TEST(TrainingCheckpoint, ACheckpointOfAnotherConfigurationIsRejected) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const bsg::RunConfig config = lag_trpo_config();
   bsg::Rng rng(1);
   bsg::ActorCritic ac(5, 2, config, rng);
@@ -148,7 +134,7 @@ TEST(TrainingCheckpoint, TruncatedPayloadsAreErrorsNamingTheFile) {
 }
 
 TEST(TrainingCheckpoint, NetworksOfAnotherShapeAreRejected) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const bsg::RunConfig config = lag_trpo_config();
   bsg::Rng rng(1);
   bsg::ActorCritic ac(5, 2, config, rng);

@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "../test_support.h"
 #include "algos/run_directory.h"
 #include "algos/run_results.h"
 #include "common/csv_text.h"
@@ -29,32 +30,14 @@
 #include "run_bsg.h"
 
 namespace fs = std::filesystem;
+using bsg::testing::read_text_file;
 using bsg::testing::run_bsg;
+using bsg::testing::TemporaryDirectory;
 
 namespace {
 
 const fs::path kSource(BSG_SOURCE_DIR);
 const fs::path kQuickGrid = kSource / "configs" / "grids" / "quick.yaml";
-
-class TempDir {
- public:
-  TempDir() {
-    char pattern[] = "/tmp/bsg_sweep_test_XXXXXX";
-    path_ = mkdtemp(pattern);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-std::string read_all(const fs::path& path) {
-  std::ifstream file(path);
-  std::ostringstream contents;
-  contents << file.rdbuf();
-  return contents.str();
-}
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
@@ -91,7 +74,7 @@ std::vector<fs::path> quick_run_dirs(const fs::path& out) {
 // The epoch column of a progress.csv.
 std::vector<std::string> logged_epoch_values(const fs::path& progress) {
   std::vector<std::string> epochs;
-  const std::vector<std::string> lines = lines_of(read_all(progress));
+  const std::vector<std::string> lines = lines_of(read_text_file(progress));
   for (std::size_t i = 1; i < lines.size(); ++i) epochs.push_back(bsg::parse_csv_fields(lines[i]).at(0));
   return epochs;
 }
@@ -99,7 +82,7 @@ std::vector<std::string> logged_epoch_values(const fs::path& progress) {
 // (event, run_dir) of sweep_events.csv from line `first` on.
 std::vector<std::pair<std::string, std::string>> events_from(const fs::path& out, std::size_t first) {
   std::vector<std::pair<std::string, std::string>> events;
-  const std::vector<std::string> lines = lines_of(read_all(out / bsg::kSweepEventsName));
+  const std::vector<std::string> lines = lines_of(read_text_file(out / bsg::kSweepEventsName));
   for (std::size_t i = std::max<std::size_t>(first, 1); i < lines.size(); ++i) {
     const std::vector<std::string> fields = bsg::parse_csv_fields(lines[i]);
     events.emplace_back(fields.at(1), fields.at(2));
@@ -114,8 +97,34 @@ std::size_t count_events(const std::vector<std::pair<std::string, std::string>>&
   return count;
 }
 
+// A grid of one short TRPO run (SafetyBallCircle-v0, seed 7, one epoch of 500
+// steps) in a scratch directory, the sweep's output directory, and that run's
+// directory in it, created empty.
+struct OneRunSweep {
+  OneRunSweep() { fs::create_directories(run_dir); }
+
+  // `bsg sweep` of the grid into `out` with the shipped configs.
+  std::string command() const {
+    return "sweep " + grid.string() + " --configs " + (kSource / "configs").string() + " --out " +
+           out.string();
+  }
+
+  static fs::path write_grid(const fs::path& path) {
+    std::ofstream(path)
+        << "envs: [SafetyBallCircle-v0]\nseeds: [7]\nfixed: {epochs: 1, steps_per_epoch: 500}\n"
+           "algorithms: {trpo: }\n";
+    return path;
+  }
+
+  TemporaryDirectory temp;
+  fs::path grid = write_grid(temp.path() / "one.yaml");
+  fs::path out = temp.path() / "out";
+  bsg::GridRun run = bsg::expand_grid(bsg::load_grid_file(grid)).front();
+  fs::path run_dir = out / run.relative_dir();
+};
+
 TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots) {
-  TempDir temp;
+  TemporaryDirectory temp;
   const fs::path out = temp.path() / "quick";
   const std::vector<fs::path> runs = quick_run_dirs(out);
   ASSERT_EQ(runs.size(), 4u);
@@ -129,7 +138,8 @@ TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots)
   int status = 0;
   while (!midway && std::chrono::steady_clock::now() < deadline) {
     if (waitpid(sweep, &status, WNOHANG) == sweep) {
-      FAIL() << "the sweep ended before it could be killed mid-way:\n" << read_all(temp.path() / "first.log");
+      FAIL() << "the sweep ended before it could be killed mid-way:\n"
+             << read_text_file(temp.path() / "first.log");
     }
     bool some_finished = false;
     bool some_partial = false;
@@ -142,7 +152,8 @@ TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots)
     midway = some_finished && some_partial;
     if (!midway) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
-  ASSERT_TRUE(midway) << "no mid-way state within 60 s:\n" << read_all(temp.path() / "first.log");
+  ASSERT_TRUE(midway) << "no mid-way state within 60 s:\n"
+                      << read_text_file(temp.path() / "first.log");
   ASSERT_EQ(kill(-sweep, SIGKILL), 0);
   ASSERT_EQ(waitpid(sweep, &status, 0), sweep);
   ASSERT_TRUE(WIFSIGNALED(status));
@@ -156,7 +167,7 @@ TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots)
     resumable += state_at_kill[run] == bsg::RunState::resumable ? 1 : 0;
   }
   ASSERT_GE(resumable, 1u) << "the kill should leave a run part-way through";
-  const std::size_t events_before = lines_of(read_all(out / bsg::kSweepEventsName)).size();
+  const std::size_t events_before = lines_of(read_text_file(out / bsg::kSweepEventsName)).size();
 
   // 2. Start again: it finishes the rest.
   const auto second = run_bsg("sweep " + kQuickGrid.string() + " --jobs 2 --out " + out.string());
@@ -173,7 +184,7 @@ TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots)
     EXPECT_EQ(logged_epoch_values(directory.progress()),
               (std::vector<std::string>{"0", "1", "2", "3", "4", "5"}))
         << name;
-    EXPECT_EQ(lines_of(read_all(directory.returns())).size(), 2u) << name;
+    EXPECT_EQ(lines_of(read_text_file(directory.returns())).size(), 2u) << name;
     // The resolved run file reproduces the run's configuration.
     EXPECT_EQ(bsg::load_resolved_run_config(run / bsg::kSweepRunFileName).seed,
               bsg::load_resolved_run_config(directory.config()).seed);
@@ -194,11 +205,12 @@ TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots)
   }
 
   // 3. A third start has nothing to do.
-  const std::size_t events_before_third = lines_of(read_all(out / bsg::kSweepEventsName)).size();
+  const std::size_t events_before_third =
+      lines_of(read_text_file(out / bsg::kSweepEventsName)).size();
   const auto third = run_bsg("sweep " + kQuickGrid.string() + " --out " + out.string());
   EXPECT_EQ(third.exit_code, 0) << third.output;
   EXPECT_NE(third.output.find("4 already finished, 0 to run"), std::string::npos) << third.output;
-  EXPECT_EQ(lines_of(read_all(out / bsg::kSweepEventsName)).size(), events_before_third);
+  EXPECT_EQ(lines_of(read_text_file(out / bsg::kSweepEventsName)).size(), events_before_third);
 
   // 4. Table 1 and the learning curves.
   const auto table = run_bsg("table " + out.string());
@@ -220,12 +232,12 @@ TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots)
   EXPECT_EQ(pclose(pipe), 0) << plot_output;
   const fs::path png = out / "plots" / "SafetyBallCircle-v0.png";
   ASSERT_TRUE(fs::is_regular_file(png)) << plot_output;
-  EXPECT_EQ(read_all(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_EQ(read_text_file(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   EXPECT_NE(plot_output.find("(2 curves)"), std::string::npos) << plot_output;
 }
 
 TEST(Sweep, DryRunListsTheRunsAndTheirCostWithoutRunningAnything) {
-  TempDir temp;
+  TemporaryDirectory temp;
   const auto result = run_bsg("sweep " + kQuickGrid.string() + " --dry-run --out " + (temp.path() / "q").string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("SafetyBallCircle-v0/lag-trpo/target_kl=0.01/seed=1"), std::string::npos)
@@ -248,7 +260,7 @@ TEST(Sweep, TheReportGridCostsWhatTable3AndTheAppendixSay) {
 }
 
 TEST(Sweep, AnUnknownKeyInTheGridIsNamedWithItsLine) {
-  TempDir temp;
+  TemporaryDirectory temp;
   const fs::path grid = temp.path() / "bad.yaml";
   std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [0]\nalgorithms:\n  trpo:\n    axes:\n"
                          "      target_kll: [0.01]\n";
@@ -259,7 +271,7 @@ TEST(Sweep, AnUnknownKeyInTheGridIsNamedWithItsLine) {
 }
 
 TEST(Sweep, MissingAndMalformedGridFilesAreNamed) {
-  TempDir temp;
+  TemporaryDirectory temp;
   auto result = run_bsg("sweep " + (temp.path() / "none.yaml").string() + " --configs " +
                         (kSource / "configs").string());
   EXPECT_EQ(result.exit_code, 1);
@@ -282,65 +294,46 @@ TEST(Sweep, RanksThatDoNotDivideTheBatchAreRejectedNamingTheRun) {
 }
 
 TEST(Sweep, AFailedRunIsReportedWithItsLogAndTheExitCodeSaysSo) {
-  TempDir temp;
-  const fs::path grid = temp.path() / "one.yaml";
-  std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [7]\nfixed: {epochs: 1, steps_per_epoch: 500}\n"
-                         "algorithms: {trpo: }\n";
-  const fs::path out = temp.path() / "out";
   // A run directory with this run's configuration but a damaged checkpoint:
   // the sweep resumes it, and `bsg train --resume` fails.
-  const bsg::GridRun run = bsg::expand_grid(bsg::load_grid_file(grid)).front();
-  const fs::path run_dir = out / run.relative_dir();
-  fs::create_directories(run_dir);
-  bsg::RunConfig config = bsg::resolve_grid_run(run, kSource / "configs", grid.string());
+  const OneRunSweep sweep;
+  const fs::path& run_dir = sweep.run_dir;
+  bsg::RunConfig config =
+      bsg::resolve_grid_run(sweep.run, kSource / "configs", sweep.grid.string());
   bsg::write_run_config(config, bsg::RunDirectory(run_dir).config());
   std::ofstream(bsg::RunDirectory(run_dir).checkpoint()) << "not a checkpoint";
 
-  const auto result = run_bsg("sweep " + grid.string() + " --configs " + (kSource / "configs").string() +
-                              " --out " + out.string());
+  const auto result = run_bsg(sweep.command());
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_NE(result.output.find("FAILED SafetyBallCircle-v0/trpo/default/seed=7: exit code 1; log: " +
                                (run_dir / bsg::kSweepRunLogName).string()),
             std::string::npos)
       << result.output;
   EXPECT_NE(result.output.find("1 of 1 runs failed"), std::string::npos) << result.output;
-  EXPECT_NE(read_all(run_dir / bsg::kSweepRunLogName).find("checkpoint"), std::string::npos);
+  EXPECT_NE(read_text_file(run_dir / bsg::kSweepRunLogName).find("checkpoint"), std::string::npos);
 }
 
 TEST(Sweep, ARunDirectoryOfAnotherConfigurationIsNotTouched) {
-  TempDir temp;
-  const fs::path grid = temp.path() / "one.yaml";
-  std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [7]\nfixed: {epochs: 1, steps_per_epoch: 500}\n"
-                         "algorithms: {trpo: }\n";
-  const fs::path out = temp.path() / "out";
-  const bsg::GridRun run = bsg::expand_grid(bsg::load_grid_file(grid)).front();
-  const fs::path run_dir = out / run.relative_dir();
-  fs::create_directories(run_dir);
-  bsg::RunConfig config = bsg::resolve_grid_run(run, kSource / "configs", grid.string());
+  const OneRunSweep sweep;
+  bsg::RunConfig config =
+      bsg::resolve_grid_run(sweep.run, kSource / "configs", sweep.grid.string());
   config.epochs = 2;
-  bsg::write_run_config(config, bsg::RunDirectory(run_dir).config());
+  bsg::write_run_config(config, bsg::RunDirectory(sweep.run_dir).config());
 
-  const auto result = run_bsg("sweep " + grid.string() + " --configs " + (kSource / "configs").string() +
-                              " --out " + out.string());
+  const auto result = run_bsg(sweep.command());
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_NE(result.output.find("holds a run of another configuration"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("epochs: 2"), std::string::npos) << result.output;
 }
 
 TEST(Sweep, ARunLockedByAnotherProcessIsNotStartedTwice) {
-  TempDir temp;
-  const fs::path grid = temp.path() / "one.yaml";
-  std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [7]\nfixed: {epochs: 1, steps_per_epoch: 500}\n"
-                         "algorithms: {trpo: }\n";
-  const fs::path out = temp.path() / "out";
-  const fs::path run_dir = out / bsg::expand_grid(bsg::load_grid_file(grid)).front().relative_dir();
-  fs::create_directories(run_dir);
+  const OneRunSweep sweep;
+  const fs::path& run_dir = sweep.run_dir;
   // As a `bsg train` left running by a killed sweep would hold it.
   const int fd = open((run_dir / "train.lock").c_str(), O_RDWR | O_CREAT, 0644);
   ASSERT_GE(fd, 0);
   ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
-  const std::string command = "sweep " + grid.string() + " --configs " + (kSource / "configs").string() +
-                              " --out " + out.string();
+  const std::string command = sweep.command();
   auto result = run_bsg(command);
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_NE(result.output.find("FAILED SafetyBallCircle-v0/trpo/default/seed=7: another process is running it"),

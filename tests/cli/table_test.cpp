@@ -3,14 +3,13 @@
 // missing runs shown as missing and never as zero, the mean - std option,
 // the files written, and errors naming the file at fault.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "../test_support.h"
 #include "algos/run_directory.h"
 #include "algos/sweep_results.h"
 #include "common/grid_expansion.h"
@@ -19,31 +18,13 @@
 #include "run_bsg.h"
 
 namespace fs = std::filesystem;
+using bsg::testing::read_text_file;
 using bsg::testing::run_bsg;
+using bsg::testing::TemporaryDirectory;
 
 namespace {
 
 const fs::path kConfigs = fs::path(BSG_SOURCE_DIR) / "configs";
-
-class TempDir {
- public:
-  TempDir() {
-    char pattern[] = "/tmp/bsg_table_test_XXXXXX";
-    path_ = mkdtemp(pattern);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-std::string read_all(const fs::path& path) {
-  std::ifstream file(path);
-  std::ostringstream contents;
-  contents << file.rdbuf();
-  return contents.str();
-}
 
 // A grid of 2 TRPO, 2 CPO and 2 PDO configurations x 2 seeds on BallCircle (d = 25).
 const char* const kGrid =
@@ -83,7 +64,7 @@ class HandMadeSweep : public ::testing::Test {
     FAIL() << "no run " << relative_dir;
   }
 
-  TempDir dir_;
+  TemporaryDirectory dir_;
   std::vector<bsg::GridRun> runs_;
 };
 
@@ -111,16 +92,18 @@ TEST_F(HandMadeSweep, SelectsFeasibleBestFallsBackToLowestViolationAndShowsMissi
             std::string::npos)
       << result.output;
 
-  const std::string csv = read_all(dir_.path() / "table1.csv");
+  const std::string csv = read_text_file(dir_.path() / "table1.csv");
   EXPECT_NE(csv.find("SafetyBallCircle-v0,cpo,feasible,lam_c=0.9,SafetyBallCircle-v0/cpo/lam_c=0.9,2,2,80.0,22.5,"),
             std::string::npos)
       << csv;
   EXPECT_NE(csv.find("SafetyBallCircle-v0,pdo,infeasible,lambda_lr=0.1,SafetyBallCircle-v0/pdo/lambda_lr=0.1,1,2,"),
             std::string::npos)
       << csv;
-  EXPECT_NE(read_all(dir_.path() / "table1.tex").find("\\textbf{0.40 (0.90)}"), std::string::npos);
-  EXPECT_NE(read_all(dir_.path() / "table1.md").find("**0.40 (0.90)**"), std::string::npos);
-  EXPECT_NE(read_all(dir_.path() / "configurations.csv").find("SafetyBallCircle-v0,cpo,lam_c=0.5,2,2,180.0,30.0,25.0,false,180.0,false"),
+  EXPECT_NE(read_text_file(dir_.path() / "table1.tex").find("\\textbf{0.40 (0.90)}"),
+            std::string::npos);
+  EXPECT_NE(read_text_file(dir_.path() / "table1.md").find("**0.40 (0.90)**"), std::string::npos);
+  EXPECT_NE(read_text_file(dir_.path() / "configurations.csv")
+                .find("SafetyBallCircle-v0,cpo,lam_c=0.5,2,2,180.0,30.0,25.0,false,180.0,false"),
             std::string::npos);
 }
 
@@ -134,8 +117,9 @@ TEST_F(HandMadeSweep, AnAlgorithmWithoutFinishedRunsIsMissingNotZero) {
   EXPECT_NE(result.output.find("| BallCircle | 1.00 (4.00) [1/2] | **0.50 (1.60)\u2020 [1/2]** | missing |"),
             std::string::npos)
       << result.output;
-  EXPECT_NE(read_all(dir_.path() / "table1.csv").find("SafetyBallCircle-v0,pdo,missing,,,0,0,,,"),
-            std::string::npos);
+  EXPECT_NE(
+      read_text_file(dir_.path() / "table1.csv").find("SafetyBallCircle-v0,pdo,missing,,,0,0,,,"),
+      std::string::npos);
 }
 
 TEST_F(HandMadeSweep, MeanMinusStdPrefersTheSteadierConfiguration) {

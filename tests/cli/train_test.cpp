@@ -2,68 +2,41 @@
 // interruption reproducing an uninterrupted run, and clear errors with a
 // non-zero exit for bad input.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "../test_support.h"
 #include "run_bsg.h"
 
 namespace fs = std::filesystem;
+using bsg::testing::read_csv_rows;
+using bsg::testing::read_text_file;
 using bsg::testing::run_bsg;
+using bsg::testing::TemporaryDirectory;
+using bsg::testing::write_text_file;
 
 namespace {
-
-class TempDir {
- public:
-  TempDir() {
-    char pattern[] = "/tmp/bsg_train_test_XXXXXX";
-    path_ = mkdtemp(pattern);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-  std::string str(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
-
-std::string read_all(const fs::path& path) {
-  std::ifstream file(path);
-  std::ostringstream contents;
-  contents << file.rdbuf();
-  return contents.str();
-}
-
-void write_all(const fs::path& path, const std::string& text) {
-  std::ofstream file(path);
-  file << text;
-}
 
 const std::string kConfigs = std::string(" --configs ") + BSG_SOURCE_DIR + "/configs";
 
 // A small TRPO-L run on SafetyBallCircle-v0: 4 episodes per epoch.
-std::string tiny_run_file(const TempDir& dir, int epochs) {
+std::string tiny_run_file(const TemporaryDirectory& dir, int epochs) {
   const fs::path path = dir.path() / "run.yaml";
-  write_all(path, "env_id: SafetyBallCircle-v0\nalg: lag-trpo\nseed: 3\nepochs: " + std::to_string(epochs) +
-                      "\nsteps_per_epoch: 1000\nsave_freq: 4\neval_episodes: 2\ncost_limit: 1\n");
+  write_text_file(
+      path,
+      "env_id: SafetyBallCircle-v0\nalg: lag-trpo\nseed: 3\nepochs: " + std::to_string(epochs) +
+          "\nsteps_per_epoch: 1000\nsave_freq: 4\neval_episodes: 2\ncost_limit: 1\n");
   return path.string();
 }
 
 // progress.csv without the wall-clock columns (time_*, fps).
 std::vector<std::vector<std::string>> progress_without_timings(const fs::path& path) {
-  std::ifstream file(path);
-  std::string line;
   std::vector<std::vector<std::string>> rows;
   std::vector<bool> keep;
-  while (std::getline(file, line)) {
-    std::vector<std::string> fields;
-    std::stringstream stream(line);
-    std::string field;
-    while (std::getline(stream, field, ',')) fields.push_back(field);
+  for (const std::vector<std::string>& fields : read_csv_rows(path)) {
     if (keep.empty()) {
       for (const std::string& name : fields) keep.push_back(!(name.rfind("time_", 0) == 0 || name == "fps"));
     }
@@ -79,7 +52,7 @@ std::vector<std::vector<std::string>> progress_without_timings(const fs::path& p
 }  // namespace
 
 TEST(Train, WritesTheRunDirectory) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const auto result = run_bsg("train " + tiny_run_file(dir, 2) + kConfigs + " --out " + dir.str("run"));
   ASSERT_EQ(result.exit_code, 0) << result.output;
   for (const char* file : {"config.yaml", "progress.csv", "checkpoint.bin", "returns.csv", "costs.csv",
@@ -89,15 +62,15 @@ TEST(Train, WritesTheRunDirectory) {
   EXPECT_NE(result.output.find("epoch    2/2"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("lambda"), std::string::npos) << result.output;
   EXPECT_EQ(progress_without_timings(dir.path() / "run" / "progress.csv").size(), 3u);  // header + 2 epochs
-  const std::string returns = read_all(dir.path() / "run" / "returns.csv");
+  const std::string returns = read_text_file(dir.path() / "run" / "returns.csv");
   EXPECT_EQ(std::count(returns.begin(), returns.end(), '\n'), 2);
-  const std::string evaluation = read_all(dir.path() / "run" / "evaluation.json");
+  const std::string evaluation = read_text_file(dir.path() / "run" / "evaluation.json");
   EXPECT_NE(evaluation.find("\"episodes\": 2"), std::string::npos) << evaluation;
   EXPECT_NE(evaluation.find("\"mean_length\": 250"), std::string::npos) << evaluation;
 }
 
 TEST(Train, AResumedRunReproducesAnUninterruptedOne) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const std::string run_file = tiny_run_file(dir, 6);
   const auto whole = run_bsg("train " + run_file + kConfigs + " --quiet --out " + dir.str("whole"));
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
@@ -119,12 +92,14 @@ TEST(Train, AResumedRunReproducesAnUninterruptedOne) {
   const auto actual = progress_without_timings(dir.path() / "split" / "progress.csv");
   ASSERT_EQ(expected.size(), 7u);
   EXPECT_EQ(actual, expected);
-  EXPECT_EQ(read_all(dir.path() / "split" / "returns.csv"), read_all(dir.path() / "whole" / "returns.csv"));
-  EXPECT_EQ(read_all(dir.path() / "split" / "costs.csv"), read_all(dir.path() / "whole" / "costs.csv"));
+  EXPECT_EQ(read_text_file(dir.path() / "split" / "returns.csv"),
+            read_text_file(dir.path() / "whole" / "returns.csv"));
+  EXPECT_EQ(read_text_file(dir.path() / "split" / "costs.csv"),
+            read_text_file(dir.path() / "whole" / "costs.csv"));
 }
 
 TEST(Train, PrintConfigShowsTheResolvedConfiguration) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const auto result = run_bsg("train --print-config " + tiny_run_file(dir, 2) + kConfigs + " --set target_kl=0.005");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   for (const char* line : {"alg: lag-trpo", "target_kl: 0.005", "lambda_lr:", "max_ep_len: 250"}) {
@@ -140,15 +115,15 @@ TEST(Train, AMissingRunFileIsAnErrorNamingIt) {
 }
 
 TEST(Train, AnUnknownKeyIsAnErrorNamingTheKey) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const auto result = run_bsg("train " + tiny_run_file(dir, 2) + kConfigs + " --set no_such_key=3");
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find("no_such_key"), std::string::npos) << result.output;
 }
 
 TEST(Train, MalformedYamlIsAnErrorNamingTheFile) {
-  TempDir dir;
-  write_all(dir.path() / "bad.yaml", "env_id: [unclosed\nalg: trpo\n");
+  TemporaryDirectory dir;
+  write_text_file(dir.path() / "bad.yaml", "env_id: [unclosed\nalg: trpo\n");
   const auto result = run_bsg("train " + dir.str("bad.yaml") + kConfigs);
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find("bad.yaml"), std::string::npos) << result.output;
@@ -161,20 +136,20 @@ TEST(Train, NoConfigAndNoResumeIsACommandLineError) {
 }
 
 TEST(Train, ResumeOfADirectoryWithoutARunIsAnError) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const auto result = run_bsg("train --resume " + dir.path().string());
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find("not a run directory"), std::string::npos) << result.output;
 }
 
 TEST(Train, ResumeWithACorruptCheckpointNamesTheFile) {
-  TempDir dir;
+  TemporaryDirectory dir;
   ASSERT_EQ(run_bsg("train " + tiny_run_file(dir, 3) + kConfigs + " --quiet --stop-after 1 --out " + dir.str("run"))
                 .exit_code,
             0);
   const fs::path checkpoint = dir.path() / "run" / "checkpoint.bin";
-  const std::string bytes = read_all(checkpoint);
-  write_all(checkpoint, bytes.substr(0, bytes.size() / 2));
+  const std::string bytes = read_text_file(checkpoint);
+  write_text_file(checkpoint, bytes.substr(0, bytes.size() / 2));
   const auto result = run_bsg("train --resume " + dir.str("run"));
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find(checkpoint.string()), std::string::npos) << result.output;
@@ -182,18 +157,18 @@ TEST(Train, ResumeWithACorruptCheckpointNamesTheFile) {
 }
 
 TEST(Train, ANewRunIntoAnExistingRunDirectoryIsRefused) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const std::string command = "train " + tiny_run_file(dir, 1) + kConfigs + " --quiet --out " + dir.str("run");
   ASSERT_EQ(run_bsg(command).exit_code, 0);
-  const std::string before = read_all(dir.path() / "run" / "progress.csv");
+  const std::string before = read_text_file(dir.path() / "run" / "progress.csv");
   const auto again = run_bsg(command);
   EXPECT_NE(again.exit_code, 0);
   EXPECT_NE(again.output.find("--resume"), std::string::npos) << again.output;
-  EXPECT_EQ(read_all(dir.path() / "run" / "progress.csv"), before);
+  EXPECT_EQ(read_text_file(dir.path() / "run" / "progress.csv"), before);
 }
 
 TEST(Eval, PrintsJAndHAndPerEpisodeJson) {
-  TempDir dir;
+  TemporaryDirectory dir;
   ASSERT_EQ(run_bsg("train " + tiny_run_file(dir, 1) + kConfigs + " --quiet --out " + dir.str("run")).exit_code, 0);
   const auto plain = run_bsg("eval " + dir.str("run") + " --episodes 2");
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
@@ -204,19 +179,19 @@ TEST(Eval, PrintsJAndHAndPerEpisodeJson) {
   ASSERT_EQ(json.exit_code, 0) << json.output;
   EXPECT_NE(json.output.find("\"returns\": ["), std::string::npos) << json.output;
   EXPECT_NE(json.output.find("\"lengths\": [250, 250]"), std::string::npos) << json.output;
-  const std::string first_return = read_all(dir.path() / "run" / "returns.csv").substr(0, 8);
+  const std::string first_return = read_text_file(dir.path() / "run" / "returns.csv").substr(0, 8);
   EXPECT_NE(json.output.find("\"returns\": [" + first_return), std::string::npos) << json.output;
 }
 
 TEST(Eval, ADirectoryWithoutARunIsAnError) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const auto result = run_bsg("eval " + dir.path().string());
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find(dir.path().string()), std::string::npos) << result.output;
 }
 
 TEST(Train, AnErrorOnOneMpiRankEndsTheWholeJob) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const std::string command = "train " + tiny_run_file(dir, 1) + kConfigs + " --quiet --out " + dir.str("run");
   ASSERT_EQ(run_bsg(command).exit_code, 0);
   // Only rank 0 checks the run directory: rank 1 goes on into the first

@@ -2,46 +2,22 @@
 // (common/atomic_file.h): round trip, and every kind of damaged file gives a
 // CheckpointError that names the file instead of loading garbage.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
+#include "../test_support.h"
 #include "common/atomic_file.h"
 #include "common/binary_io.h"
 #include "common/checkpoint_file.h"
 
 namespace fs = std::filesystem;
+using bsg::testing::read_text_file;
+using bsg::testing::TemporaryDirectory;
+using bsg::testing::write_text_file;
 
 namespace {
-
-class TempDir {
- public:
-  TempDir() {
-    char pattern[] = "/tmp/bsg_checkpoint_file_test_XXXXXX";
-    path_ = mkdtemp(pattern);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-std::string read_all(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::ostringstream contents;
-  contents << file.rdbuf();
-  return contents.str();
-}
-
-void write_all(const fs::path& path, const std::string& bytes) {
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  file << bytes;
-}
 
 // The message of the CheckpointError thrown by read_checkpoint_file(path), or "" if none.
 std::string read_error(const fs::path& path) {
@@ -115,38 +91,38 @@ TEST(BinaryIo, VectorOfUnexpectedLengthIsAnError) {
 }
 
 TEST(CheckpointFile, RoundTripReturnsThePayload) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const fs::path path = dir.path() / "checkpoint.bin";
   const std::string payload = sample_payload();
   bsg::write_checkpoint_file(path, payload);
   EXPECT_EQ(bsg::read_checkpoint_file(path), payload);
   EXPECT_FALSE(fs::exists(bsg::atomic_temporary_path(path)));
-  EXPECT_EQ(read_all(path).substr(0, 8), "BSGCKPT\n");
+  EXPECT_EQ(read_text_file(path).substr(0, 8), "BSGCKPT\n");
 }
 
 TEST(CheckpointFile, EveryTruncationIsAnErrorNamingTheFile) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const fs::path good = dir.path() / "good.bin";
   bsg::write_checkpoint_file(good, sample_payload());
-  const std::string bytes = read_all(good);
+  const std::string bytes = read_text_file(good);
   const fs::path cut = dir.path() / "cut.bin";
   for (std::size_t length = 0; length < bytes.size(); ++length) {
-    write_all(cut, bytes.substr(0, length));
+    write_text_file(cut, bytes.substr(0, length));
     const std::string message = read_error(cut);
     EXPECT_NE(message.find(cut.string()), std::string::npos) << "length " << length << ": '" << message << "'";
   }
 }
 
 TEST(CheckpointFile, AnyFlippedPayloadByteFailsTheChecksum) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const fs::path path = dir.path() / "checkpoint.bin";
   bsg::write_checkpoint_file(path, sample_payload());
-  const std::string bytes = read_all(path);
+  const std::string bytes = read_text_file(path);
   const std::size_t header = 8 + 4 + 8;
   for (std::size_t i = header; i + 8 < bytes.size(); ++i) {
     std::string damaged = bytes;
     damaged[i] = static_cast<char>(damaged[i] ^ 0x10);
-    write_all(path, damaged);
+    write_text_file(path, damaged);
     const std::string message = read_error(path);
     EXPECT_NE(message.find("checksum"), std::string::npos) << "byte " << i << ": '" << message << "'";
     EXPECT_NE(message.find(path.string()), std::string::npos) << message;
@@ -154,33 +130,33 @@ TEST(CheckpointFile, AnyFlippedPayloadByteFailsTheChecksum) {
 }
 
 TEST(CheckpointFile, ForeignFileAndOtherVersionAreRejected) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const fs::path path = dir.path() / "checkpoint.bin";
-  write_all(path, "progress.csv is not a checkpoint\n");
+  write_text_file(path, "progress.csv is not a checkpoint\n");
   EXPECT_NE(read_error(path).find("not a bsg checkpoint"), std::string::npos);
 
   std::string bytes = bsg::encode_checkpoint_file(sample_payload());
   bytes[8] = 99;  // version field
-  write_all(path, bytes);
+  write_text_file(path, bytes);
   EXPECT_NE(read_error(path).find("version 99"), std::string::npos) << read_error(path);
 }
 
 TEST(CheckpointFile, MissingFileIsAnErrorNamingIt) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const fs::path path = dir.path() / "nowhere.bin";
   EXPECT_NE(read_error(path).find(path.string()), std::string::npos);
 }
 
 TEST(AtomicFile, ReplacesTheContents) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const fs::path path = dir.path() / "file.txt";
   bsg::write_file_atomically(path, "old");
   bsg::write_file_atomically(path, "new contents");
-  EXPECT_EQ(read_all(path), "new contents");
+  EXPECT_EQ(read_text_file(path), "new contents");
 }
 
 TEST(AtomicFile, AFailedWriteKeepsTheOldFile) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const fs::path path = dir.path() / "checkpoint.bin";
   bsg::write_checkpoint_file(path, "good payload");
   // The temporary file cannot be created: a directory occupies its name.
@@ -190,11 +166,12 @@ TEST(AtomicFile, AFailedWriteKeepsTheOldFile) {
 }
 
 TEST(AtomicFile, AStaleTemporaryFromAKilledWriterIsIgnoredAndReplaced) {
-  TempDir dir;
+  TemporaryDirectory dir;
   const fs::path path = dir.path() / "checkpoint.bin";
   bsg::write_checkpoint_file(path, "good payload");
   // A writer killed half-way leaves a partial temporary behind.
-  write_all(bsg::atomic_temporary_path(path), bsg::encode_checkpoint_file("new payload").substr(0, 10));
+  write_text_file(bsg::atomic_temporary_path(path),
+                  bsg::encode_checkpoint_file("new payload").substr(0, 10));
   EXPECT_EQ(bsg::read_checkpoint_file(path), "good payload");
   bsg::write_checkpoint_file(path, "next payload");
   EXPECT_EQ(bsg::read_checkpoint_file(path), "next payload");

@@ -4,21 +4,18 @@
 #include "common/grid_file.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "../test_support.h"
 #include "common/config_error.h"
 
 namespace bsg {
 namespace {
 
-::testing::AssertionResult contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << part << "' not found in: " << text;
-}
+using testing::contains;
 
 // The ConfigError message of parsing `text` as grid "g.yaml" (fails the test if it parses).
 std::string parse_error(const std::string& text) {
@@ -177,11 +174,10 @@ TEST(GridFile, MissingFileIsNamed) {
 }
 
 TEST(GridFile, LoadsAFile) {
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / ("bsg_grid_file_test_" + std::to_string(::getpid()) + ".yaml");
+  const testing::TemporaryDirectory dir;
+  const std::filesystem::path path = dir.path() / "grid.yaml";
   std::ofstream(path) << kMinimal << "  cpo:\n    axes: {lam_c: [0.5, 0.9]}\n";
   const GridSpec grid = load_grid_file(path);
-  std::filesystem::remove(path);
   EXPECT_EQ(grid.source_name, path.string());
   ASSERT_EQ(grid.algorithms.size(), 2u);
   EXPECT_EQ(grid.algorithms[1].axes[0].values.size(), 2u);

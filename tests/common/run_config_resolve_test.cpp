@@ -4,15 +4,13 @@
 #include "common/run_config_resolve.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <regex>
-#include <sstream>
 #include <string>
 
+#include "../test_support.h"
 #include "common/config_error.h"
 
 namespace bsg {
@@ -22,22 +20,12 @@ namespace fs = std::filesystem;
 
 const fs::path kShippedConfigs = fs::path(BSG_SOURCE_DIR) / "configs";
 
-// gmock's HasSubstr without gmock: says what was missing from which text.
-::testing::AssertionResult contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << part << "' not found in: " << text;
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::contains;
+using testing::read_text_file;
 
 void write_text(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
-  std::ofstream(path) << text;
+  testing::write_text_file(path, text);
 }
 
 // Replaces the value of `key: ...` (one line) in a config text.
@@ -54,18 +42,13 @@ std::string with_value(const std::string& text, const std::string& key, const st
 class ScratchConfigs : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() /
-            ("bsg_run_config_test_" + std::to_string(::getpid()) + "_" +
-             ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(root_);
     configs_ = root_ / "configs";
     for (const char* alg : {"trpo", "cpo"}) {
       write_text(configs_ / "algorithms" / (std::string(alg) + ".yaml"),
-                 read_text(kShippedConfigs / "algorithms" / (std::string(alg) + ".yaml")));
+                 read_text_file(kShippedConfigs / "algorithms" / (std::string(alg) + ".yaml")));
     }
-    write_text(env_file(), read_text(kShippedConfigs / "envs" / "SafetyBallCircle-v0.yaml"));
+    write_text(env_file(), read_text_file(kShippedConfigs / "envs" / "SafetyBallCircle-v0.yaml"));
   }
-  void TearDown() override { fs::remove_all(root_); }
 
   fs::path alg_file(const std::string& alg) const {
     return configs_ / "algorithms" / (alg + ".yaml");
@@ -97,14 +80,15 @@ class ScratchConfigs : public ::testing::Test {
     return "";
   }
 
-  fs::path root_;
+  const testing::TemporaryDirectory scratch_{"run_config_test"};
+  const fs::path root_ = scratch_.path();
   fs::path configs_;
 };
 
 constexpr const char* kTrpoRun = "env_id: SafetyBallCircle-v0\nalg: trpo\n";
 
 TEST_F(ScratchConfigs, LaterLayersWinAlgorithmThenEnvironmentThenRunFileThenSet) {
-  std::string alg = read_text(alg_file("trpo"));
+  std::string alg = read_text_file(alg_file("trpo"));
   alg = with_value(alg, "gamma", "0.91");
   alg = with_value(alg, "lam", "0.81");
   alg = with_value(alg, "target_kl", "0.021");
@@ -223,9 +207,9 @@ TEST_F(ScratchConfigs, UnknownKeyInRunFileNamesKeyFileLineAndValidKeys) {
 }
 
 TEST_F(ScratchConfigs, UnknownKeyInAlgorithmFileNamesThatFileAndLine) {
-  write_text(alg_file("trpo"), read_text(alg_file("trpo")) + "bogus_key: 1\n");
+  write_text(alg_file("trpo"), read_text_file(alg_file("trpo")) + "bogus_key: 1\n");
   const std::size_t lines = [&] {
-    std::string text = read_text(alg_file("trpo"));
+    std::string text = read_text_file(alg_file("trpo"));
     return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
   }();
   const std::string m = error_of(request(write_run(kTrpoRun)));
@@ -337,14 +321,14 @@ TEST_F(ScratchConfigs, KeyOfAnotherAlgorithmIsAnError) {
 }
 
 TEST_F(ScratchConfigs, RunKeysCannotBeSetByAlgorithmOrEnvironmentFiles) {
-  write_text(env_file(), read_text(env_file()) + "alg: cpo\n");
+  write_text(env_file(), read_text_file(env_file()) + "alg: cpo\n");
   const std::string m = error_of(request(write_run(kTrpoRun)));
   EXPECT_TRUE(contains(m, env_file().string() + ":6:1"));
   EXPECT_TRUE(contains(m, "'alg' cannot be set in an environment file"));
 }
 
 TEST_F(ScratchConfigs, AlgorithmFileMustListEveryKeyOfItsAlgorithm) {
-  write_text(alg_file("trpo"), std::regex_replace(read_text(alg_file("trpo")),
+  write_text(alg_file("trpo"), std::regex_replace(read_text_file(alg_file("trpo")),
                                                   std::regex("\ncg_iters:[^\n]*"), ""));
   const std::string m = error_of(request(write_run(kTrpoRun)));
   EXPECT_TRUE(contains(m, "key 'cg_iters' is not set"));

@@ -3,26 +3,22 @@
 #include "common/run_config_yaml.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 
+#include "../test_support.h"
 #include "common/config_error.h"
 #include "common/run_config_resolve.h"
 
 namespace bsg {
 namespace {
 
+using testing::contains;
+
 namespace fs = std::filesystem;
 
 const fs::path kShippedConfigs = fs::path(BSG_SOURCE_DIR) / "configs";
-
-::testing::AssertionResult contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << part << "' not found in: " << text;
-}
 
 RunConfig shipped(const std::string& alg, const std::string& env_id,
                   std::vector<std::string> sets = {}) {
@@ -80,12 +76,11 @@ TEST(RunConfigYaml, RoundTripKeepsNonDefaultValuesExactly) {
 }
 
 TEST(RunConfigYaml, FileRoundTripThroughWriteAndLoad) {
-  const fs::path file = fs::temp_directory_path() /
-                        ("bsg_run_config_yaml_test_" + std::to_string(::getpid()) + ".yaml");
+  const testing::TemporaryDirectory dir;
+  const fs::path file = dir.path() / "run_config.yaml";
   const RunConfig config = shipped("lag-trpo", "SafetyBallCircle-v0", {"seed=3"});
   write_run_config(config, file);
   EXPECT_EQ(load_resolved_run_config(file, list_config_env_ids(kShippedConfigs)), config);
-  fs::remove(file);
 }
 
 TEST(RunConfigYaml, WritesOnlyTheKeysOfTheAlgorithmWithDescriptions) {

@@ -6,20 +6,18 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.h"
 #include "common/csv_text.h"
 #include "common/table1_render.h"
 
 namespace bsg {
 namespace {
 
+using testing::contains;
+
 ConfigurationResults config(const std::string& env, Algorithm alg, const std::string& name,
                             std::vector<SeedResult> seeds, std::size_t expected = 2, double d = 25.0) {
   return ConfigurationResults{env, alg, name, d, expected, std::move(seeds)};
-}
-
-::testing::AssertionResult contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << part << "' not found in:\n" << text;
 }
 
 // BallRun (listed first here, last in the report) and BallCircle.

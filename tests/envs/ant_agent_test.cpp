@@ -20,11 +20,16 @@
 namespace bsg::envs {
 namespace {
 
+using bsg::testing::golden_joints_at;
 using bsg::testing::golden_quat;
 using bsg::testing::golden_vec3;
 using bsg::testing::golden_vector;
+using bsg::testing::link_pose_error;
+using bsg::testing::LinkPoseError;
 using bsg::testing::load_golden;
 using bsg::testing::max_abs_diff;
+using bsg::testing::place_as_recorded;
+using bsg::testing::quat_diff;
 
 constexpr int kObs = AntAgent::kObservationDim;
 
@@ -42,27 +47,9 @@ const std::array<AntEnvCase, 4> kCases = {{
     {"SafetyAntReach-v0", WorldLayout::kSmallRoom, 1, true},
 }};
 
-// Same rotation: q and −q both count (PyBullet may return either sign).
-double quat_diff(const btQuaternion& a, const btQuaternion& b) {
-  double plus = 0, minus = 0;
-  for (int i = 0; i < 4; ++i) {
-    plus = std::max(plus, std::abs(a[i] - b[i]));
-    minus = std::max(minus, std::abs(a[i] + b[i]));
-  }
-  return std::min(plus, minus);
-}
-
 // The 8 movable joints out of a 20-entry PyBullet-ordered array.
 std::vector<double> movable(const nlohmann::json& all_joints) {
-  const std::vector<double> all = golden_vector(all_joints);
-  std::vector<double> out;
-  for (int link : AntAgent::kMovableLinks) out.push_back(all.at(link));
-  return out;
-}
-
-void place_as_recorded(AntAgent& agent, const nlohmann::json& placed) {
-  agent.set_base_pose(golden_vec3(placed.at("pos")), golden_quat(placed.at("orn")));
-  agent.set_joint_positions(movable(placed.at("joint_q")));
+  return golden_joints_at(all_joints, AntAgent::kMovableLinks);
 }
 
 AntAgent& as_ant(std::unique_ptr<Agent>& agent) { return dynamic_cast<AntAgent&>(*agent); }
@@ -146,13 +133,13 @@ TEST(AntAgent, LinkComPosesMatchGoldenPlacement) {
     const auto& placed = golden.at("initial_state").at("agent").at("placed");
     World world(c.layout, c.sub_steps);
     auto agent = make_ant_agent(world, {.power_upgrade = c.power_upgrade});
-    place_as_recorded(as_ant(agent), placed);
+    place_as_recorded(as_ant(agent), placed, AntAgent::kMovableLinks);
     double worst_pos = 0, worst_orn = 0;
     for (int link = 0; link < AntAgent::kLinkCount; ++link) {
-      const btTransform pose = as_ant(agent).link_com_pose(link);
-      const auto& expected = placed.at("links").at(link);
-      worst_pos = std::max(worst_pos, max_abs_diff(pose.getOrigin(), golden_vec3(expected.at("com_pos"))));
-      worst_orn = std::max(worst_orn, quat_diff(pose.getRotation(), golden_quat(expected.at("com_orn"))));
+      const LinkPoseError error =
+          link_pose_error(as_ant(agent).link_com_pose(link), placed.at("links").at(link));
+      worst_pos = std::max(worst_pos, error.position);
+      worst_orn = std::max(worst_orn, error.orientation);
     }
     EXPECT_LT(worst_pos, 1e-9);
     EXPECT_LT(worst_orn, 1e-9);
@@ -231,7 +218,7 @@ SequenceReport replay(const AntEnvCase& c, const nlohmann::json& golden, const s
   World world(c.layout, c.sub_steps);
   auto agent_ptr = make_ant_agent(world, {.power_upgrade = c.power_upgrade});
   AntAgent& agent = as_ant(agent_ptr);
-  place_as_recorded(agent, agent_state.at("placed"));
+  place_as_recorded(agent, agent_state.at("placed"), AntAgent::kMovableLinks);
   // The reset's engine step, without an action and without bookkeeping (§2.6).
   world.step();
 

@@ -18,48 +18,33 @@
 namespace bsg::envs {
 namespace {
 
+using bsg::testing::golden_joints_at;
 using bsg::testing::golden_quat;
 using bsg::testing::golden_vec3;
 using bsg::testing::golden_vector;
+using bsg::testing::golden_world_layout;
+using bsg::testing::link_pose_error;
 using bsg::testing::load_golden;
 using bsg::testing::max_abs_diff;
+using bsg::testing::place_as_recorded;
+using bsg::testing::quat_diff;
 
 const char* const kCarEnvs[] = {"SafetyCarRun-v0", "SafetyCarCircle-v0", "SafetyCarGather-v0",
                                 "SafetyCarReach-v0"};
 
-WorldLayout layout_named(const std::string& name) {
-  if (name == "Plane200") return WorldLayout::kPlane200;
-  if (name == "Octagon") return WorldLayout::kOctagon;
-  if (name == "SmallRoom") return WorldLayout::kSmallRoom;
-  throw std::invalid_argument("unknown world in golden file: " + name);
-}
-
-// Quaternions q and −q are the same rotation.
-double quat_diff(const btQuaternion& a, const btQuaternion& b) {
-  double plus = 0, minus = 0;
-  for (int i = 0; i < 4; ++i) {
-    plus = std::max(plus, std::abs(a[i] - b[i]));
-    minus = std::max(minus, std::abs(a[i] + b[i]));
-  }
-  return std::min(plus, minus);
-}
-
 // The golden `joint_q` of `placed` lists all 20 joints in PyBullet order.
 std::vector<double> movable_angles(const nlohmann::json& all_joints) {
-  std::vector<double> angles;
-  for (int link : CarAgent::kMovableLinks) angles.push_back(all_joints.at(link).get<double>());
-  return angles;
+  return golden_joints_at(all_joints, CarAgent::kMovableLinks);
 }
 
 // A world and a car placed as the golden file's `initial_state.agent.placed`.
 struct PlacedCar {
   explicit PlacedCar(const nlohmann::json& golden)
-      : world(layout_named(golden.at("meta").at("world").get<std::string>()),
+      : world(golden_world_layout(golden.at("meta").at("world").get<std::string>()),
               golden.at("meta").at("frame_skip").get<int>()),
         car(world, AgentOptions{.power_upgrade = uses_power_upgrade(golden)}) {
-    const auto& placed = golden.at("initial_state").at("agent").at("placed");
-    car.set_base_pose(golden_vec3(placed.at("pos")), golden_quat(placed.at("orn")));
-    car.set_joint_positions(movable_angles(placed.at("joint_q")));
+    place_as_recorded(car, golden.at("initial_state").at("agent").at("placed"),
+                      CarAgent::kMovableLinks);
   }
   static bool uses_power_upgrade(const nlohmann::json& golden) {
     const std::string task = golden.at("meta").at("task").get<std::string>();
@@ -78,11 +63,8 @@ TEST(CarAgentTest, PlacedLinkPosesMatchTheOriginalModel) {
     ASSERT_EQ(links.size(), static_cast<size_t>(CarAgent::kLinkCount));
     double worst_position = 0, worst_orientation = 0;
     for (int i = 0; i < CarAgent::kLinkCount; ++i) {
-      const btTransform com = placed.car.link_com_transform(i);
-      const double position_error =
-          max_abs_diff(com.getOrigin(), golden_vec3(links[i].at("com_pos")));
-      const double orientation_error =
-          quat_diff(com.getRotation(), golden_quat(links[i].at("com_orn")));
+      const auto [position_error, orientation_error] =
+          link_pose_error(placed.car.link_com_transform(i), links[i]);
       EXPECT_LT(position_error, 1e-9) << "link " << i;
       EXPECT_LT(orientation_error, 1e-9) << "link " << i;
       worst_position = std::max(worst_position, position_error);

@@ -29,8 +29,13 @@ namespace {
 using bsg::testing::golden_quat;
 using bsg::testing::golden_vec3;
 using bsg::testing::golden_vector;
+using bsg::testing::golden_world_layout;
+using bsg::testing::link_pose_error;
+using bsg::testing::LinkPoseError;
 using bsg::testing::load_golden;
 using bsg::testing::max_abs_diff;
+using bsg::testing::place_as_recorded;
+using bsg::testing::quat_diff;
 using nlohmann::json;
 
 constexpr int kRotors = 4;
@@ -38,22 +43,6 @@ constexpr int kObsDim = 17;
 
 const std::array<std::string, 4> kDroneEnvs = {"SafetyDroneRun-v0", "SafetyDroneCircle-v0",
                                                "SafetyDroneGather-v0", "SafetyDroneReach-v0"};
-
-WorldLayout layout_from_name(const std::string& name) {
-  if (name == "Plane200") return WorldLayout::kPlane200;
-  if (name == "Octagon") return WorldLayout::kOctagon;
-  if (name == "SmallRoom") return WorldLayout::kSmallRoom;
-  throw std::invalid_argument("unknown world in golden meta: " + name);
-}
-
-// Quaternion distance that ignores the q ≡ −q ambiguity.
-double quat_diff(const btQuaternion& a, const btQuaternion& b) {
-  const double same = std::max({std::abs(a.x() - b.x()), std::abs(a.y() - b.y()),
-                                std::abs(a.z() - b.z()), std::abs(a.w() - b.w())});
-  const double flipped = std::max({std::abs(a.x() + b.x()), std::abs(a.y() + b.y()),
-                                   std::abs(a.z() + b.z()), std::abs(a.w() + b.w())});
-  return std::min(same, flipped);
-}
 
 // A world and a drone as the golden file's meta describes them.
 struct Scene {
@@ -64,20 +53,14 @@ struct Scene {
 Scene make_scene(const json& golden) {
   const json& meta = golden.at("meta");
   Scene scene;
-  scene.world = std::make_unique<World>(layout_from_name(meta.at("world").get<std::string>()),
+  scene.world = std::make_unique<World>(golden_world_layout(meta.at("world").get<std::string>()),
                                         meta.at("frame_skip").get<int>());
   scene.agent = make_drone_agent(*scene.world, AgentOptions{});
   return scene;
 }
 
-// Placement as recorded (README "How a C++ test should use a file", step 2):
-// base COM pose and the four rotor angles; velocities are zero in a new agent.
-void place_as_recorded(Agent& agent, const json& placed) {
-  agent.set_base_pose(golden_vec3(placed.at("pos")), golden_quat(placed.at("orn")));
-  const std::vector<double> all_joints = golden_vector(placed.at("joint_q"));
-  // PyBullet joint 0 is the fixed body joint; joints 1..4 are the rotors.
-  agent.set_joint_positions(std::span<const double>(all_joints).subspan(1, kRotors));
-}
+// PyBullet joint 0 is the fixed body joint; joints 1..4 are the rotors.
+constexpr std::array<int, kRotors> kRotorJoints = {1, 2, 3, 4};
 
 // Link COM poses from the colliders (base first, then links 0..4; every link
 // frame is its COM frame in this model).
@@ -87,11 +70,10 @@ double max_link_pose_error(const Agent& agent, const json& links, double* orn_er
   double pos_error = 0;
   *orn_error = 0;
   for (size_t link = 0; link < links.size(); ++link) {
-    const btTransform& pose = colliders[link + 1]->getWorldTransform();
-    pos_error = std::max(pos_error,
-                         max_abs_diff(pose.getOrigin(), golden_vec3(links[link].at("com_pos"))));
-    *orn_error = std::max(*orn_error,
-                          quat_diff(pose.getRotation(), golden_quat(links[link].at("com_orn"))));
+    const LinkPoseError error =
+        link_pose_error(colliders[link + 1]->getWorldTransform(), links[link]);
+    pos_error = std::max(pos_error, error.position);
+    *orn_error = std::max(*orn_error, error.orientation);
   }
   return pos_error;
 }
@@ -118,7 +100,7 @@ TEST(DroneAgent, PlacedLinkPosesMatchGoldenKinematics) {
     const json golden = load_golden(env_id);
     Scene scene = make_scene(golden);
     const json& placed = golden.at("initial_state").at("agent").at("placed");
-    place_as_recorded(*scene.agent, placed);
+    place_as_recorded(*scene.agent, placed, kRotorJoints);
     double orn_error = 0;
     const double pos_error = max_link_pose_error(*scene.agent, placed.at("links"), &orn_error);
     EXPECT_LT(pos_error, 1e-9);
@@ -190,7 +172,7 @@ int replay(const std::string& env_id, const json& golden, const std::string& seq
   Scene scene = make_scene(golden);
   Agent& agent = *scene.agent;
   const json& agent_state = golden.at("initial_state").at("agent");
-  place_as_recorded(agent, agent_state.at("placed"));
+  place_as_recorded(agent, agent_state.at("placed"), kRotorJoints);
   scene.world->step();  // the reset's engine step (§2.6 step 5), no action, no bookkeeping
 
   const json& after_reset = agent_state.at("after_reset");

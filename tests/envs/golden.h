@@ -3,6 +3,8 @@
 // tolerances the original's own sensitivity allows).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <span>
 #include <stdexcept>
@@ -10,8 +12,12 @@
 #include <vector>
 
 #include <LinearMath/btQuaternion.h>
+#include <LinearMath/btTransform.h>
 #include <LinearMath/btVector3.h>
 #include <nlohmann/json.hpp>
+
+#include "envs/agent.h"
+#include "envs/world.h"
 
 namespace bsg::testing {
 
@@ -49,6 +55,57 @@ inline double max_abs_diff(std::span<const double> a, std::span<const double> b)
 
 inline double max_abs_diff(const btVector3& a, const btVector3& b) {
   return std::max({std::abs(a.x() - b.x()), std::abs(a.y() - b.y()), std::abs(a.z() - b.z())});
+}
+
+// Largest entry-wise difference of two quaternions [x, y, z, w] (btQuaternion
+// or std::array), where q and −q count as the same rotation (PyBullet may
+// return either sign).
+template <class Quaternion>
+double quat_diff(const Quaternion& a, const Quaternion& b) {
+  double same = 0, flipped = 0;
+  for (int i = 0; i < 4; ++i) {
+    same = std::max(same, std::abs(a[i] - b[i]));
+    flipped = std::max(flipped, std::abs(a[i] + b[i]));
+  }
+  return std::min(same, flipped);
+}
+
+// The world layout a golden file's meta names ("Plane200", "Octagon", "SmallRoom").
+inline envs::WorldLayout golden_world_layout(const std::string& name) {
+  if (name == "Plane200") return envs::WorldLayout::kPlane200;
+  if (name == "Octagon") return envs::WorldLayout::kOctagon;
+  if (name == "SmallRoom") return envs::WorldLayout::kSmallRoom;
+  throw std::invalid_argument("unknown world in golden file: " + name);
+}
+
+// The entries at `links` of a golden joint array (`joint_q`, `joint_qd`),
+// which lists every PyBullet joint in PyBullet order.
+template <class Links>
+std::vector<double> golden_joints_at(const nlohmann::json& all_joints, const Links& links) {
+  std::vector<double> values;
+  for (int link : links) values.push_back(all_joints.at(link).get<double>());
+  return values;
+}
+
+// Placement as recorded (golden README "How a C++ test should use a file",
+// step 2): the base COM pose of `placed` and the angles of the joints at
+// `movable_links`; velocities are zero in a new agent.
+template <class Links>
+void place_as_recorded(envs::Agent& agent, const nlohmann::json& placed,
+                       const Links& movable_links) {
+  agent.set_base_pose(golden_vec3(placed.at("pos")), golden_quat(placed.at("orn")));
+  agent.set_joint_positions(golden_joints_at(placed.at("joint_q"), movable_links));
+}
+
+// How far a link's COM pose is from a golden link record (`com_pos`, `com_orn`).
+struct LinkPoseError {
+  double position = 0;     // largest coordinate difference [m]
+  double orientation = 0;  // quat_diff
+};
+
+inline LinkPoseError link_pose_error(const btTransform& pose, const nlohmann::json& golden_link) {
+  return {max_abs_diff(pose.getOrigin(), golden_vec3(golden_link.at("com_pos"))),
+          quat_diff(pose.getRotation(), golden_quat(golden_link.at("com_orn")))};
 }
 
 }  // namespace bsg::testing

@@ -23,6 +23,7 @@ namespace {
 
 using nlohmann::json;
 using testing::load_golden;
+using testing::quat_diff;
 
 constexpr double kSkip = std::numeric_limits<double>::infinity();
 constexpr int kForever = std::numeric_limits<int>::max();
@@ -144,16 +145,6 @@ Quat quat(const json& value) { return {value.at(0), value.at(1), value.at(2), va
 
 double max_diff(std::span<const double> a, std::span<const double> b) {
   return testing::max_abs_diff(a, b);
-}
-
-// Quaternions q and −q are the same rotation.
-double quat_diff(const Quat& a, const Quat& b) {
-  double same = 0, flipped = 0;
-  for (int i = 0; i < 4; ++i) {
-    same = std::max(same, std::abs(a[i] - b[i]));
-    flipped = std::max(flipped, std::abs(a[i] + b[i]));
-  }
-  return std::min(same, flipped);
 }
 
 // The recorded layout (README "How a C++ test should use a file", step 2).
