@@ -126,4 +126,11 @@ std::vector<NamedScalar> common_diagnostics(const PolicyUpdateInputs& inputs, co
           {"PolicyRatio", after.mean_ratio}};
 }
 
+void TrustRegionAlgorithm::restore_state(std::span<const NamedScalar> saved) {
+  if (!saved.empty()) {
+    throw std::invalid_argument(std::string(name()) + ": restore_state expects an empty state, got " +
+                                std::to_string(saved.size()) + " values (first '" + saved.front().name + "')");
+  }
+}
+
 }  // namespace bsg

@@ -72,6 +72,7 @@ inline constexpr std::size_t kCommonDiagnosticCount = 5;
 
 class TrustRegionAlgorithm {
  public:
+  explicit TrustRegionAlgorithm(const RunConfig& config) : config_(config) {}
   virtual ~TrustRegionAlgorithm() = default;
 
   // "trpo", "lag-trpo", "cpo", "pdo" or "pcpo" (the config spelling).
@@ -87,13 +88,20 @@ class TrustRegionAlgorithm {
 
   // Whether the loop trains the cost value net V_C (RunConfig
   // use_cost_value_function: false for TRPO, true for the others).
-  virtual bool uses_cost_value_function() const = 0;
+  bool uses_cost_value_function() const { return config_.use_cost_value_function; }
 
   // The state to checkpoint (lambda and its optimiser moments for TRPO-L and
-  // PDO; empty for the others) and its restoration. restore_state throws
-  // std::invalid_argument if the names do not match state()'s.
-  virtual std::vector<NamedScalar> state() const = 0;
-  virtual void restore_state(std::span<const NamedScalar> saved) = 0;
+  // PDO; empty for the others, the default here) and its restoration.
+  // restore_state throws std::invalid_argument if the names do not match
+  // state()'s.
+  virtual std::vector<NamedScalar> state() const { return {}; }
+  virtual void restore_state(std::span<const NamedScalar> saved);
+
+ protected:
+  const RunConfig& config() const { return config_; }
+
+ private:
+  RunConfig config_;
 };
 
 // ---------------------------------------------------------------------------

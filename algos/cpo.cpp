@@ -134,7 +134,7 @@ CpoStep cpo_step(const LinearOperator& fisher, const Eigen::Ref<const Eigen::Vec
   return step;
 }
 
-Cpo::Cpo(const RunConfig& config) : config_(config) {}
+Cpo::Cpo(const RunConfig& config) : TrustRegionAlgorithm(config) {}
 
 std::vector<std::string> Cpo::diagnostic_names() const {
   std::vector<std::string> names = common_diagnostic_names();
@@ -143,21 +143,19 @@ std::vector<std::string> Cpo::diagnostic_names() const {
   return names;
 }
 
-void Cpo::restore_state(std::span<const NamedScalar> saved) { restore_empty_state(saved, "cpo"); }
-
 PolicyUpdateResult Cpo::update(const PolicyUpdateInputs& inputs) {
   const double c = per_step_constraint_violation(inputs.mean_episode_cost, inputs.mean_episode_length,
-                                                 config_.cost_limit);  // c = (J_C - d) / (L + 1e-8)
+                                                 config().cost_limit);  // c = (J_C - d) / (L + 1e-8)
   const PolicyUpdateStart start = begin_policy_update(inputs);          // l_R(theta_old), L_C(theta_old)
   const PolicyGradients gradients = averaged_policy_gradients(inputs);  // g, b
 
   FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
-                             fisher_vector_product_options(config_));
+                             fisher_vector_product_options(config()));
   CpoStepOptions step_options;
-  step_options.target_kl = config_.target_kl;
-  step_options.r_sign = config_.cpo_r_sign;
-  step_options.clamp_a = config_.cpo_clamp_a;
-  step_options.conjugate_gradient = conjugate_gradient_options(config_);
+  step_options.target_kl = config().target_kl;
+  step_options.r_sign = config().cpo_r_sign;
+  step_options.clamp_a = config().cpo_clamp_a;
+  step_options.conjugate_gradient = conjugate_gradient_options(config());
   const CpoStep step = cpo_step(as_linear_operator(fisher), gradients.reward, gradients.cost, c, step_options);
 
   // Line search B; the reward test only where the current policy is feasible (cases 2, 3, 4).
@@ -168,7 +166,7 @@ PolicyUpdateResult Cpo::update(const PolicyUpdateInputs& inputs) {
   search_inputs.require_reward_improvement = static_cast<int>(step.optim_case) >= 2;
   const LineSearchResult search =
       constrained_line_search(step.full_step, search_inputs, constrained_evaluator(inputs, start.theta_old),
-                              inputs.mpi, line_search_options(config_));
+                              inputs.mpi, line_search_options(config()));
   apply_line_search_result(inputs.policy, start.theta_old, search);
 
   PolicyUpdateResult result;

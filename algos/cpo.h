@@ -73,12 +73,6 @@ class Cpo final : public TrustRegionAlgorithm {
   std::string_view name() const override { return "cpo"; }
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
   std::vector<std::string> diagnostic_names() const override;
-  bool uses_cost_value_function() const override { return config_.use_cost_value_function; }
-  std::vector<NamedScalar> state() const override { return {}; }
-  void restore_state(std::span<const NamedScalar> saved) override;
-
- private:
-  RunConfig config_;
 };
 
 // The nine CPO columns after the TRPO set (also PCPO's), in spec §13.1 order.

@@ -19,7 +19,7 @@ SurrogateWeights lagrangian_surrogate_weights(double lagrange_multiplier) {
 }
 
 LagTrpo::LagTrpo(const RunConfig& config)
-    : config_(config),
+    : TrustRegionAlgorithm(config),
       multiplier_(config.lagrangian_multiplier_init, config.lambda_optimizer, config.lambda_lr) {}
 
 std::vector<std::string> LagTrpo::diagnostic_names() const {
@@ -32,7 +32,7 @@ std::vector<std::string> LagTrpo::diagnostic_names() const {
 PolicyUpdateResult LagTrpo::update(const PolicyUpdateInputs& inputs) {
   check_mean_episode_cost(inputs, "lag-trpo");
   // 1. lambda <- max(0, lambda + alpha_lambda (J_C - d)), before the policy step.
-  const double lambda = multiplier_.update(inputs.mean_episode_cost, config_.cost_limit);
+  const double lambda = multiplier_.update(inputs.mean_episode_cost, config().cost_limit);
   const SurrogateWeights weights = lagrangian_surrogate_weights(lambda);
 
   const PolicyUpdateStart start = begin_policy_update(inputs);
@@ -46,13 +46,13 @@ PolicyUpdateResult LagTrpo::update(const PolicyUpdateInputs& inputs) {
 
   // 3. x = CG(F, g_L), q = x^T F x, alpha = sqrt(2 delta / (q + 1e-8)), Delta = alpha x
   FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
-                             fisher_vector_product_options(config_));
+                             fisher_vector_product_options(config()));
   const NaturalGradientStep step = natural_gradient_step(as_linear_operator(fisher), lagrangian_gradient,
-                                                         config_.target_kl, conjugate_gradient_options(config_));
+                                                         config().target_kl, conjugate_gradient_options(config()));
   // Line search A on the Lagrangian loss l_L.
   const LineSearchResult search = trpo_line_search(
       step.full_step, loss_old, surrogate_loss_evaluator(inputs, start.theta_old, weights.reward, weights.cost),
-      inputs.mpi, line_search_options(config_));
+      inputs.mpi, line_search_options(config()));
   apply_line_search_result(inputs.policy, start.theta_old, search);
 
   PolicyUpdateResult result;

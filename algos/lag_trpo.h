@@ -30,14 +30,12 @@ class LagTrpo final : public TrustRegionAlgorithm {
   std::string_view name() const override { return "lag-trpo"; }
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
   std::vector<std::string> diagnostic_names() const override;
-  bool uses_cost_value_function() const override { return config_.use_cost_value_function; }
   std::vector<NamedScalar> state() const override { return multiplier_.state(); }
   void restore_state(std::span<const NamedScalar> saved) override { multiplier_.restore_state(saved); }
 
   double lagrange_multiplier() const { return multiplier_.value(); }
 
  private:
-  RunConfig config_;
   LagrangeMultiplier multiplier_;
 };
 

@@ -54,7 +54,7 @@ PcpoStep pcpo_step(const LinearOperator& fisher, const Eigen::Ref<const Eigen::V
   return step;
 }
 
-Pcpo::Pcpo(const RunConfig& config) : config_(config) {}
+Pcpo::Pcpo(const RunConfig& config) : TrustRegionAlgorithm(config) {}
 
 std::vector<std::string> Pcpo::diagnostic_names() const {
   std::vector<std::string> names = common_diagnostic_names();
@@ -63,31 +63,29 @@ std::vector<std::string> Pcpo::diagnostic_names() const {
   return names;
 }
 
-void Pcpo::restore_state(std::span<const NamedScalar> saved) { restore_empty_state(saved, "pcpo"); }
-
 PolicyUpdateResult Pcpo::update(const PolicyUpdateInputs& inputs) {
   const double c = per_step_constraint_violation(inputs.mean_episode_cost, inputs.mean_episode_length,
-                                                 config_.cost_limit);  // c = (J_C - d) / (L + 1e-8)
+                                                 config().cost_limit);  // c = (J_C - d) / (L + 1e-8)
   const PolicyUpdateStart start = begin_policy_update(inputs);
   const PolicyGradients gradients = averaged_policy_gradients(inputs);  // g, b
 
   FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
-                             fisher_vector_product_options(config_));
+                             fisher_vector_product_options(config()));
   PcpoStepOptions step_options;
-  step_options.target_kl = config_.target_kl;
-  step_options.projection = config_.pcpo_projection;
-  step_options.conjugate_gradient = conjugate_gradient_options(config_);
+  step_options.target_kl = config().target_kl;
+  step_options.projection = config().pcpo_projection;
+  step_options.conjugate_gradient = conjugate_gradient_options(config());
   const PcpoStep step = pcpo_step(as_linear_operator(fisher), gradients.reward, gradients.cost, c, step_options);
 
   LineSearchResult search;
-  if (config_.pcpo_line_search) {
+  if (config().pcpo_line_search) {
     ConstrainedLineSearchInputs search_inputs;
     search_inputs.reward_loss_old = -start.before.reward_surrogate;
     search_inputs.cost_surrogate_old = start.before.cost_surrogate;
     search_inputs.constraint_violation = c;
     search_inputs.require_reward_improvement = c < 0.0;  // the analogue of CPO cases >= 2
     search = constrained_line_search(step.full_step, search_inputs, constrained_evaluator(inputs, start.theta_old),
-                                     inputs.mpi, line_search_options(config_));
+                                     inputs.mpi, line_search_options(config()));
   } else {
     search.step = step.full_step;  // the paper's release: apply Delta directly
     search.acceptance_step = 1;

@@ -58,12 +58,6 @@ class Pcpo final : public TrustRegionAlgorithm {
   std::string_view name() const override { return "pcpo"; }
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
   std::vector<std::string> diagnostic_names() const override;
-  bool uses_cost_value_function() const override { return config_.use_cost_value_function; }
-  std::vector<NamedScalar> state() const override { return {}; }
-  void restore_state(std::span<const NamedScalar> saved) override;
-
- private:
-  RunConfig config_;
 };
 
 }  // namespace bsg

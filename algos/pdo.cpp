@@ -19,7 +19,7 @@ Eigen::VectorXd pdo_search_direction(const Eigen::Ref<const Eigen::VectorXd>& re
 }
 
 Pdo::Pdo(const RunConfig& config)
-    : config_(config),
+    : TrustRegionAlgorithm(config),
       multiplier_(config.lagrangian_multiplier_init, config.lambda_optimizer, config.lambda_lr) {}
 
 std::vector<std::string> Pdo::diagnostic_names() const {
@@ -33,7 +33,7 @@ std::vector<std::string> Pdo::diagnostic_names() const {
 PolicyUpdateResult Pdo::update(const PolicyUpdateInputs& inputs) {
   check_mean_episode_cost(inputs, "pdo");
   // 1. Adam (or SGD) step on -lambda (J_C - d), then lambda >= 0; before the policy step.
-  const double lambda = multiplier_.update(inputs.mean_episode_cost, config_.cost_limit);
+  const double lambda = multiplier_.update(inputs.mean_episode_cost, config().cost_limit);
 
   const PolicyUpdateStart start = begin_policy_update(inputs);
   const double loss_old = -start.before.reward_surrogate;  // l_R(theta_old), local
@@ -43,15 +43,15 @@ PolicyUpdateResult Pdo::update(const PolicyUpdateInputs& inputs) {
 
   // x = CG(F, p), q = x^T F x, alpha = sqrt(2 delta / (q + 1e-8)), Delta = alpha x
   FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
-                             fisher_vector_product_options(config_));
-  const NaturalGradientStep step = natural_gradient_step(as_linear_operator(fisher), direction, config_.target_kl,
-                                                         conjugate_gradient_options(config_));
+                             fisher_vector_product_options(config()));
+  const NaturalGradientStep step = natural_gradient_step(as_linear_operator(fisher), direction, config().target_kl,
+                                                         conjugate_gradient_options(config()));
 
   LineSearchResult search;
-  if (config_.pdo_line_search) {
+  if (config().pdo_line_search) {
     // Q14: the acceptance test uses the reward-only loss l_R.
     search = trpo_line_search(step.full_step, loss_old, surrogate_loss_evaluator(inputs, start.theta_old, 1.0, 0.0),
-                              inputs.mpi, line_search_options(config_));
+                              inputs.mpi, line_search_options(config()));
   } else {
     search.step = step.full_step;  // the full step, as the first trial
     search.acceptance_step = 1;

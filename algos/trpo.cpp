@@ -11,22 +11,13 @@ std::vector<std::string> trpo_diagnostic_names() {
   return {"Misc/AcceptanceStep", "Misc/Alpha", "Misc/FinalStepNorm", "Misc/gradient_norm", "Misc/xHx", "Misc/H_inv_g"};
 }
 
-void restore_empty_state(std::span<const NamedScalar> saved, std::string_view algorithm) {
-  if (!saved.empty()) {
-    throw std::invalid_argument(std::string(algorithm) + ": restore_state expects an empty state, got " +
-                                std::to_string(saved.size()) + " values (first '" + saved.front().name + "')");
-  }
-}
-
-Trpo::Trpo(const RunConfig& config) : config_(config) {}
+Trpo::Trpo(const RunConfig& config) : TrustRegionAlgorithm(config) {}
 
 std::vector<std::string> Trpo::diagnostic_names() const {
   std::vector<std::string> names = common_diagnostic_names();
   for (std::string& name : trpo_diagnostic_names()) names.push_back(std::move(name));
   return names;
 }
-
-void Trpo::restore_state(std::span<const NamedScalar> saved) { restore_empty_state(saved, "trpo"); }
 
 PolicyUpdateResult Trpo::update(const PolicyUpdateInputs& inputs) {
   const PolicyUpdateStart start = begin_policy_update(inputs);
@@ -39,14 +30,14 @@ PolicyUpdateResult Trpo::update(const PolicyUpdateInputs& inputs) {
   inputs.mpi.average_in_place(reward_gradient);
 
   FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
-                             fisher_vector_product_options(config_));
+                             fisher_vector_product_options(config()));
   // x = CG(F, g), q = x^T F x, alpha = sqrt(2 delta / (q + 1e-8)), Delta = alpha x
   const NaturalGradientStep step = natural_gradient_step(as_linear_operator(fisher), reward_gradient,
-                                                         config_.target_kl, conjugate_gradient_options(config_));
+                                                         config().target_kl, conjugate_gradient_options(config()));
 
   const LineSearchResult search =
       trpo_line_search(step.full_step, loss_old, surrogate_loss_evaluator(inputs, start.theta_old, 1.0, 0.0),
-                       inputs.mpi, line_search_options(config_));
+                       inputs.mpi, line_search_options(config()));
   apply_line_search_result(inputs.policy, start.theta_old, search);  // theta = theta_old + final step
 
   PolicyUpdateResult result;

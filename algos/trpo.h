@@ -22,18 +22,10 @@ class Trpo final : public TrustRegionAlgorithm {
   std::string_view name() const override { return "trpo"; }
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
   std::vector<std::string> diagnostic_names() const override;
-  bool uses_cost_value_function() const override { return config_.use_cost_value_function; }
-  std::vector<NamedScalar> state() const override { return {}; }
-  void restore_state(std::span<const NamedScalar> saved) override;
-
- private:
-  RunConfig config_;
 };
 
 // The six TRPO columns shared by all five algorithms (spec §13.1), in order.
 std::vector<std::string> trpo_diagnostic_names();
 
-// Rejects a non-empty saved state for the algorithms without state.
-void restore_empty_state(std::span<const NamedScalar> saved, std::string_view algorithm);
 
 }  // namespace bsg
