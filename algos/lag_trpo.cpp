@@ -57,14 +57,9 @@ PolicyUpdateResult LagTrpo::update(const PolicyUpdateInputs& inputs) {
 
   PolicyUpdateResult result;
   result.diagnostics = common_diagnostics(inputs, start.before, weights.reward, weights.cost);
-  result.diagnostics.insert(result.diagnostics.end(),
-                            {{"Misc/AcceptanceStep", static_cast<double>(search.acceptance_step)},
-                             {"Misc/Alpha", step.step_size},
-                             {"Misc/FinalStepNorm", search.step.norm()},
-                             {"Misc/gradient_norm", lagrangian_gradient.norm()},
-                             {"Misc/xHx", step.x_fisher_x},
-                             {"Misc/H_inv_g", step.direction.norm()},
-                             {"LagrangeMultiplier", lambda}});
+  append_trpo_diagnostics(result.diagnostics, search, step.step_size, lagrangian_gradient.norm(),
+                          step.x_fisher_x, step.direction.norm());
+  result.diagnostics.insert(result.diagnostics.end(), {{"LagrangeMultiplier", lambda}});
   return result;
 }
 

@@ -94,14 +94,10 @@ PolicyUpdateResult Pcpo::update(const PolicyUpdateInputs& inputs) {
 
   PolicyUpdateResult result;
   result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
+  append_trpo_diagnostics(result.diagnostics, search, step.eta, gradients.reward.norm(),
+                          step.q, step.reward_direction.norm());
   result.diagnostics.insert(result.diagnostics.end(),
-                            {{"Misc/AcceptanceStep", static_cast<double>(search.acceptance_step)},
-                             {"Misc/Alpha", step.eta},
-                             {"Misc/FinalStepNorm", search.step.norm()},
-                             {"Misc/gradient_norm", gradients.reward.norm()},
-                             {"Misc/xHx", step.q},
-                             {"Misc/H_inv_g", step.reward_direction.norm()},
-                             {"Misc/cost_gradient_norm", gradients.cost.norm()},
+                            {{"Misc/cost_gradient_norm", gradients.cost.norm()},
                              {"Misc/A", 0.0},  // not defined for PCPO
                              {"Misc/B", 0.0},  // not defined for PCPO
                              {"Misc/q", step.q},

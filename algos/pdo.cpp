@@ -60,15 +60,11 @@ PolicyUpdateResult Pdo::update(const PolicyUpdateInputs& inputs) {
 
   PolicyUpdateResult result;
   result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
-  result.diagnostics.insert(result.diagnostics.end(),
-                            {{"Misc/AcceptanceStep", static_cast<double>(search.acceptance_step)},
-                             {"Misc/Alpha", step.step_size},
-                             {"Misc/FinalStepNorm", search.step.norm()},
-                             {"Misc/gradient_norm", gradients.reward.norm()},
-                             {"Misc/xHx", step.x_fisher_x},
-                             {"Misc/H_inv_g", step.direction.norm()},
-                             {"Misc/cost_gradient_norm", gradients.cost.norm()},
-                             {"LagrangeMultiplier", lambda}});
+  append_trpo_diagnostics(result.diagnostics, search, step.step_size, gradients.reward.norm(),
+                          step.x_fisher_x, step.direction.norm());
+  result.diagnostics.insert(
+      result.diagnostics.end(),
+      {{"Misc/cost_gradient_norm", gradients.cost.norm()}, {"LagrangeMultiplier", lambda}});
   return result;
 }
 

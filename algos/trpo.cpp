@@ -11,6 +11,18 @@ std::vector<std::string> trpo_diagnostic_names() {
   return {"Misc/AcceptanceStep", "Misc/Alpha", "Misc/FinalStepNorm", "Misc/gradient_norm", "Misc/xHx", "Misc/H_inv_g"};
 }
 
+void append_trpo_diagnostics(std::vector<NamedScalar>& diagnostics, const LineSearchResult& search,
+                             double alpha, double gradient_norm, double x_fisher_x,
+                             double direction_norm) {
+  diagnostics.insert(diagnostics.end(),
+                     {{"Misc/AcceptanceStep", static_cast<double>(search.acceptance_step)},
+                      {"Misc/Alpha", alpha},
+                      {"Misc/FinalStepNorm", search.step.norm()},
+                      {"Misc/gradient_norm", gradient_norm},
+                      {"Misc/xHx", x_fisher_x},
+                      {"Misc/H_inv_g", direction_norm}});
+}
+
 Trpo::Trpo(const RunConfig& config) : TrustRegionAlgorithm(config) {}
 
 std::vector<std::string> Trpo::diagnostic_names() const {
@@ -42,13 +54,8 @@ PolicyUpdateResult Trpo::update(const PolicyUpdateInputs& inputs) {
 
   PolicyUpdateResult result;
   result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
-  result.diagnostics.insert(result.diagnostics.end(),
-                            {{"Misc/AcceptanceStep", static_cast<double>(search.acceptance_step)},
-                             {"Misc/Alpha", step.step_size},
-                             {"Misc/FinalStepNorm", search.step.norm()},
-                             {"Misc/gradient_norm", reward_gradient.norm()},
-                             {"Misc/xHx", step.x_fisher_x},
-                             {"Misc/H_inv_g", step.direction.norm()}});
+  append_trpo_diagnostics(result.diagnostics, search, step.step_size, reward_gradient.norm(),
+                          step.x_fisher_x, step.direction.norm());
   return result;
 }
 

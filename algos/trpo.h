@@ -27,5 +27,10 @@ class Trpo final : public TrustRegionAlgorithm {
 // The six TRPO columns shared by all five algorithms (spec §13.1), in order.
 std::vector<std::string> trpo_diagnostic_names();
 
+// Appends the values of those six columns, in that order: the line search's
+// acceptance step and final step norm, alpha, |gradient|, x^T F x and |x|.
+void append_trpo_diagnostics(std::vector<NamedScalar>& diagnostics, const LineSearchResult& search,
+                             double alpha, double gradient_norm, double x_fisher_x,
+                             double direction_norm);
 
 }  // namespace bsg
