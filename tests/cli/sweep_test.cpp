@@ -49,6 +49,27 @@ std::vector<std::string> lines_of(const std::string& text) {
   return lines;
 }
 
+// Processes of group `group` that have not ended yet (zombies have ended: their
+// locks are released even if nobody has reaped them), from /proc/<pid>/stat.
+int live_processes_in_group(pid_t group) {
+  int live = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(entry.path() / "stat");
+    std::string line;
+    if (!std::getline(stat, line)) continue;  // the process ended meanwhile
+    // Fields after the ")" closing the command name: state ppid pgrp ...
+    std::istringstream fields(line.substr(line.rfind(')') + 1));
+    char state = 0;
+    long parent = 0;
+    long process_group = 0;
+    fields >> state >> parent >> process_group;
+    if (process_group == group && state != 'Z' && state != 'X') ++live;
+  }
+  return live;
+}
+
 // The sweep in its own process group, output to `log`; returns its pid.
 pid_t start_sweep_in_own_group(const std::string& arguments, const fs::path& log) {
   const std::string command = std::string(BSG_BINARY) + " sweep " + arguments + " > '" + log.string() + "' 2>&1";
@@ -157,6 +178,14 @@ TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots)
   ASSERT_EQ(kill(-sweep, SIGKILL), 0);
   ASSERT_EQ(waitpid(sweep, &status, 0), sweep);
   ASSERT_TRUE(WIFSIGNALED(status));
+  // The killed `bsg train` children are not ours to wait for; until the kernel
+  // has ended each of them it may still hold its run's lock, and a sweep started
+  // in that moment rightly refuses the run. Wait until the group is empty.
+  const auto group_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (live_processes_in_group(sweep) > 0 && std::chrono::steady_clock::now() < group_deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_EQ(live_processes_in_group(sweep), 0) << "processes of the killed sweep still run after 30 s";
 
   std::map<fs::path, bsg::RunState> state_at_kill;
   std::size_t unfinished = 0;
