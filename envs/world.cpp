@@ -19,6 +19,8 @@
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
+#include "deterministic_pair_cache.h"
+
 namespace bsg::envs {
 namespace {
 
@@ -64,7 +66,8 @@ World::World(WorldLayout layout, int sub_steps) : layout_(layout), sub_steps_(su
   gDbvtMargin = 0;
   collision_configuration_ = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_configuration_.get());
-  broadphase_ = std::make_unique<btDbvtBroadphase>();
+  pair_cache_ = std::make_unique<DeterministicPairCache>();
+  broadphase_ = std::make_unique<btDbvtBroadphase>(pair_cache_.get());
   solver_ = std::make_unique<btMultiBodyConstraintSolver>();
   dynamics_ = std::make_unique<btMultiBodyDynamicsWorld>(
       dispatcher_.get(), broadphase_.get(), solver_.get(), collision_configuration_.get());

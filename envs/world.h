@@ -16,6 +16,7 @@
 #include <LinearMath/btVector3.h>
 
 class btBroadphaseInterface;
+class btOverlappingPairCache;
 class btCollisionDispatcher;
 class btCollisionObject;
 class btCollisionShape;
@@ -115,6 +116,7 @@ class World {
   int sub_steps_;
   std::unique_ptr<btDefaultCollisionConfiguration> collision_configuration_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
+  std::unique_ptr<btOverlappingPairCache> pair_cache_;  // outlives the broadphase using it
   std::unique_ptr<btBroadphaseInterface> broadphase_;
   std::unique_ptr<btMultiBodyConstraintSolver> solver_;
   std::unique_ptr<btMultiBodyDynamicsWorld> dynamics_;
