@@ -6,6 +6,11 @@
 
 namespace bsg::envs {
 
+// Room for far more pairs than any of the 16 worlds holds (an Ant touching a
+// wall: about 20), so that a new high-water mark of pairs in the middle of an
+// episode does not allocate.
+DeterministicPairCache::DeterministicPairCache() { order_.reserve(256); }
+
 void DeterministicPairCache::processAllOverlappingPairs(btOverlapCallback* callback,
                                                         btDispatcher* dispatcher,
                                                         const btDispatcherInfo& dispatch_info) {

@@ -12,6 +12,7 @@ namespace bsg::envs {
 
 class DeterministicPairCache final : public btHashedOverlappingPairCache {
  public:
+  DeterministicPairCache();
   using btHashedOverlappingPairCache::processAllOverlappingPairs;
   void processAllOverlappingPairs(btOverlapCallback* callback, btDispatcher* dispatcher,
                                   const btDispatcherInfo& dispatch_info) override;

@@ -19,6 +19,7 @@
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
+#include "bullet_block_pool.h"
 #include "deterministic_pair_cache.h"
 
 namespace bsg::envs {
@@ -61,6 +62,7 @@ World::World(WorldLayout layout, int sub_steps) : layout_(layout), sub_steps_(su
   if (sub_steps < 1) {
     throw std::invalid_argument("World: sub_steps must be >= 1, got " + std::to_string(sub_steps));
   }
+  install_bullet_block_pool();
   // PyBullet sets the broadphase's AABB margin to 0 (spec §2.1). Bullet keeps it
   // in a library-wide variable; every World sets the same value.
   gDbvtMargin = 0;
