@@ -175,6 +175,11 @@ const btCollisionObject* World::add_static_object(btCollisionShape* shape,
   object->setRestitution(restitution);
   object->setCollisionFlags(object->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
   dynamics_->addCollisionObject(object.get(), kStaticGroup, kAllGroups ^ kStaticGroup);
+  // Asleep, as Bullet puts every static rigid body: the world then skips its
+  // bounding box, which never changes, at every internal step (with
+  // setForceUpdateAllAabbs(false) only active objects are updated). A contact
+  // needs one active body of the two, and the agents never sleep.
+  object->setActivationState(ISLAND_SLEEPING);
   static_objects_.push_back(std::move(object));
   return static_objects_.back().get();
 }
