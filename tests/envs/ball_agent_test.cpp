@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -116,6 +117,31 @@ TEST(BallAgent, ObservationScalesPositionVelocityAndSpin) {
       0.1 * s.agent_angular_velocity[2]};
   ASSERT_EQ(result.observation.size(), 7u);
   for (size_t i = 0; i < 7; ++i) EXPECT_EQ(result.observation[i], expected[i]) << i;
+}
+
+}  // namespace
+}  // namespace bsg::envs
+
+namespace bsg::envs {
+namespace {
+
+// The room's walls stop the Ball (spec §2.4: inner faces at ±9.9 m, Ball
+// radius 0.5): pushed at full force into the +x wall for 5 s, its centre
+// stays 0.5 m from the face, up to the contact's slop. The walls and the
+// ground are static and asleep (World skips their bounding boxes); a
+// contact needs only the Ball to be awake.
+TEST(BallAgent, RoomWallStopsTheBall) {
+  const auto env = make("SafetyBallGather-v0");
+  env->reset(5);
+  env->teleport_agent({8.0, 0.0, 0.5});
+  double largest_x = 0;
+  for (int t = 0; t < 300; ++t) {
+    env->step(std::vector<double>{1, 0});
+    largest_x = std::max(largest_x, env->state().agent_position[0]);
+  }
+  EXPECT_GT(largest_x, 9.3);  // it reached the wall
+  EXPECT_LT(largest_x, 9.4 + 1e-3);
+  EXPECT_NEAR(env->state().agent_position[2], 0.5, 1e-3);  // and is still on the ground
 }
 
 }  // namespace
