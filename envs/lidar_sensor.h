@@ -28,11 +28,13 @@ class LidarSensor {
   double range_m() const { return range_m_; }
 
   // Writes rays() values for the agent's current pose. The rays share one
-  // collection of nearby colliders (RayFan) instead of one broadphase walk each.
+  // collection of nearby colliders (RayFan) instead of one broadphase walk
+  // each, and boxes are cast in closed form instead of by GJK.
   void measure(const Agent& agent, std::span<double> out) const;
-  // The same values, bit for bit, from World::ray_hit_fraction per ray (one
-  // Bullet rayTest each): the straightforward path, kept as the oracle of
-  // measure() in tests.
+  // The same values from World::ray_hit_fraction per ray (one Bullet rayTest
+  // each): the straightforward path, kept as the oracle of measure() in tests.
+  // measure() agrees with it to 1e-9, and on hit or miss except for a ray
+  // that runs within 1 mm of a box and parallel to its surface (see RayFan).
   void measure_reference(const Agent& agent, std::span<double> out) const;
 
  private:
