@@ -1,52 +1,29 @@
 // The hot paths allocate nothing once their workspaces are sized: the policy
 // for one observation, batch forward/backward/JVP and the Fisher-vector
-// product. Heap allocations are counted by interposing malloc (glibc only; not
-// under AddressSanitizer, which owns malloc itself). Eigen allocates through
-// malloc, so its temporaries and GEMM blocking buffers are counted too.
+// product. Heap allocations are counted by tests/heap_counter.h (Eigen's
+// temporaries and GEMM blocking buffers included).
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstddef>
 
 #include "algos/fisher_vector_product.h"
 #include "algos/gaussian_policy.h"
 #include "algos/value_function.h"
 
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
-#define BSG_COUNT_MALLOC 1
-namespace {
-std::atomic<long> malloc_calls{0};
-}
-extern "C" void* __libc_malloc(std::size_t size);
-extern "C" void* malloc(std::size_t size) {
-  malloc_calls.fetch_add(1, std::memory_order_relaxed);
-  return __libc_malloc(size);
-}
-#endif
+#include "tests/heap_counter.h"
 
 namespace bsg {
 namespace {
 
-#ifdef BSG_COUNT_MALLOC
-template <typename Call>
-long allocations_of(Call&& call) {
-  const long before = malloc_calls.load();
-  call();
-  return malloc_calls.load() - before;
-}
-#endif
+using testing::allocations_of;
 
 class NoAllocation : public ::testing::TestWithParam<std::pair<int, int>> {
  protected:
   void SetUp() override {
-#ifndef BSG_COUNT_MALLOC
-    GTEST_SKIP() << "malloc cannot be counted in this build";
-#endif
+    if (!testing::heap_calls_countable()) GTEST_SKIP() << "malloc cannot be counted in this build";
   }
 };
 
 TEST_P(NoAllocation, HotPathsDoNotAllocateOnceSized) {
-#ifdef BSG_COUNT_MALLOC
   const auto [observation_size, action_size] = GetParam();
   Rng rng(1);
   GaussianPolicy policy(observation_size, action_size, {64, 64}, rng);
@@ -77,7 +54,6 @@ TEST_P(NoAllocation, HotPathsDoNotAllocateOnceSized) {
   Eigen::VectorXd product(gradient.size());
   fvp.apply(direction, product);
   EXPECT_EQ(allocations_of([&] { fvp.apply(direction, product); }), 0);
-#endif
 }
 
 INSTANTIATE_TEST_SUITE_P(PolicySizes, NoAllocation,
