@@ -12,9 +12,7 @@
 
 #include "algos/progress_line.h"
 #include "algos/run_directory.h"
-#include "common/atomic_file.h"
 #include "common/csv_text.h"
-#include "common/run_config_yaml.h"
 #include "experiments/child_process.h"
 #include "experiments/run_lock.h"
 #include "experiments/sweep_manifest.h"
@@ -156,8 +154,7 @@ void SweepRunner::start(std::size_t index) {
     return;
   }
   if (run.state == RunState::fresh) clear_unstarted_run(directory);
-  // The resolved run file, so that the run can be reproduced by hand.
-  write_file_atomically(run.dir / kSweepRunFileName, to_yaml(run.config));
+  prepare_run_directory(run);
   ChildCommand command = train_command(run, bsg_program_, configs_dir_, options_.ranks_per_run);
   command.inherited_fd = lock->fd();  // the child holds the lock until it ends
   {
