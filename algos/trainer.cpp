@@ -191,7 +191,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
     check_finite(epoch, "cost value minibatch loss", cost_value_fit->mean_minibatch_loss);
   }
 
-  // 5. Normalisers last (docs/algorithms.md#each-epoch, step 3).
+  // 5. Normalisers last (docs/algorithms.md#each-epoch, step 5).
   if (ac.standardize_observations) ac.observation_normalizer.update(buffer_.observations(), mpi_);
   if (config_.use_reward_scaling) {
     returns_column_.col(0) = buffer_.discounted_returns();
