@@ -28,7 +28,7 @@ constexpr double kCapsuleRadius = static_cast<float>(0.08);
 constexpr double kTorsoRadius = 0.25;  // sphere sizes are parsed as double
 // The importer ignores the MJCF density and uses 1000 kg/m³ (docs/environments.md#how-bodies-are-built).
 constexpr double kDensity = 1000;
-constexpr double kFriction = 1.5;  // MJCF default geom friction (docs/environments.md#ant table)
+constexpr double kFriction = 1.5;  // MJCF default geom friction (docs/environments.md#ant)
 
 constexpr double kInitialHeight = 0.75;
 constexpr double kAliveHeight = 0.26;  // alive iff torso z > 0.26 (docs/environments.md#ant)

@@ -70,7 +70,7 @@ const btVector3 kWheel(0.05, 0.045, 0);
 const btVector3 kSpider(0.015, 0.01, 0);
 const btVector3 kRing(0.025, 0.01, 0);
 
-// PyBullet link order (depth-first over the URDF tree, docs/environments.md#car table).
+// PyBullet link order (depth-first over the URDF tree, docs/environments.md#car).
 const LinkSpec kLinks[CarAgent::kLinkCount] = {
     {"left_steering_hinge",
      -1,
@@ -411,7 +411,7 @@ constexpr double kContactDamping = 1000;
 constexpr double kSteeringLimitRad = 1.0;
 
 // Gear constraints: (linkA, linkB, ratio, aux link), in the original's
-// creation order (docs/environments.md#car "Gear constraints").
+// creation order (docs/environments.md#car).
 struct GearSpec {
   int link_a;
   int link_b;
@@ -651,7 +651,7 @@ void CarAgent::reset(Rng& rng) {
   body_->setBaseVel(btVector3(0, 0, 0));
   body_->setBaseOmega(btVector3(0, 0, 0));
   set_base_pose(traits_.initial_position, quaternion_from_euler(0, 0, traits_.initial_yaw));
-  // 14 draws, one per movable joint in order (docs/environments.md#car "Agent reset").
+  // 14 draws, one per movable joint in order (docs/environments.md#car).
   std::array<double, kMovableJointCount> angles{};
   for (double& angle : angles) angle = uniform(rng, -0.1, 0.1);
   set_joint_positions(angles);

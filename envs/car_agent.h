@@ -16,7 +16,7 @@
 //   collision radius             0.35 m; Run speed limit 1.5 m/s
 //   sensors                      rotate with the car, offset (0.2, 0, 0.3) in the base frame
 //
-// Link indices are PyBullet's (the `#` column of the docs/environments.md#car table); the
+// Link indices are PyBullet's (the table in car_agent.cpp, docs/environments.md#car); the
 // movable joints, in the agent's own order, are 0, 1, 2, 3, 8, 9, 10, 11, 13,
 // 15, 16, 17, 18, 19.
 #pragma once

@@ -38,7 +38,7 @@ constexpr double kMotorForce = 23.444;                // velocity-motor force F
 constexpr double kMaxJointVelocity = 1000;            // changeDynamics(maxJointVelocity)
 constexpr std::array<double, 4> kRotorDirections = {+1, -1, +1, -1};  // d_i
 
-// Multibody model (docs/environments.md#drone table; lengths already ×2).
+// Multibody model (docs/environments.md#drone; lengths already ×2).
 constexpr int kLinkCount = 5;       // body box + 4 rotors; the base is a dummy
 constexpr int kBodyLink = 0;        // base_link_inertia, fixed to the base
 constexpr int kFirstRotorLink = 1;  // rotor_i is link 1 + i

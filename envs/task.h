@@ -33,7 +33,7 @@ class Task {
   // The cost components of the last evaluate(), in a fixed order.
   virtual std::span<const CostTerm> cost_terms() const = 0;
 
-  // Draws a layout (docs/environments.md#tasks "Reset"). The agent has just been reset; its
+  // Draws a layout (docs/environments.md#tasks). The agent has just been reset; its
   // joint angles are already drawn and not part of the task's draws.
   virtual void sample_layout(Rng& rng, Layout& layout) = 0;
   // Places the agent's base, the goal and the obstacles as `layout` says and

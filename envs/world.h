@@ -58,7 +58,7 @@ class World {
 
   // One environment step: `sub_steps` internal steps of 1/(60·sub_steps) s.
   // Forces and joint torques added before the call act during every sub-step
-  // and are cleared at the end (docs/environments.md#motors-forces-and-contacts "Force lifetime").
+  // and are cleared at the end (docs/environments.md#motors-forces-and-contacts).
   void step();
 
   btMultiBodyDynamicsWorld& dynamics() { return *dynamics_; }

@@ -26,7 +26,7 @@ struct CpoOracle {
   double step_x, step_y;
 };
 
-// F = I, g = (1,1), b = (1,0), delta = 0.5: q = 2, r = 1, s = 1, A = 1 (docs/algorithms.md#test-oracles table).
+// F = I, g = (1,1), b = (1,0), delta = 0.5: q = 2, r = 1, s = 1, A = 1 (docs/algorithms.md#test-oracles).
 class CpoTwoDimensionalOracle : public ::testing::TestWithParam<CpoOracle> {};
 
 TEST_P(CpoTwoDimensionalOracle, MatchesTheTable) {
