@@ -87,8 +87,8 @@ void add_sweep_command(CLI::App& app, Action& run) {
   CLI::App* sweep = app.add_subcommand(
       "sweep", "Run a grid of training runs (configs/grids/*.yaml), N at a time; a killed sweep resumes");
   sweep->add_option("GRID", options->grid_file, "grid file, e.g. configs/grids/report.yaml");
-  sweep->add_option("--jobs,-j", options->jobs, "runs at a time (default: cores / ranks per run)")
-      ->check(CLI::PositiveNumber);
+  auto* jobs = sweep->add_option("--jobs,-j", options->jobs, "runs at a time (default: cores / ranks per run)")
+                   ->check(CLI::PositiveNumber);
   sweep->add_option("--ranks-per-run", options->ranks_per_run,
                     "MPI processes per run (mpirun -np K bsg train ...)")
       ->check(CLI::PositiveNumber);
@@ -113,6 +113,7 @@ void add_sweep_command(CLI::App& app, Action& run) {
                         "one more sbatch option, e.g. --sbatch-arg=--account=abc (--slurm, repeatable)")
           ->allow_extra_args(false)};
   for (CLI::Option* option : slurm_only) option->needs(slurm);
+  jobs->excludes(slurm);  // Slurm decides; --max-running throttles
   auto* status = sweep->add_option("--status", options->status_dir,
                                    "report the sweep in this directory (local or Slurm) and exit");
   status->excludes(slurm);
