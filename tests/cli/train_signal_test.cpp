@@ -47,11 +47,12 @@ int data_rows(const fs::path& progress) {
   return std::max(rows, 0);
 }
 
-// Starts `command` with sh, returns its pid.
-pid_t start(const std::string& command) {
+// Starts `command` with sh, output appended to `log`; returns its pid.
+pid_t start(const std::string& command, const fs::path& log) {
   const pid_t pid = fork();
   if (pid == 0) {
-    execl("/bin/sh", "sh", "-c", ("exec " + command + " > /dev/null 2>&1").c_str(), static_cast<char*>(nullptr));
+    execl("/bin/sh", "sh", "-c", ("exec " + command + " >> '" + log.string() + "' 2>&1").c_str(),
+          static_cast<char*>(nullptr));
     _exit(127);
   }
   return pid;
@@ -61,12 +62,13 @@ pid_t start(const std::string& command) {
 // the seconds from the signal to the exit.
 std::pair<int, double> stop_after_first_epoch(pid_t pid, const fs::path& progress, int signal) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  int status = 0;
   while (data_rows(progress) < 1 && std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0.0};
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   const auto sent = std::chrono::steady_clock::now();
   kill(pid, signal);
-  int status = 0;
   waitpid(pid, &status, 0);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
   return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), seconds};
@@ -98,10 +100,11 @@ void check_stopped_resumes_like_uninterrupted(const std::string& launcher, int s
   const fs::path stopped = temp.path() / "stopped";
   const fs::path reference = temp.path() / "reference";
   const std::string bsg = std::string(BSG_BINARY) + " ";
+  const fs::path log = temp.path() / "output.log";
 
   const auto [code, seconds] =
-      stop_after_first_epoch(start(launcher + bsg + train_arguments(run_file, stopped)), stopped / "progress.csv", signal);
-  EXPECT_EQ(code, 75) << "exit code of a run stopped by signal " << signal;
+      stop_after_first_epoch(start(launcher + bsg + train_arguments(run_file, stopped), log), stopped / "progress.csv", signal);
+  EXPECT_EQ(code, 75) << "exit code of a run stopped by signal " << signal << "; output:\n" << read_text_file(log);
   EXPECT_LT(seconds, 30.0);
   const int epochs = data_rows(stopped / "progress.csv");
   EXPECT_GE(epochs, 1);
@@ -111,10 +114,10 @@ void check_stopped_resumes_like_uninterrupted(const std::string& launcher, int s
 
   // The checkpoint covers every logged epoch: resuming keeps all rows.
   int status = 0;
-  waitpid(start(launcher + bsg + "train --resume " + stopped.string() + " --quiet"), &status, 0);
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  waitpid(start(launcher + bsg + train_arguments(run_file, reference)), &status, 0);
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  waitpid(start(launcher + bsg + "train --resume " + stopped.string() + " --quiet", log), &status, 0);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read_text_file(log);
+  waitpid(start(launcher + bsg + train_arguments(run_file, reference), log), &status, 0);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read_text_file(log);
   EXPECT_EQ(without_timings(stopped / "progress.csv"), without_timings(reference / "progress.csv"));
   EXPECT_EQ(read_text_file(stopped / "evaluation.json"), read_text_file(reference / "evaluation.json"));
 }
@@ -129,8 +132,9 @@ TEST(TrainSignal, SigintStopsLikewise) {
   bsg::testing::TemporaryDirectory temp;
   const fs::path run_file = write_run_file(temp.path());
   const fs::path out = temp.path() / "run";
-  const auto [code, seconds] = stop_after_first_epoch(start(std::string(BSG_BINARY) + " " + train_arguments(run_file, out)),
-                                                      out / "progress.csv", SIGINT);
+  const auto [code, seconds] = stop_after_first_epoch(
+      start(std::string(BSG_BINARY) + " " + train_arguments(run_file, out), temp.path() / "output.log"),
+      out / "progress.csv", SIGINT);
   EXPECT_EQ(code, 75);
   EXPECT_LT(data_rows(out / "progress.csv"), 8);
   const bsg::testing::ProgramResult resumed = run_bsg("train --resume " + out.string() + " --quiet");
@@ -139,7 +143,8 @@ TEST(TrainSignal, SigintStopsLikewise) {
 }
 
 TEST(TrainSignal, Sigusr1ToMpirunStopsBothRanksAtTheSameEpochAndTheResumeEqualsAnUninterruptedRun) {
-  check_stopped_resumes_like_uninterrupted("mpirun -np 2 --oversubscribe ", SIGUSR1);
+  check_stopped_resumes_like_uninterrupted(
+      "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun -np 2 --oversubscribe ", SIGUSR1);
 }
 
 TEST(TrainSignal, TheHelpDocumentsTheSignalsAndTheExitCode) {
