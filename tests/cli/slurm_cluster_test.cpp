@@ -172,9 +172,11 @@ TEST_F(LocalSlurmCluster, ACancelledTaskResumesOnResubmissionAndEveryRunFinishes
   EXPECT_EQ(count_of(log1, "=== bsg sweep: slurm task"), 2u) << log1;
   EXPECT_EQ(count_of(log1, "/bsg train --resume"), 1u) << log1;  // the second task resumed
 
-  const auto table = run_bsg("table " + sweep.string());
+  const auto table =
+      run_bsg("table " + sweep.string() + " --compare report --configs " + (kSource / "configs").string());
   EXPECT_EQ(table.exit_code, 0) << table.output;
   EXPECT_TRUE(fs::exists(sweep / "table1.md"));
+  EXPECT_TRUE(fs::exists(sweep / "table1_compare.csv"));
 }
 
 TEST_F(LocalSlurmCluster, SbatchRefusingTheJobShowsItsMessage) {
