@@ -113,4 +113,6 @@ TEST(ProgressLine, ShowsEpochReturnCostLimitLambdaKlAndEta) {
   }
   EXPECT_EQ(bsg::format_duration(45), "45s");
   EXPECT_EQ(bsg::format_duration(7500), "2h05m");
+  EXPECT_EQ(bsg::format_duration(3 * 86400 + 4 * 3600 + 59), "3d04h");  // a sweep's ETA
+  EXPECT_EQ(bsg::format_duration(-1), "?");
 }

@@ -3,7 +3,7 @@
 // does, the lowest cost, marked infeasible; TRPO by return alone; missing
 // configurations never count as zero; and the original plot script's
 // mean - std score (Q17).
-#include "common/selection.h"
+#include "experiments/selection.h"
 
 #include <gtest/gtest.h>
 

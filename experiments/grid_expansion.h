@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "common/grid_file.h"
 #include "common/run_config.h"
+#include "experiments/grid_file.h"
 
 namespace bsg {
 
