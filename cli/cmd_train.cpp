@@ -16,12 +16,12 @@
 #include "algos/run_directory.h"
 #include "algos/trainer.h"
 #include "commands.h"
-#include "configs_search.h"
 #include "common/config_error.h"
 #include "common/mpi_context.h"
 #include "common/run_config_checks.h"
 #include "common/run_config_resolve.h"
 #include "common/run_config_yaml.h"
+#include "configs_search.h"
 #include "envs/env.h"
 #include "mpi_abort_on_error.h"
 

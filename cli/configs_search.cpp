@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <system_error>
 
-#include "child_process.h"
+#include "experiments/child_process.h"
 
 namespace bsg::cli {
 namespace {
@@ -22,7 +22,8 @@ std::filesystem::path installed_configs_dir() {
 
 }  // namespace
 
-LocatedConfigs find_configs(const std::string& configs_option, const std::filesystem::path& input_file,
+LocatedConfigs find_configs(const std::string& configs_option,
+                            const std::filesystem::path& input_file,
                             const std::string& input_kind) {
   ConfigsSearchInputs inputs;
   inputs.explicit_dir = configs_option;

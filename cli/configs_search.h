@@ -14,8 +14,8 @@ namespace bsg::cli {
 // `configs_option` is --configs (empty: search); `input_file` the run or grid
 // file (empty: none), named `input_kind` in messages. Throws ConfigError
 // listing every place tried.
-LocatedConfigs find_configs(const std::string& configs_option, const std::filesystem::path& input_file,
-                            const std::string& input_kind);
+LocatedConfigs find_configs(const std::string& configs_option,
+                            const std::filesystem::path& input_file, const std::string& input_kind);
 
 // "configs: DIR (at or above the run file's folder)".
 std::string describe_configs(const LocatedConfigs& configs);

@@ -25,7 +25,8 @@ std::string places_tried(const std::vector<ConfigsPlace>& places, std::size_t la
     const ConfigsPlace& place = places[i];
     text += "\n  " + std::to_string(i + 1) + ". " + place.description + ": ";
     if (place.candidates.empty()) {
-      text += place.unavailable_note.empty() ? std::string("nothing to look at") : place.unavailable_note;
+      text += place.unavailable_note.empty() ? std::string("nothing to look at")
+                                             : place.unavailable_note;
     }
     for (std::size_t c = 0; c < place.candidates.size(); ++c) {
       text += (c == 0 ? "" : ", ") + place.candidates[c].string();
@@ -60,7 +61,8 @@ std::vector<ConfigsPlace> configs_search_places(const ConfigsSearchInputs& input
   std::vector<ConfigsPlace> places;
   if (!inputs.input_file.empty()) {
     const fs::path folder = absolute_or_same(inputs.input_file).parent_path();
-    places.push_back(configs_at_or_above(folder, "at or above the " + inputs.input_kind + "'s folder"));
+    places.push_back(
+        configs_at_or_above(folder, "at or above the " + inputs.input_kind + "'s folder"));
   }
   if (!inputs.current_dir.empty()) {
     places.push_back(configs_at_or_above(inputs.current_dir, "at or above the current folder"));
@@ -70,8 +72,10 @@ std::vector<ConfigsPlace> configs_search_places(const ConfigsSearchInputs& input
     variable.candidates.push_back(absolute_or_same(*inputs.configs_variable));
   }
   places.push_back(std::move(variable));
-  ConfigsPlace installed{"the installed configs", {}, false, "unknown (the program's location cannot be read)"};
-  if (!inputs.installed_dir.empty()) installed.candidates.push_back(absolute_or_same(inputs.installed_dir));
+  ConfigsPlace installed{
+      "the installed configs", {}, false, "unknown (the program's location cannot be read)"};
+  if (!inputs.installed_dir.empty())
+    installed.candidates.push_back(absolute_or_same(inputs.installed_dir));
   places.push_back(std::move(installed));
   ConfigsPlace source{"the source tree's configs", {}, false, "unknown"};
   if (!inputs.source_dir.empty()) source.candidates.push_back(absolute_or_same(inputs.source_dir));
@@ -86,9 +90,11 @@ LocatedConfigs locate_configs_dir(const std::vector<ConfigsPlace>& places) {
       if (is_configs_dir(candidate)) return LocatedConfigs{candidate, place.description};
     }
     if (place.required && !place.candidates.empty()) {
-      const std::string problem = place.description + " names " + place.candidates.front().string() +
+      const std::string problem = place.description + " names " +
+                                  place.candidates.front().string() +
                                   ", which is not a configs folder (it has no algorithms/ folder)";
-      throw ConfigError(i == 0 ? problem : problem + "; places tried, in order:" + places_tried(places, i));
+      throw ConfigError(i == 0 ? problem
+                               : problem + "; places tried, in order:" + places_tried(places, i));
     }
   }
   throw ConfigError(

@@ -88,7 +88,8 @@ TEST_F(ConfigsSearch, PlacesComeInTheDocumentedOrder) {
 
 TEST_F(ConfigsSearch, EachPlaceWinsOnlyWhenTheEarlierOnesHoldNoConfigs) {
   // Fill every place, then take them away from the front one by one.
-  const fs::path near_run = make_configs(root_ / "work" / "a" / "configs");  // one level above the run file
+  const fs::path near_run =
+      make_configs(root_ / "work" / "a" / "configs");  // one level above the run file
   const fs::path near_current = make_configs(current_ / "configs");
   const fs::path variable = make_configs(root_ / "variable");
   const fs::path installed = make_configs(root_ / "prefix" / "share" / "bsg" / "configs");
@@ -152,7 +153,8 @@ TEST_F(ConfigsSearch, AVariableNamingNoConfigsFolderIsAnErrorNotAFallThrough) {
   EXPECT_TRUE(contains(m, "$BSG_CONFIGS names " + (root_ / "variable").string()));
   EXPECT_TRUE(contains(m, "no algorithms/ folder"));
   // The places tried before it are listed too.
-  EXPECT_TRUE(contains(m, "1. at or above the run file's folder: " + (run_folder_ / "configs").string()));
+  EXPECT_TRUE(
+      contains(m, "1. at or above the run file's folder: " + (run_folder_ / "configs").string()));
   EXPECT_TRUE(contains(m, "2. at or above the current folder: " + (current_ / "configs").string()));
   EXPECT_FALSE(contains(m, "the installed configs"));
 }
@@ -168,7 +170,8 @@ TEST_F(ConfigsSearch, NothingFoundListsEveryPlaceAndFolderTried) {
     for (const fs::path& candidate : place.candidates) EXPECT_TRUE(contains(m, candidate.string()));
   }
   EXPECT_TRUE(contains(m, "3. $BSG_CONFIGS: not set"));
-  EXPECT_TRUE(contains(m, "4. the installed configs: " + (root_ / "prefix/share/bsg/configs").string()));
+  EXPECT_TRUE(
+      contains(m, "4. the installed configs: " + (root_ / "prefix/share/bsg/configs").string()));
   EXPECT_TRUE(contains(m, "5. the source tree's configs: " + (root_ / "source/configs").string()));
   EXPECT_TRUE(contains(m, "--configs DIR"));
   EXPECT_TRUE(contains(m, "BSG_CONFIGS=DIR"));

@@ -37,8 +37,8 @@ int main() {
   const auto env = bsg::envs::make("SafetyAntRun-v0");
   const bsg::envs::EnvSpec& spec = env->spec();
   if (spec.observation_dim != kObservationDim || spec.action_dim != kActionDim) {
-    std::fprintf(stderr, "spec: %d observations, %d actions; expected %d and %d\n", spec.observation_dim,
-                 spec.action_dim, kObservationDim, kActionDim);
+    std::fprintf(stderr, "spec: %d observations, %d actions; expected %d and %d\n",
+                 spec.observation_dim, spec.action_dim, kObservationDim, kActionDim);
     return 1;
   }
   const std::span<const double> first = env->reset(7);
@@ -58,7 +58,8 @@ int main() {
     const bsg::envs::StepResult result = env->step(action);
     if (result.observation.size() != static_cast<std::size_t>(kObservationDim) ||
         !all_finite(result.observation) || !std::isfinite(result.reward)) {
-      std::fprintf(stderr, "step %d: %zu observations or a non-finite number\n", steps, result.observation.size());
+      std::fprintf(stderr, "step %d: %zu observations or a non-finite number\n", steps,
+                   result.observation.size());
       return 1;
     }
     reward_sum += result.reward;
