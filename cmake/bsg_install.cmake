@@ -18,7 +18,7 @@ set(BSG_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/bsg)
 
 # A program that includes the headers must compile Eigen with the same
 # instruction set and floating-point contraction as the libraries did.
-target_compile_options(bsg_common INTERFACE $<INSTALL_INTERFACE:${BSG_CODEGEN_OPTIONS}>)
+target_compile_options(bsg_common INTERFACE "$<INSTALL_INTERFACE:${BSG_CODEGEN_OPTIONS}>")
 
 install(TARGETS bsg RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/configs/ DESTINATION ${CMAKE_INSTALL_DATADIR}/bsg/configs)

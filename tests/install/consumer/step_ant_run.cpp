@@ -8,6 +8,7 @@
 // and in tree against the build's own library (tests/install/CMakeLists.txt).
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <vector>
 
 #include "envs/env.h"
