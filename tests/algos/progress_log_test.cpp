@@ -1,4 +1,4 @@
-// progress.csv (algos/progress_csv.h), the pooled statistics of spec §9
+// progress.csv (algos/progress_csv.h), the pooled statistics of docs/algorithms.md#across-mpi-ranks
 // (algos/epoch_statistics.h), the column names (algos/epoch_log.h) and the
 // console line (algos/progress_line.h).
 #include <gtest/gtest.h>
