@@ -10,7 +10,7 @@
 
 #include "commands.h"
 #include "common/atomic_file.h"
-#include "common/run_config_resolve.h"
+#include "configs_search.h"
 #include "experiments/report_comparison.h"
 #include "experiments/sweep_results.h"
 #include "experiments/table1.h"
@@ -42,9 +42,7 @@ int run_table(const TableOptions& options) {
   std::cerr << "bsg table: wrote table1.md, table1.csv, table1.tex and configurations.csv to "
             << out.string() << "\n";
   if (options.compare == "report") {
-    const std::filesystem::path configs = options.configs_dir.empty()
-                                              ? locate_configs_dir(std::filesystem::current_path())
-                                              : std::filesystem::path(options.configs_dir);
+    const std::filesystem::path configs = find_configs(options.configs_dir, {}, "").dir;
     const ReportTable1 report = load_report_table1(configs / kReportTable1File);
     const std::string markdown = comparison_markdown(table, report);
     write_file_atomically(out / "table1_compare.md", markdown);
@@ -72,8 +70,7 @@ void add_table_command(CLI::App& app, Action& run) {
                     "(table1_compare.md, .csv)")
       ->check(CLI::IsMember({"report"}));
   table->add_option("--configs", options->configs_dir,
-                    "configs directory holding report_table1.csv (default: the configs/ at or above the "
-                    "current directory)");
+                    "configs directory holding report_table1.csv (default: searched as bsg train does)");
   table->callback([options, &run] { run = [options] { return run_table(*options); }; });
 }
 
