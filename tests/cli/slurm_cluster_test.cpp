@@ -21,6 +21,7 @@
 #include "common/csv_text.h"
 #include "experiments/grid_expansion.h"
 #include "experiments/grid_file.h"
+#include "progress_rows.h"
 #include "run_bsg.h"
 
 namespace fs = std::filesystem;
@@ -43,32 +44,7 @@ bsg::testing::ProgramResult shell(const std::string& command) {
   return result;
 }
 
-int data_rows(const fs::path& progress) {
-  std::ifstream file(progress);
-  std::string line;
-  int rows = -1;
-  while (std::getline(file, line)) rows += line.empty() ? 0 : 1;
-  return std::max(rows, 0);
-}
 
-std::vector<std::vector<std::string>> without_timings(const fs::path& progress) {
-  std::vector<std::vector<std::string>> rows;
-  std::ifstream file(progress);
-  std::string line;
-  std::vector<bool> keep;
-  while (std::getline(file, line)) {
-    const std::vector<std::string> fields = bsg::parse_csv_fields(line);
-    if (keep.empty()) {
-      for (const std::string& name : fields) keep.push_back(name.rfind("time_", 0) != 0 && name != "fps");
-    }
-    std::vector<std::string> kept;
-    for (std::size_t i = 0; i < fields.size(); ++i) {
-      if (keep.at(i)) kept.push_back(fields[i]);
-    }
-    rows.push_back(kept);
-  }
-  return rows;
-}
 
 std::size_t count_of(const std::string& text, const std::string& part) {
   std::size_t count = 0;
@@ -133,7 +109,7 @@ TEST_F(LocalSlurmCluster, ACancelledTaskResumesOnResubmissionAndEveryRunFinishes
   EXPECT_NE(first.output.find("2 to submit"), std::string::npos) << first.output;
   // Cancel task 1 once it has logged an epoch.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (data_rows(sweep / runs[1] / "progress.csv") < 1 && std::chrono::steady_clock::now() < deadline) {
+  while (bsg::testing::progress_rows(sweep / runs[1] / "progress.csv") < 1 && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   const std::string job = first.output.substr(first.output.find("job array ") + 10);
@@ -142,7 +118,7 @@ TEST_F(LocalSlurmCluster, ACancelledTaskResumesOnResubmissionAndEveryRunFinishes
   EXPECT_EQ(status_live.exit_code, 0) << status_live.output;
   ASSERT_EQ(shell("scancel " + job_id + "_1").exit_code, 0);
   ASSERT_TRUE(wait_for_empty_queue(90));
-  const int epochs_before = data_rows(sweep / runs[1] / "progress.csv");
+  const int epochs_before = bsg::testing::progress_rows(sweep / runs[1] / "progress.csv");
   EXPECT_GE(epochs_before, 1);
   EXPECT_LT(epochs_before, 10) << "the task was not cancelled mid-run";
   EXPECT_FALSE(fs::exists(sweep / runs[1] / "evaluation.json"));
@@ -163,7 +139,7 @@ TEST_F(LocalSlurmCluster, ACancelledTaskResumesOnResubmissionAndEveryRunFinishes
   ASSERT_EQ(local_run.exit_code, 0) << local_run.output;
   for (const fs::path& run : runs) {
     EXPECT_TRUE(fs::exists(sweep / run / "evaluation.json")) << run;
-    EXPECT_EQ(without_timings(sweep / run / "progress.csv"), without_timings(local / run / "progress.csv")) << run;
+    EXPECT_EQ(bsg::testing::progress_without_timings(sweep / run / "progress.csv"), bsg::testing::progress_without_timings(local / run / "progress.csv")) << run;
     EXPECT_EQ(read_text_file(sweep / run / "evaluation.json"), read_text_file(local / run / "evaluation.json")) << run;
   }
   const std::string log0 = read_text_file(sweep / runs[0] / "train.log");

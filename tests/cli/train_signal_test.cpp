@@ -17,6 +17,7 @@
 
 #include "../test_support.h"
 #include "common/csv_text.h"
+#include "progress_rows.h"
 #include "run_bsg.h"
 
 namespace fs = std::filesystem;
@@ -39,13 +40,6 @@ std::string train_arguments(const fs::path& run_file, const fs::path& out) {
          " --quiet";
 }
 
-int data_rows(const fs::path& progress) {
-  std::ifstream file(progress);
-  std::string line;
-  int rows = -1;
-  while (std::getline(file, line)) rows += line.empty() ? 0 : 1;
-  return std::max(rows, 0);
-}
 
 // Starts `command` with sh, output appended to `log`; returns its pid.
 pid_t start(const std::string& command, const fs::path& log) {
@@ -63,7 +57,7 @@ pid_t start(const std::string& command, const fs::path& log) {
 std::pair<int, double> stop_after_first_epoch(pid_t pid, const fs::path& progress, int signal) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   int status = 0;
-  while (data_rows(progress) < 1 && std::chrono::steady_clock::now() < deadline) {
+  while (bsg::testing::progress_rows(progress) < 1 && std::chrono::steady_clock::now() < deadline) {
     if (waitpid(pid, &status, WNOHANG) == pid) return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0.0};
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
@@ -74,25 +68,6 @@ std::pair<int, double> stop_after_first_epoch(pid_t pid, const fs::path& progres
   return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), seconds};
 }
 
-// Every column of progress.csv except the timings.
-std::vector<std::vector<std::string>> without_timings(const fs::path& progress) {
-  std::vector<std::vector<std::string>> rows;
-  std::ifstream file(progress);
-  std::string line;
-  std::vector<bool> keep;
-  while (std::getline(file, line)) {
-    const std::vector<std::string> fields = bsg::parse_csv_fields(line);
-    if (keep.empty()) {
-      for (const std::string& name : fields) keep.push_back(name.rfind("time_", 0) != 0 && name != "fps");
-    }
-    std::vector<std::string> kept;
-    for (std::size_t i = 0; i < fields.size(); ++i) {
-      if (keep.at(i)) kept.push_back(fields[i]);
-    }
-    rows.push_back(kept);
-  }
-  return rows;
-}
 
 void check_stopped_resumes_like_uninterrupted(const std::string& launcher, int signal) {
   bsg::testing::TemporaryDirectory temp;
@@ -106,7 +81,7 @@ void check_stopped_resumes_like_uninterrupted(const std::string& launcher, int s
       stop_after_first_epoch(start(launcher + bsg + train_arguments(run_file, stopped), log), stopped / "progress.csv", signal);
   EXPECT_EQ(code, 75) << "exit code of a run stopped by signal " << signal << "; output:\n" << read_text_file(log);
   EXPECT_LT(seconds, 30.0);
-  const int epochs = data_rows(stopped / "progress.csv");
+  const int epochs = bsg::testing::progress_rows(stopped / "progress.csv");
   EXPECT_GE(epochs, 1);
   EXPECT_LT(epochs, 8) << "the signal did not stop the run early";
   EXPECT_TRUE(fs::exists(stopped / "checkpoint.bin"));
@@ -118,7 +93,7 @@ void check_stopped_resumes_like_uninterrupted(const std::string& launcher, int s
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read_text_file(log);
   waitpid(start(launcher + bsg + train_arguments(run_file, reference), log), &status, 0);
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read_text_file(log);
-  EXPECT_EQ(without_timings(stopped / "progress.csv"), without_timings(reference / "progress.csv"));
+  EXPECT_EQ(bsg::testing::progress_without_timings(stopped / "progress.csv"), bsg::testing::progress_without_timings(reference / "progress.csv"));
   EXPECT_EQ(read_text_file(stopped / "evaluation.json"), read_text_file(reference / "evaluation.json"));
 }
 
@@ -136,10 +111,10 @@ TEST(TrainSignal, SigintStopsLikewise) {
       start(std::string(BSG_BINARY) + " " + train_arguments(run_file, out), temp.path() / "output.log"),
       out / "progress.csv", SIGINT);
   EXPECT_EQ(code, 75);
-  EXPECT_LT(data_rows(out / "progress.csv"), 8);
+  EXPECT_LT(bsg::testing::progress_rows(out / "progress.csv"), 8);
   const bsg::testing::ProgramResult resumed = run_bsg("train --resume " + out.string() + " --quiet");
   EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
-  EXPECT_EQ(data_rows(out / "progress.csv"), 8);
+  EXPECT_EQ(bsg::testing::progress_rows(out / "progress.csv"), 8);
 }
 
 TEST(TrainSignal, Sigusr1ToMpirunStopsBothRanksAtTheSameEpochAndTheResumeEqualsAnUninterruptedRun) {
