@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <iostream>
@@ -62,6 +63,13 @@ ChildCommand train_command(const PlannedRun& run, const std::filesystem::path& b
     if (::geteuid() == 0) {
       command.argv.push_back("--oversubscribe");
       command.environment = {{"OMPI_ALLOW_RUN_AS_ROOT", "1"}, {"OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"}};
+    }
+    // Ctrl-C reaches the ranks (they share our process group) and mpirun;
+    // mpirun would SIGKILL them after 2 x odls_base_sigkill_timeout (1 s by
+    // default), before they finish their epoch and checkpoint (cli/
+    // stop_signals.h). The Slurm script raises it to 60 s as well.
+    if (std::getenv("OMPI_MCA_odls_base_sigkill_timeout") == nullptr) {
+      command.environment.emplace_back("OMPI_MCA_odls_base_sigkill_timeout", "60");
     }
   }
   command.argv.push_back(bsg_program.string());
