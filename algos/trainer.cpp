@@ -170,6 +170,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   advantages_ = buffer_.advantages();
   cost_advantages_ = buffer_.cost_advantages();
   if (config_.use_standardized_advantages) standardize_advantages();
+  const auto policy_start = Clock::now();
   PolicySurrogate surrogate(normalized_observations_, buffer_.actions(), buffer_.log_probs(), advantages_,
                             cost_advantages_);
   const PolicyUpdateResult update = algorithm_->update(
@@ -177,19 +178,26 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   if (const auto loss = find_diagnostic(update, "Loss/Pi")) check_finite(epoch, "policy loss", *loss);
   check_parameters_finite(epoch);
 
-  // 4. Value fits (spec §8).
+  const double policy_update_seconds = seconds_since(policy_start);
+
+  // 4. Value fits (spec §8): V, and V_C if the algorithm uses it, on shared minibatches.
+  const auto value_fit_start = Clock::now();
   const ValueFitOptions fit_options{config_.train_v_iterations, config_.num_mini_batches, 16};
-  const ValueFitStats value_fit =
-      ac.value.fit(normalized_observations_, buffer_.value_targets(), shuffle_rng_, mpi_, fit_options);
+  std::vector<ValueFitJob> fit_jobs{{ac.value, buffer_.value_targets()}};
+  if (algorithm_->uses_cost_value_function()) fit_jobs.push_back({ac.cost_value, buffer_.cost_value_targets()});
+  const std::vector<ValueFitStats> fits =
+      fit_value_functions(fit_jobs, normalized_observations_, shuffle_rng_, mpi_, fit_options);
+  const ValueFitStats& value_fit = fits.front();
   check_finite(epoch, "value loss", value_fit.loss_before);
   check_finite(epoch, "value minibatch loss", value_fit.mean_minibatch_loss);
   std::optional<ValueFitStats> cost_value_fit;
   if (algorithm_->uses_cost_value_function()) {
-    cost_value_fit =
-        ac.cost_value.fit(normalized_observations_, buffer_.cost_value_targets(), shuffle_rng_, mpi_, fit_options);
+    cost_value_fit = fits.back();
     check_finite(epoch, "cost value loss", cost_value_fit->loss_before);
     check_finite(epoch, "cost value minibatch loss", cost_value_fit->mean_minibatch_loss);
   }
+
+  const double value_fit_seconds = seconds_since(value_fit_start);
 
   // 5. Normalisers last (spec §1 step 3).
   if (ac.standardize_observations) ac.observation_normalizer.update(buffer_.observations(), mpi_);
@@ -203,6 +211,10 @@ void OnPolicyTrainer::run_epoch(int epoch) {
 
   // 6. Log and save.
   const double epoch_seconds = seconds_since(epoch_start);
+  if (options_.on_epoch_timed) {
+    options_.on_epoch_timed(EpochTimings{epoch, collect_seconds, policy_update_seconds, value_fit_seconds,
+                                         update_seconds, epoch_seconds});
+  }
   progress_.epochs_completed = epoch + 1;
   progress_.elapsed_seconds += epoch_seconds;
   seconds_this_process_ += epoch_seconds;

@@ -36,6 +36,7 @@
 // epoch prepended.
 #pragma once
 
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -60,10 +61,21 @@ class NonFiniteError : public std::runtime_error {
   explicit NonFiniteError(const std::string& message) : std::runtime_error(message) {}
 };
 
+// Wall-clock seconds of one epoch's phases on this rank (bsg bench --train).
+struct EpochTimings {
+  int epoch = 0;
+  double collect_seconds = 0.0;        // rollout with GAE
+  double policy_update_seconds = 0.0;  // algorithm.update(): gradients, CG with Fisher products, line search
+  double value_fit_seconds = 0.0;      // V and V_C fits
+  double update_seconds = 0.0;         // everything after the rollout (policy, value fits, normalisers, checks)
+  double total_seconds = 0.0;          // the whole epoch before logging and saving
+};
+
 struct TrainerOptions {
   bool resume = false;          // continue from the directory's checkpoint
   int stop_after_epochs = 0;    // > 0: stop (with a checkpoint) once this many epochs are done
   std::ostream* log = nullptr;  // progress lines on rank 0; null: quiet
+  std::function<void(const EpochTimings&)> on_epoch_timed;  // called on every rank after each epoch; may be empty
 };
 
 struct TrainingOutcome {
