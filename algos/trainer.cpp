@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <iostream>
 #include <ostream>
 
@@ -22,6 +23,8 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
+
+double process_cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 std::uint64_t stream_seed(const RunConfig& config, SeedStream stream, int rank, int index) {
   return derive_seed(static_cast<std::uint64_t>(config.seed), stream, static_cast<std::uint64_t>(rank),
@@ -149,6 +152,7 @@ void OnPolicyTrainer::standardize_advantages() {
 
 void OnPolicyTrainer::run_epoch(int epoch) {
   const auto epoch_start = Clock::now();
+  const double epoch_cpu_start = process_cpu_seconds();
   ActorCritic& ac = *actor_critic_;
   const int rank = mpi_.rank();
 
@@ -163,6 +167,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   check_rollout_finite(epoch);
   const double collect_seconds = seconds_since(epoch_start);
   const auto update_start = Clock::now();
+  const double update_cpu_start = process_cpu_seconds();
 
   // 3. Policy update with the pooled J_C and L.
   const EpisodeStatistics episodes = pool_episode_statistics(buffer_, mpi_);
@@ -208,12 +213,14 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   check_parameters_finite(epoch);
   if (epoch % config_.check_freq == 0) check_ranks_agree(epoch);
   const double update_seconds = seconds_since(update_start);
+  const double update_cpu_seconds = process_cpu_seconds() - update_cpu_start;
 
   // 6. Log and save.
   const double epoch_seconds = seconds_since(epoch_start);
   if (options_.on_epoch_timed) {
     options_.on_epoch_timed(EpochTimings{epoch, collect_seconds, policy_update_seconds, value_fit_seconds,
-                                         update_seconds, epoch_seconds});
+                                         update_seconds, epoch_seconds, update_cpu_seconds,
+                                         process_cpu_seconds() - epoch_cpu_start});
   }
   progress_.epochs_completed = epoch + 1;
   progress_.elapsed_seconds += epoch_seconds;

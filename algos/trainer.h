@@ -69,6 +69,10 @@ struct EpochTimings {
   double value_fit_seconds = 0.0;      // V and V_C fits
   double update_seconds = 0.0;         // everything after the rollout (policy, value fits, normalisers, checks)
   double total_seconds = 0.0;          // the whole epoch before logging and saving
+  // Processor time of the process over the same spans: on a machine shared
+  // with other jobs, wall time includes waiting for a core, this does not.
+  double update_cpu_seconds = 0.0;
+  double total_cpu_seconds = 0.0;
 };
 
 struct TrainerOptions {
