@@ -1,4 +1,4 @@
-// A value network (V for rewards or V_C for costs, spec §2, §8) with its own
+// A value network (V for rewards or V_C for costs, docs/algorithms.md#networks, #value-fits) with its own
 // Adam optimiser and the original's fitting schedule: `iterations` passes,
 // each over a fresh shuffle of the local indices in minibatches of
 // m = floor(N / num_mini_batches) (the last may be shorter), with the loss
@@ -60,7 +60,7 @@ class ValueFunction {
   double loss_and_gradient(const Eigen::Ref<const Eigen::MatrixXd>& observations,
                            const Eigen::Ref<const Eigen::VectorXd>& targets, Eigen::Ref<Eigen::VectorXd> gradient);
 
-  // The §8 schedule. Collective (one gradient allreduce per minibatch); `rng`
+  // The docs/algorithms.md#value-fits schedule. Collective (one gradient allreduce per minibatch); `rng`
   // is the rank's RNG (shuffles).
   ValueFitStats fit(const Eigen::Ref<const Eigen::MatrixXd>& observations,
                     const Eigen::Ref<const Eigen::VectorXd>& targets, Rng& rng, const MpiContext& mpi,
@@ -79,7 +79,7 @@ struct ValueFitJob {
   Eigen::Ref<const Eigen::VectorXd> targets;
 };
 
-// The §8 schedule for every job on the same shuffles of `observations` (see
+// The schedule above (docs/algorithms.md#value-fits) for every job on the same shuffles of `observations` (see
 // above); returns one ValueFitStats per job. Collective (one allreduce per
 // minibatch); `rng` is the rank's RNG.
 std::vector<ValueFitStats> fit_value_functions(std::span<const ValueFitJob> jobs,
