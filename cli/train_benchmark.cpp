@@ -15,6 +15,7 @@
 #include "common/config_error.h"
 #include "common/mpi_context.h"
 #include "common/run_config_resolve.h"
+#include "configs_search.h"
 #include "envs/env.h"
 #include "mpi_abort_on_error.h"
 
@@ -26,19 +27,9 @@ double median(std::vector<double> values) {
   return values.empty() ? 0.0 : values[values.size() / 2];
 }
 
-// configs/ at or above the working directory, else at or above the program
-// (build directories live in the source tree).
-std::filesystem::path find_configs_dir() {
-  try {
-    return locate_configs_dir(std::filesystem::current_path());
-  } catch (const std::exception&) {
-    return locate_configs_dir(std::filesystem::canonical("/proc/self/exe").parent_path());
-  }
-}
-
 RunConfig benchmark_config(const TrainBenchArguments& args) {
   RunConfigRequest request;
-  request.configs_dir = find_configs_dir();
+  request.configs_dir = find_configs("", {}, "run file").dir;  // the search of bsg train without a run file
   request.valid_env_ids = envs::registered_ids();
   request.set_arguments = {"env_id=" + args.env_id, "alg=" + args.alg, "epochs=" + std::to_string(args.epochs),
                            "eval_episodes=0"};
