@@ -13,8 +13,10 @@
 //   options      EnvOptions passed to every environment (default: defaults)
 //
 // Seeding: reset(seed) resets environment i with seed + i (gymnasium's and
-// EnvPool's convention), so environment i of a VectorEnv plays exactly what a
-// single Env reset with seed + i plays under the same actions. Auto-resets
+// EnvPool's convention), so environment i of a new VectorEnv plays exactly
+// what a new single Env reset with seed + i plays under the same actions. (A
+// reset is not a pure function of its seed: later resets restore the first
+// reset's snapshot and motor targets survive them, as in the original suite.) Auto-resets
 // continue each environment's own random stream (Env::reset()). Each
 // environment is touched by one thread at a time and environments share
 // nothing, so results are bit-identical whatever num_threads is.
