@@ -28,8 +28,15 @@ namespace {
 
 std::span<const double> action_values(py::handle action, std::span<const py::ssize_t> shape,
                                       std::vector<double>& scratch) {
-  // Fast path: the float64 C-contiguous array a numpy user passes.
-  if (py::isinstance<py::array_t<double, py::array::c_style>>(action)) {
+  // Fast path: the float64 C-contiguous array a numpy user passes, checked on
+  // numpy's struct directly (pybind11's isinstance<array_t> builds a dtype).
+  using py::detail::npy_api;
+  constexpr int kDirectFlags = npy_api::NPY_ARRAY_C_CONTIGUOUS_ | npy_api::NPY_ARRAY_ALIGNED_;
+  const auto* proxy = py::detail::array_proxy(action.ptr());
+  if (npy_api::get().PyArray_Check_(action.ptr()) &&
+      py::detail::array_descriptor_proxy(proxy->descr)->type_num == npy_api::NPY_DOUBLE_ &&
+      py::detail::array_descriptor_proxy(proxy->descr)->byteorder != '>' &&
+      (proxy->flags & kDirectFlags) == kDirectFlags) {
     const auto array = py::reinterpret_borrow<py::array>(action);
     if (array.ndim() != static_cast<py::ssize_t>(shape.size()) ||
         !std::equal(shape.begin(), shape.end(), array.shape())) {

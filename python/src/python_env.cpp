@@ -11,6 +11,12 @@ namespace py = pybind11;
 
 namespace bsg::python {
 
+py::array_t<double> copy_to_array(std::span<const double> values) {
+  py::array_t<double> array(static_cast<py::ssize_t>(values.size()));
+  std::memcpy(array.mutable_data(), values.data(), values.size_bytes());
+  return array;
+}
+
 py::array_t<double> copy_to_array(std::span<const double> values,
                                   std::vector<py::ssize_t> shape) {
   py::array_t<double> array(std::move(shape));
@@ -46,7 +52,7 @@ py::tuple PythonEnv::reset(py::handle seed, py::handle options) {
     const py::gil_scoped_release release;
     observation = environment.reset(value);
   }
-  return py::make_tuple(copy_to_array(observation, {spec_.observation_dim}), py::dict());
+  return py::make_tuple(copy_to_array(observation), py::dict());
 }
 
 py::tuple PythonEnv::step(py::handle action) {
@@ -70,7 +76,7 @@ py::tuple PythonEnv::step(py::handle action) {
   for (size_t k = 0; k < result.cost_terms.size(); ++k) {
     info[cost_term_keys_[k]] = py::float_(result.cost_terms[k].value);
   }
-  return py::make_tuple(copy_to_array(result.observation, {spec_.observation_dim}),
+  return py::make_tuple(copy_to_array(result.observation),
                         py::float_(result.reward), py::float_(result.cost),
                         py::bool_(result.terminated), py::bool_(result.truncated),
                         std::move(info));

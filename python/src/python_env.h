@@ -47,7 +47,8 @@ class PythonEnv {
   std::atomic<bool> busy_{false};
 };
 
-// A fresh float64 array holding `values` with `shape`.
+// A fresh float64 array holding `values`, 1-D or with `shape`.
+pybind11::array_t<double> copy_to_array(std::span<const double> values);
 pybind11::array_t<double> copy_to_array(std::span<const double> values,
                                         std::vector<pybind11::ssize_t> shape);
 
