@@ -12,10 +12,12 @@
 namespace bsg::envs {
 
 // A fixed pool of threads that runs job(i) for i in [0, count) with the caller
-// taking part. Indices are handed out one at a time from an atomic counter, so
-// a thread the OS delays simply takes fewer environments. Waiting is a short
-// spin (a batch of steps is tens to hundreds of microseconds, a futex wake-up
-// several) and then a blocking atomic wait, so idle workers cost nothing.
+// taking part. Indices are claimed one at a time from an atomic word holding
+// (round, next index), and the caller waits for `count` completed jobs, not for
+// every worker to check in: a worker the OS keeps off the CPU (the machine is
+// shared) merely takes fewer environments, or none, and never holds up the
+// round. Waiting is a short spin (a round is tens to hundreds of microseconds,
+// a futex wake-up several) and then a blocking atomic wait.
 class VectorEnvWorkers {
  public:
   explicit VectorEnvWorkers(int num_threads) {
@@ -24,8 +26,8 @@ class VectorEnvWorkers {
 
   ~VectorEnvWorkers() {
     stopping_.store(true, std::memory_order_relaxed);
-    generation_.fetch_add(1, std::memory_order_release);
-    generation_.notify_all();
+    round_.fetch_add(1, std::memory_order_release);
+    round_.notify_all();
     for (std::thread& thread : threads_) thread.join();
   }
 
@@ -34,29 +36,29 @@ class VectorEnvWorkers {
 
   // Returns when every job has run; rethrows the first exception a job threw.
   void run(int count, const std::function<void(int)>& job) {
-    job_ = &job;
-    count_ = count;
-    next_index_.store(0, std::memory_order_relaxed);
+    const std::uint32_t round = round_.load(std::memory_order_relaxed) + 1;
+    job_.store(&job, std::memory_order_relaxed);
+    count_.store(count, std::memory_order_relaxed);
+    completed_.store(0, std::memory_order_relaxed);
     error_ = nullptr;
-    pending_.store(static_cast<int>(threads_.size()), std::memory_order_relaxed);
-    generation_.fetch_add(1, std::memory_order_release);
-    if (!threads_.empty()) generation_.notify_all();
-    work();
+    claims_.store(std::uint64_t{round} << 32, std::memory_order_release);
+    round_.store(round, std::memory_order_release);
+    if (!threads_.empty()) round_.notify_all();
+    work(round);
     for (;;) {
-      spin_until([&] { return pending_.load(std::memory_order_acquire) == 0; });
-      const int pending = pending_.load(std::memory_order_acquire);
-      if (pending == 0) break;
-      pending_.wait(pending, std::memory_order_acquire);
+      spin_until([&] { return completed_.load(std::memory_order_acquire) == count; });
+      const int completed = completed_.load(std::memory_order_acquire);
+      if (completed == count) break;
+      completed_.wait(completed, std::memory_order_acquire);
     }
-    job_ = nullptr;
     if (error_) std::rethrow_exception(error_);
   }
 
  private:
-  // Spins a few microseconds or until done() holds.
+  // Spins a microsecond or so, or until done() holds.
   template <typename Predicate>
   static void spin_until(Predicate done) {
-    constexpr int kSpinIterations = 2000;
+    constexpr int kSpinIterations = 200;  // short: on a shared machine spinning steals the core
     for (int i = 0; i < kSpinIterations && !done(); ++i) {
 #if defined(__x86_64__) || defined(__i386__)
       __builtin_ia32_pause();
@@ -65,41 +67,53 @@ class VectorEnvWorkers {
   }
 
   void worker_loop() {
-    std::uint64_t seen = 0;
+    std::uint32_t seen = 0;
     for (;;) {
       for (;;) {
-        spin_until([&] { return generation_.load(std::memory_order_acquire) != seen; });
-        const std::uint64_t now = generation_.load(std::memory_order_acquire);
+        spin_until([&] { return round_.load(std::memory_order_acquire) != seen; });
+        const std::uint32_t now = round_.load(std::memory_order_acquire);
         if (now != seen) {
           seen = now;
           break;
         }
-        generation_.wait(seen, std::memory_order_acquire);
+        round_.wait(seen, std::memory_order_acquire);
       }
       if (stopping_.load(std::memory_order_relaxed)) return;
-      work();
-      if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) pending_.notify_one();
+      work(seen);
     }
   }
 
-  void work() {
-    for (int i; (i = next_index_.fetch_add(1, std::memory_order_relaxed)) < count_;) {
+  // Claims and runs jobs of `round` until none is left. A claim succeeds only
+  // while `round` is current, so a late worker never runs a stale job, and the
+  // round cannot end (completed_ == count) before a claimed job has run.
+  void work(std::uint32_t round) {
+    std::uint64_t claims = claims_.load(std::memory_order_acquire);
+    for (;;) {
+      const auto claim_round = static_cast<std::uint32_t>(claims >> 32);
+      const auto index = static_cast<int>(claims & 0xffffffffu);
+      const int count = count_.load(std::memory_order_relaxed);
+      if (claim_round != round || index >= count) return;
+      if (!claims_.compare_exchange_weak(claims, claims + 1, std::memory_order_acquire)) continue;
       try {
-        (*job_)(i);
+        (*job_.load(std::memory_order_relaxed))(index);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(error_mutex_);
         if (!error_) error_ = std::current_exception();
       }
+      if (completed_.fetch_add(1, std::memory_order_acq_rel) + 1 == count) {
+        completed_.notify_one();
+      }
+      claims = claims_.load(std::memory_order_acquire);
     }
   }
 
   std::vector<std::thread> threads_;
-  std::atomic<std::uint64_t> generation_{0};
+  std::atomic<std::uint32_t> round_{0};
   std::atomic<bool> stopping_{false};
-  std::atomic<int> pending_{0};
-  std::atomic<int> next_index_{0};
-  const std::function<void(int)>* job_ = nullptr;
-  int count_ = 0;
+  std::atomic<std::uint64_t> claims_{0};  // (round << 32) | next index
+  std::atomic<const std::function<void(int)>*> job_{nullptr};
+  std::atomic<int> count_{0};
+  std::atomic<int> completed_{0};
   std::mutex error_mutex_;
   std::exception_ptr error_;
 };

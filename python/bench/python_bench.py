@@ -70,11 +70,15 @@ def vector(env_id, num_envs, steps, rounds):
     act_dim = one.spec.action_dim
     actions = np.random.default_rng(0).uniform(-1, 1, (steps, num_envs, act_dim))
 
+    cpu_per_step = {1: [], 2: []}  # process CPU seconds per environment step
+
     def rate(vector_env):
         vector_env.reset(seed=0)
-        start = time.perf_counter()
+        cpu_start, start = time.process_time(), time.perf_counter()
         for batch in actions:
             vector_env.step(batch)
+        cpu_per_step[vector_env.num_threads].append(
+            (time.process_time() - cpu_start) / (steps * num_envs))
         return steps * num_envs / (time.perf_counter() - start)
 
     rate(one), rate(two)  # warm-up
@@ -84,6 +88,7 @@ def vector(env_id, num_envs, steps, rounds):
         for vector_env in order:
             rates[vector_env.num_threads].append(rate(vector_env))
     ratios = [b / a for a, b in zip(rates[1], rates[2])]
+    cpu = {t: statistics.median(cpu_per_step[t][1:]) for t in (1, 2)}
     print(f"[vector] {env_id} x{num_envs}, {steps} batch steps x {rounds} rounds, "
           f"{os.cpu_count()} CPUs, {load()}")
     for threads in (1, 2):
@@ -91,6 +96,11 @@ def vector(env_id, num_envs, steps, rounds):
               f"   best {max(rates[threads]):10.0f}")
     print(f"  2 vs 1 threads: median of round ratios {statistics.median(ratios):.2f}x, "
           f"best-vs-best {max(rates[2]) / max(rates[1]):.2f}x   (target >= 1.8x)")
+    # On a loaded machine the wall ratio says more about the other processes
+    # than about the pool; CPU per step says what the pool costs: equal CPU per
+    # step with 2 threads means no work lost to synchronisation.
+    print(f"  process CPU per env step: 1 thread {cpu[1] * 1e6:.2f} us, 2 threads "
+          f"{cpu[2] * 1e6:.2f} us (2-thread CPU cost {cpu[2] / cpu[1]:.2f}x of 1-thread)")
 
 
 def all_envs(steps, rounds):
