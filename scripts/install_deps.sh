@@ -15,7 +15,8 @@ packages=(
   nlohmann-json3-dev            # JSON output of bsg, golden trajectories in the tests
   python3 python3-matplotlib    # scripts/plot_curves.py: learning curves of a sweep (Figure 2)
   pybind11-dev python3-dev      # the bsg Python module (python/)
-  python3-numpy python3-pytest  # its arrays and its tests (tests/python/)
+  python3-numpy                 # its arrays
+  python3-pytest                # tests/docs and tests/python (run by ctest)
 )
 
 missing=()
