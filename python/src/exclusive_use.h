@@ -3,9 +3,8 @@
 // data race (an Env is not thread-safe, env.h).
 #pragma once
 
-#include <pybind11/pybind11.h>
-
 #include <atomic>
+#include <stdexcept>
 #include <string>
 
 namespace bsg::python {
