@@ -9,9 +9,9 @@ import pytest
 
 import bsg
 
-if os.environ.get("BSG_SANITIZED"):
-    pytest.skip("AddressSanitizer's quarantine holds freed memory: resident memory is not flat",
-                allow_module_level=True)
+pytestmark = pytest.mark.skipif(
+    bool(os.environ.get("BSG_SANITIZED")),
+    reason="AddressSanitizer's quarantine holds freed memory: resident memory is not flat")
 
 PAGE = os.sysconf("SC_PAGE_SIZE")
 BOUND = 1.5 * 2**20
