@@ -36,6 +36,11 @@ inline constexpr std::array<std::string_view, 2> kCpoRSignNames = {"original", "
 enum class PcpoProjection { kl, l2 };
 inline constexpr std::array<std::string_view, 2> kPcpoProjectionNames = {"kl", "l2"};
 
+// Physics model of the environment (envs/env.h): the original's model link for
+// link, or a physically equivalent one that is cheaper to step (Ant, Car).
+enum class Physics { faithful, lean };
+inline constexpr std::array<std::string_view, 2> kPhysicsNames = {"faithful", "lean"};
+
 // Hidden-layer activation of the MLPs (spec §2.1: tanh is the only one used).
 enum class Activation { tanh };
 inline constexpr std::array<std::string_view, 1> kActivationNames = {"tanh"};
@@ -45,6 +50,7 @@ std::string_view to_string(LambdaOptimizer optimizer);
 std::string_view to_string(CpoRSign sign);
 std::string_view to_string(PcpoProjection projection);
 std::string_view to_string(Activation activation);
+std::string_view to_string(Physics physics);
 
 struct RunConfig {
   // --- run (the run file or --set) ---
@@ -58,6 +64,7 @@ struct RunConfig {
   int epochs = 500;                // E
   int steps_per_epoch = 32000;     // B: env steps per epoch summed over ranks
   int max_ep_len = 250;            // episode time limit in steps
+  Physics physics = Physics::faithful;
 
   // --- networks (spec §2) ---
   std::vector<int> hidden_sizes = {64, 64};

@@ -109,6 +109,8 @@ const std::vector<SchemaRow>& schema_rows() {
             "B: environment steps per epoch, summed over all MPI ranks"),
     integer("max_ep_len", &R::max_ep_len, L::environment, closed(1, kIntMax), all,
             "maximum episode length in steps (the environment's time limit)"),
+    choice("physics", enum_access<&R::physics>(), kPhysicsNames, L::environment, all,
+           "faithful (the original's model) or lean (equivalent, faster; Ant and Car only)"),
     // --- networks (spec 2) ---
     integer_list("hidden_sizes", &R::hidden_sizes, L::algorithm, closed(1, 4096), all,
                  "hidden layer widths of the policy net and both value nets"),
