@@ -110,7 +110,7 @@ const std::vector<SchemaRow>& schema_rows() {
     integer("max_ep_len", &R::max_ep_len, L::environment, closed(1, kIntMax), all,
             "maximum episode length in steps (the environment's time limit)"),
     choice("physics", enum_access<&R::physics>(), kPhysicsNames, L::environment, all,
-           "faithful (the original's model) or lean (equivalent, faster; Ant and Car only)"),
+           "faithful (the original's model) or lean (equivalent, faster; the Ant only)"),
     // --- networks (spec 2) ---
     integer_list("hidden_sizes", &R::hidden_sizes, L::algorithm, closed(1, 4096), all,
                  "hidden layer widths of the policy net and both value nets"),

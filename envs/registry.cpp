@@ -34,7 +34,9 @@ const std::map<std::string, EnvRegistration>& registry() {
   static const std::map<std::string, EnvRegistration> entries = [] {
     std::map<std::string, EnvRegistration> result;
     // Episode lengths and cost limits: spec §1.1 (report Table 3).
-    // The Ball is one sphere: nothing to merge. The Drone has no lean model yet.
+    // Lean models (env.h): the Ball is one sphere, nothing to weld; the Car
+    // and the Drone have none yet (the Car's could weld its sensors to the
+    // chassis and its rear wheels to their side gears).
     add_agent(result, "Ball", make_ball_agent, 250, kStandardCostLimits, LeanModel::kNone);
     add_agent(result, "Car", make_car_agent, 500, kStandardCostLimits, LeanModel::kNone);
     add_agent(result, "Drone", make_drone_agent, 500, kStandardCostLimits, LeanModel::kNone,

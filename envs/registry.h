@@ -2,7 +2,7 @@
 // static map). make() and registered_ids() of env.h read it.
 //
 // Registering an agent on all four tasks is one line in registry.cpp:
-//   add_agent(entries, "Car", make_car_agent, 500, kStandardCostLimits, LeanModel::kBuilt);
+//   add_agent(entries, "Car", make_car_agent, 500, kStandardCostLimits, LeanModel::kNone);
 // which registers SafetyCarCircle-v0, SafetyCarGather-v0, SafetyCarReach-v0
 // and SafetyCarRun-v0. The Drone's Reach uses pillars:
 //   add_agent(entries, "Drone", make_drone_agent, 500, kStandardCostLimits, LeanModel::kNone,
