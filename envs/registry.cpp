@@ -33,7 +33,7 @@ void add_agent(std::map<std::string, EnvRegistration>& entries, const std::strin
 const std::map<std::string, EnvRegistration>& registry() {
   static const std::map<std::string, EnvRegistration> entries = [] {
     std::map<std::string, EnvRegistration> result;
-    // Episode lengths and cost limits: spec §1.1 (report Table 3).
+    // Episode lengths and cost limits: docs/environments.md#the-sixteen-environments (report Table 3).
     // Lean models (env.h): the Ball is one sphere, nothing to weld; the Car
     // and the Drone have none yet (the Car's could weld its sensors to the
     // chassis and its rear wheels to their side gears).

@@ -1,6 +1,6 @@
 // The Ant's lean model (env.h, PhysicsModel::kLean) against independent
 // oracles: its welded base's mass properties by the parallel-axis theorem
-// worked out by hand from the model's geometry (spec §4.4 table), the welded
+// worked out by hand from the model's geometry (docs/environments.md#ant), the welded
 // leg links against the parts they carry, and its kinematics against the
 // faithful model over a horizon too short for chaos to amplify rounding.
 #include <gtest/gtest.h>
@@ -43,7 +43,7 @@ TEST(LeanAnt, BaseWeldsTorsoAndStubsByTheParallelAxisTheorem) {
   ASSERT_EQ(body.getNumLinks(), 8);  // hip+thigh and ankle+foot per leg
 
   // Torso: sphere r = 0.25, I = 0.4·m·r². Stub: capsule from 0 to 0.2·(±1, ±1, 0),
-  // COM at 0.1·(±1, ±1, 0), own inertia (0.16394, 0.16394, 0.252698) (spec §4.4).
+  // COM at 0.1·(±1, ±1, 0), own inertia (0.16394, 0.16394, 0.252698) (docs/environments.md#ant).
   const double torso_mass = 1000 * 4.0 / 3.0 * kPi * std::pow(0.25, 3);
   const double torso_inertia = 0.4 * torso_mass * 0.25 * 0.25;
   const double a = static_cast<float>(0.2);
