@@ -100,6 +100,8 @@ const std::vector<SchemaRow>& schema_rows() {
             "base seed; per-rank and per-environment seeds are derived from it (seeding.h)"),
     text("log_dir", &R::log_dir, L::run,
          "directory under which the run directory is created"),
+    choice("physics", enum_access<&R::physics>(), kPhysicsNames, L::run, all,
+           "faithful (the original's model) or lean (equivalent, faster; the Ant only)"),
     // --- environment (report Table 3, docs/reproducing.md#environment-settings) ---
     real("cost_limit", &R::cost_limit, L::environment, at_least(0), all,
          "d: limit on the undiscounted episode cost"),
@@ -109,8 +111,6 @@ const std::vector<SchemaRow>& schema_rows() {
             "B: environment steps per epoch, summed over all MPI ranks"),
     integer("max_ep_len", &R::max_ep_len, L::environment, closed(1, kIntMax), all,
             "maximum episode length in steps (the environment's time limit)"),
-    choice("physics", enum_access<&R::physics>(), kPhysicsNames, L::environment, all,
-           "faithful (the original's model) or lean (equivalent, faster; the Ant only)"),
     // --- networks (docs/algorithms.md#networks) ---
     integer_list("hidden_sizes", &R::hidden_sizes, L::algorithm, closed(1, 4096), all,
                  "hidden layer widths of the policy net and both value nets"),
