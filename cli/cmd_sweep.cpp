@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "commands.h"
-#include "common/run_config_resolve.h"
+#include "configs_search.h"
 #include "experiments/child_process.h"
 #include "experiments/local_launcher.h"
 #include "experiments/sweep_plan.h"
@@ -34,9 +34,7 @@ int run_sweep(SweepOptions options) {
   const std::filesystem::path grid_file(options.grid_file);
   SweepPlanRequest request;
   request.grid_file = grid_file;
-  request.configs_dir = options.configs_dir.empty()
-                            ? locate_configs_dir(grid_file.has_parent_path() ? grid_file.parent_path() : ".")
-                            : std::filesystem::path(options.configs_dir);
+  request.configs_dir = find_configs(options.configs_dir, grid_file, "grid file").dir;
   request.out_dir = options.out_dir.empty() ? std::filesystem::path("sweeps") / grid_file.stem()
                                             : std::filesystem::path(options.out_dir);
   request.only_env_ids = options.only_env_ids;
@@ -76,7 +74,7 @@ void add_sweep_command(CLI::App& app, Action& run) {
       ->check(CLI::PositiveNumber);
   sweep->add_option("--out", options->out_dir, "sweep directory (default: sweeps/<grid name>)");
   sweep->add_option("--configs", options->configs_dir,
-                    "configs directory (default: the one at or above the grid file)");
+                    "configs folder (default: searched as by bsg train, from the grid file's folder)");
   sweep->add_option("--env", options->only_env_ids, "run only this environment of the grid (repeatable)")
       ->allow_extra_args(false);  // one value per --env: `--env ID GRID` leaves GRID alone
   sweep->add_option("--alg", options->only_algorithms, "run only this algorithm of the grid (repeatable)")

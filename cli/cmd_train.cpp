@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "algos/run_directory.h"
@@ -20,6 +21,7 @@
 #include "common/run_config_checks.h"
 #include "common/run_config_resolve.h"
 #include "common/run_config_yaml.h"
+#include "configs_search.h"
 #include "envs/env.h"
 #include "mpi_abort_on_error.h"
 
@@ -37,28 +39,31 @@ struct TrainArguments {
   bool quiet = false;
 };
 
-RunConfig resolve_config(const TrainArguments& args) {
+struct ResolvedTrainConfig {
+  RunConfig config;
+  LocatedConfigs configs;  // the folder the run file was resolved against
+};
+
+ResolvedTrainConfig resolve_config(const TrainArguments& args) {
+  if (!args.config_file.empty() && !std::filesystem::is_regular_file(args.config_file)) {
+    throw ConfigError("run file " + args.config_file + " does not exist");
+  }
+  ResolvedTrainConfig resolved;
+  resolved.configs = find_configs(args.configs_dir, args.config_file, "run file");
   RunConfigRequest request;
+  request.configs_dir = resolved.configs.dir;
   request.run_file = args.config_file;
   request.set_arguments = args.set_arguments;
   request.valid_env_ids = envs::registered_ids();
-  if (!args.configs_dir.empty()) {
-    request.configs_dir = args.configs_dir;
-  } else {
-    if (!args.config_file.empty() && !std::filesystem::is_regular_file(args.config_file)) {
-      throw ConfigError("run file " + args.config_file + " does not exist");
-    }
-    const std::filesystem::path start =
-        args.config_file.empty() ? std::filesystem::current_path()
-                                 : std::filesystem::absolute(args.config_file).parent_path();
-    request.configs_dir = locate_configs_dir(start);
-  }
-  return resolve_run_config(request).config;
+  resolved.config = resolve_run_config(request).config;
+  return resolved;
 }
 
 int train(const TrainArguments& args) {
   if (args.print_config) {
-    std::cout << to_yaml(resolve_config(args));
+    const ResolvedTrainConfig resolved = resolve_config(args);
+    // A YAML comment, so that the output stays a valid run file.
+    std::cout << "# " << describe_configs(resolved.configs) << "\n" << to_yaml(resolved.config);
     return 0;
   }
   MpiSession session;
@@ -66,13 +71,16 @@ int train(const TrainArguments& args) {
   return run_or_abort_job(mpi, [&]() {
     const bool resume = !args.resume_dir.empty();
     RunConfig config;
+    std::optional<LocatedConfigs> configs;
     std::optional<RunDirectory> directory;
     if (resume) {
       directory.emplace(args.resume_dir);
       check_is_run_directory(*directory);
       config = load_resolved_run_config(directory->config(), envs::registered_ids());
     } else {
-      config = resolve_config(args);
+      ResolvedTrainConfig resolved = resolve_config(args);
+      config = std::move(resolved.config);
+      configs = std::move(resolved.configs);
       directory.emplace(args.out_dir.empty() ? default_run_directory(config) : std::filesystem::path(args.out_dir));
     }
     check_run_config_for_ranks(config, mpi.size());
@@ -86,6 +94,7 @@ int train(const TrainArguments& args) {
                 << config.epochs << " epochs of " << config.steps_per_epoch << " steps on " << mpi.size()
                 << (mpi.size() == 1 ? " rank" : " ranks") << (resume ? ", resuming " : " -> ")
                 << directory->root.string() << std::endl;
+      if (configs) std::cout << describe_configs(*configs) << std::endl;
     }
     OnPolicyTrainer trainer(config, *directory, mpi, options);
     const TrainingOutcome outcome = trainer.run();
@@ -109,7 +118,8 @@ void add_train_command(CLI::App& app, Action& run) {
   auto* out = command->add_option("--out", args->out_dir,
                                   "run directory (default: <log_dir>/<env_id>/<alg>/seed_<seed>)");
   command->add_option("--configs", args->configs_dir,
-                      "configs directory (default: the first configs/ at or above the run file)");
+                      "configs folder (default: the first found at or above the run file's folder, at or above the "
+                      "current folder, in $BSG_CONFIGS, installed, in the source tree)");
   auto* print = command->add_flag("--print-config", args->print_config,
                                   "print the fully resolved configuration and exit");
   auto* resume = command->add_option("--resume", args->resume_dir, "continue the run in this directory");
