@@ -4,6 +4,10 @@
 //   bsg train --resume DIR
 // Under `mpirun -np N` the batch is split over the N ranks (the same code runs
 // with one process and no MPI).
+// SIGTERM, SIGINT or SIGUSR1 (scancel, a preemption, Ctrl-C) stops the run at
+// the end of the current epoch with a checkpoint and exit code 75
+// (stop_signals.h); under mpirun a signal reaching any rank stops all of them
+// at the same epoch (send mpirun SIGUSR1: it forwards that one at once).
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -24,6 +28,7 @@
 #include "configs_search.h"
 #include "envs/env.h"
 #include "mpi_abort_on_error.h"
+#include "stop_signals.h"
 
 namespace bsg::cli {
 namespace {
@@ -66,6 +71,7 @@ int train(const TrainArguments& args) {
     std::cout << "# " << describe_configs(resolved.configs) << "\n" << to_yaml(resolved.config);
     return 0;
   }
+  const StopSignals stop_signals;  // before MPI starts its threads: they inherit the mask
   MpiSession session;
   const MpiContext mpi = session.context();
   return run_or_abort_job(mpi, [&]() {
@@ -89,6 +95,10 @@ int train(const TrainArguments& args) {
     options.resume = resume;
     options.stop_after_epochs = args.stop_after_epochs;
     options.log = args.quiet ? nullptr : &std::cout;
+    // Collective: a signal that reached one rank stops every rank.
+    options.stop_requested = [&stop_signals, &mpi] {
+      return mpi.max(stop_signals.stop_pending() != 0 ? 1.0 : 0.0) > 0.0;
+    };
     if (mpi.is_root() && !args.quiet) {
       std::cout << "bsg train: " << config.env_id << " " << to_string(config.alg) << " seed " << config.seed << ", "
                 << config.epochs << " epochs of " << config.steps_per_epoch << " steps on " << mpi.size()
@@ -98,11 +108,13 @@ int train(const TrainArguments& args) {
     }
     OnPolicyTrainer trainer(config, *directory, mpi, options);
     const TrainingOutcome outcome = trainer.run();
-    if (mpi.is_root() && !args.quiet && !outcome.finished) {
-      std::cout << "stopped after " << outcome.epochs_completed << " of " << config.epochs
-                << " epochs; continue with: bsg train --resume " << directory->root.string() << std::endl;
+    if (mpi.is_root() && !outcome.finished) {
+      (outcome.stop_requested ? std::cerr : std::cout)
+          << (outcome.stop_requested ? "bsg train: stop signal received: " : "") << "stopped after "
+          << outcome.epochs_completed << " of " << config.epochs
+          << " epochs; continue with: bsg train --resume " << directory->root.string() << std::endl;
     }
-    return 0;
+    return outcome.stop_requested ? kExitStoppedBySignal : 0;
   });
 }
 
@@ -110,6 +122,10 @@ int train(const TrainArguments& args) {
 
 void add_train_command(CLI::App& app, Action& run) {
   CLI::App* command = app.add_subcommand("train", "Train a policy: bsg train CONFIG [--set key=value]... [--out DIR]");
+  command->footer(
+      "SIGTERM, SIGINT or SIGUSR1 stops training at the end of the current epoch, after a checkpoint, with "
+      "exit code 75 (all ranks if any rank gets it; under mpirun send SIGUSR1, which mpirun forwards at once); "
+      "continue with --resume DIR.");
   auto args = std::make_shared<TrainArguments>();
   command->add_option("CONFIG", args->config_file, "run file (YAML) naming env_id and alg; see configs/README.md");
   command->add_option("--set", args->set_arguments, "override one key: --set key=value (repeatable)")

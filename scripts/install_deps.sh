@@ -15,6 +15,7 @@ packages=(
   nlohmann-json3-dev            # JSON output of bsg, golden trajectories in the tests
   python3 python3-matplotlib    # scripts/plot_curves.py: learning curves of a run or a sweep (Figure 2)
   python3-pytest                # Python tests run by ctest: docs check, install, scripts
+  slurm-wlm munge               # bsg sweep --slurm; scripts/slurm_local.sh (a one-node cluster for the tests)
 )
 
 missing=()
