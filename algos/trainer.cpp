@@ -62,7 +62,9 @@ std::optional<double> find_diagnostic(const PolicyUpdateResult& result, std::str
 
 OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi,
                                  TrainerOptions options)
-    : OnPolicyTrainer(config, std::move(directory), mpi, options, envs::make(config.env_id)) {}
+    : OnPolicyTrainer(config, std::move(directory), mpi, options,
+                      envs::make(config.env_id,
+                                 {.physics = envs::parse_physics_model(to_string(config.physics))})) {}
 
 OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi,
                                  TrainerOptions options, std::unique_ptr<envs::Env> env)

@@ -1,12 +1,18 @@
-// `bsg bench [--env ID] [--steps N] [--json]`: environment steps per second on
-// one core with random actions, beside the raw physics rate of the same world
-// (actions and engine steps only, no task, sensor or observation work).
+// `bsg bench [--env ID] [--steps N] [--physics M ...] [--rounds R] [--json]`:
+// environment steps per second on one core with random actions, beside the raw
+// physics rate of the same world (actions and engine steps only, no task,
+// sensor or observation work). With several physics models (e.g. `--physics
+// faithful lean`), each environment is measured with every model in turn, R
+// times, alternating, so that a shared or throttled CPU affects all alike; the
+// text output then ends with the ratio of the median rates to the first model's.
 // `bsg bench --train --env ID --alg A [--epochs N] [--set key=value]... [--json]`:
 // seconds per training epoch instead (train_benchmark.h).
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -23,37 +29,77 @@ namespace {
 struct BenchArguments {
   std::string env_id;  // empty: every registered environment
   long steps = 20000;
+  std::vector<std::string> physics = {"faithful"};
+  int rounds = 1;
   bool json = false;
   bool train = false;  // --train: time training epochs (train_benchmark.h)
 };
 
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
 int bench(const BenchArguments& args) {
+  std::vector<envs::EnvOptions> models;
+  for (const std::string& name : args.physics) {
+    models.push_back({.physics = envs::parse_physics_model(name)});  // a bad name fails here
+  }
   std::vector<std::string> ids;
   if (args.env_id.empty()) {
     ids = envs::registered_ids();
   } else {
-    envs::make(args.env_id);  // an unknown id fails here, listing the valid ones
+    for (const envs::EnvOptions& options : models) {
+      envs::make(args.env_id, options);  // an unknown id or model fails here, naming it
+    }
     ids.push_back(args.env_id);
   }
+  const bool several = models.size() > 1 || args.rounds > 1;
   nlohmann::json list = nlohmann::json::array();
   if (!args.json) {
-    std::cout << std::left << std::setw(24) << "id" << std::right << std::setw(14) << "env steps/s"
-              << std::setw(18) << "physics steps/s" << std::setw(12) << "overhead" << "\n";
+    std::cout << std::left << std::setw(24) << "id" << std::setw(10) << "physics" << std::right
+              << std::setw(14) << "env steps/s" << std::setw(18) << "physics steps/s"
+              << std::setw(12) << "overhead" << "\n";
   }
   for (const std::string& id : ids) {
-    const envs::EnvBenchmark result = envs::benchmark_env(id, args.steps);
-    const double overhead = result.physics_steps_per_second / result.env_steps_per_second;
-    if (args.json) {
-      list.push_back({{"id", id},
-                      {"steps", result.steps},
-                      {"env_steps_per_second", result.env_steps_per_second},
-                      {"physics_steps_per_second", result.physics_steps_per_second},
-                      {"overhead", overhead}});
-    } else {
-      std::cout << std::left << std::setw(24) << id << std::right << std::fixed
-                << std::setprecision(0) << std::setw(14) << result.env_steps_per_second
-                << std::setw(18) << result.physics_steps_per_second << std::setprecision(2)
-                << std::setw(11) << overhead << "x" << std::endl;
+    std::map<size_t, std::vector<double>> env_rates;  // model index → env steps/s per round
+    for (int round = 0; round < args.rounds; ++round) {
+      for (size_t m = 0; m < models.size(); ++m) {
+        if (models[m].physics == envs::PhysicsModel::kLean &&
+            !envs::has_lean_model(id)) {
+          continue;  // all environments: skip those without a lean model
+        }
+        const envs::EnvBenchmark result = envs::benchmark_env(id, args.steps, 0, models[m]);
+        const double overhead = result.physics_steps_per_second / result.env_steps_per_second;
+        env_rates[m].push_back(result.env_steps_per_second);
+        const std::string physics(envs::to_string(models[m].physics));
+        if (args.json) {
+          list.push_back({{"id", id},
+                          {"physics", physics},
+                          {"round", round},
+                          {"steps", result.steps},
+                          {"env_steps_per_second", result.env_steps_per_second},
+                          {"physics_steps_per_second", result.physics_steps_per_second},
+                          {"overhead", overhead}});
+        } else {
+          std::cout << std::left << std::setw(24) << id << std::setw(10) << physics << std::right
+                    << std::fixed << std::setprecision(0) << std::setw(14)
+                    << result.env_steps_per_second << std::setw(18)
+                    << result.physics_steps_per_second << std::setprecision(2) << std::setw(11)
+                    << overhead << "x" << std::endl;
+        }
+      }
+    }
+    if (!args.json && several && env_rates.contains(0)) {
+      const double reference = median(env_rates.at(0));
+      std::cout << "  median env steps/s over " << args.rounds << " round(s):";
+      for (const auto& [m, rates] : env_rates) {
+        std::cout << " " << envs::to_string(models[m].physics) << " " << std::setprecision(0)
+                  << median(rates) << " (" << std::setprecision(2) << median(rates) / reference
+                  << "x)";
+      }
+      std::cout << std::endl;
     }
   }
   if (args.json) std::cout << list.dump(2) << "\n";
@@ -69,6 +115,12 @@ void add_bench_command(CLI::App& app, Action& run) {
   command->add_option("--env", args->env_id, "one environment id (default: all registered)");
   auto* steps = command->add_option("--steps", args->steps, "steps per measurement (>= 1)")
                     ->check(CLI::Range(1L, 100000000L));
+  auto* physics = command->add_option("--physics", args->physics,
+                                      "physics model(s): faithful (default) and/or lean, measured in turn")
+                      ->check(CLI::IsMember({"faithful", "lean"}));
+  auto* rounds = command->add_option("--rounds", args->rounds,
+                                     "measure every model this many times, alternating (>= 1)")
+                     ->check(CLI::Range(1, 1000));
   command->add_flag("--json", args->json, "print a JSON array");
   // --train: seconds per training epoch (collection, policy update, value fits).
   auto train = std::make_shared<TrainBenchArguments>();
@@ -80,6 +132,8 @@ void add_bench_command(CLI::App& app, Action& run) {
                   ->expected(1)
                   ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   steps->excludes(train_flag);
+  physics->excludes(train_flag);  // --train takes the model from the config: --set physics=lean
+  rounds->excludes(train_flag);
   alg->needs(train_flag);
   epochs->needs(train_flag);
   set->needs(train_flag);

@@ -1,4 +1,5 @@
-// `bsg rollout --env ID --policy random|zero --episodes N --seed S [--json]`:
+// `bsg rollout --env ID --policy random|zero --episodes N --seed S
+// [--physics faithful|lean] [--json]`:
 // plays whole episodes with a fixed policy and prints each episode's return,
 // cost and length, then their mean and standard deviation. The first episode
 // resets with `seed`, later ones continue the environment's random stream; the
@@ -25,6 +26,7 @@ struct RolloutArguments {
   std::string policy = "random";
   int episodes = 1;
   std::uint64_t seed = 0;
+  std::string physics = "faithful";
   bool json = false;
 };
 
@@ -50,7 +52,8 @@ MeanStd mean_std(const std::vector<Episode>& episodes, Field field) {
 }
 
 int rollout(const RolloutArguments& args) {
-  const std::unique_ptr<envs::Env> env = envs::make(args.env_id);
+  const std::unique_ptr<envs::Env> env =
+      envs::make(args.env_id, {.physics = envs::parse_physics_model(args.physics)});
   const int action_dim = env->spec().action_dim;
   Rng policy_rng(args.seed ^ 0x9e3779b97f4a7c15ULL);  // independent of the env's stream
   std::vector<double> action(static_cast<size_t>(action_dim), 0.0);
@@ -79,7 +82,10 @@ int rollout(const RolloutArguments& args) {
   const MeanStd cost = mean_std(episodes, [](const Episode& e) { return e.cost; });
   const MeanStd length = mean_std(episodes, [](const Episode& e) { return double(e.length); });
   if (args.json) {
-    nlohmann::json out = {{"env", args.env_id}, {"policy", args.policy}, {"seed", args.seed}};
+    nlohmann::json out = {{"env", args.env_id},
+                          {"policy", args.policy},
+                          {"seed", args.seed},
+                          {"physics", args.physics}};
     for (const Episode& e : episodes) {
       out["episodes"].push_back(
           {{"return", e.episode_return}, {"cost", e.cost}, {"length", e.length}});
@@ -89,7 +95,8 @@ int rollout(const RolloutArguments& args) {
     std::cout << std::setprecision(17) << out.dump(2) << "\n";
     return 0;
   }
-  std::cout << args.env_id << ", policy " << args.policy << ", seed " << args.seed << "\n"
+  std::cout << args.env_id << ", policy " << args.policy << ", seed " << args.seed << ", physics "
+            << args.physics << "\n"
             << std::setw(8) << "episode" << std::setw(14) << "return" << std::setw(10) << "cost"
             << std::setw(8) << "length" << "\n";
   std::cout << std::fixed << std::setprecision(3);
@@ -115,6 +122,8 @@ void add_rollout_command(CLI::App& app, Action& run) {
   command->add_option("--episodes", args->episodes, "number of episodes (>= 1)")
       ->check(CLI::Range(1, 1000000));
   command->add_option("--seed", args->seed, "seed of the first reset and of the random policy");
+  command->add_option("--physics", args->physics, "physics model: faithful (default) or lean")
+      ->check(CLI::IsMember({"faithful", "lean"}));
   command->add_flag("--json", args->json, "print JSON with every episode and the summary");
   command->callback([&run, args]() { run = [args]() { return rollout(*args); }; });
 }

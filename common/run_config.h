@@ -38,6 +38,11 @@ inline constexpr std::array<std::string_view, 2> kCpoRSignNames = {"original", "
 enum class PcpoProjection { kl, l2 };
 inline constexpr std::array<std::string_view, 2> kPcpoProjectionNames = {"kl", "l2"};
 
+// Physics model of the environment (envs/env.h): the original's model link for
+// link, or a physically equivalent one that is cheaper to step (the Ant).
+enum class Physics { faithful, lean };
+inline constexpr std::array<std::string_view, 2> kPhysicsNames = {"faithful", "lean"};
+
 // Hidden-layer activation of the MLPs (docs/algorithms.md#networks: tanh is the only one used).
 enum class Activation { tanh };
 inline constexpr std::array<std::string_view, 1> kActivationNames = {"tanh"};
@@ -47,6 +52,7 @@ std::string_view to_string(LambdaOptimizer optimizer);
 std::string_view to_string(CpoRSign sign);
 std::string_view to_string(PcpoProjection projection);
 std::string_view to_string(Activation activation);
+std::string_view to_string(Physics physics);
 
 struct RunConfig {
   // --- run (the run file or --set) ---
@@ -60,6 +66,7 @@ struct RunConfig {
   int epochs = 500;                // E
   int steps_per_epoch = 32000;     // B: env steps per epoch summed over ranks
   int max_ep_len = 250;            // episode time limit in steps
+  Physics physics = Physics::faithful;
 
   // --- networks (docs/algorithms.md#networks) ---
   std::vector<int> hidden_sizes = {64, 64};

@@ -10,6 +10,7 @@
 #include <LinearMath/btVector3.h>
 
 #include "common/random.h"
+#include "envs/env.h"
 
 class btCollisionObject;
 
@@ -21,6 +22,8 @@ class World;
 struct AgentOptions {
   // Reach and Gather give the Car and the Ant stronger motors (docs/environments.md#agents "power upgrade").
   bool power_upgrade = false;
+  // Faithful or lean model (env.h); only agents registered with a lean model see kLean.
+  PhysicsModel physics = PhysicsModel::kFaithful;
 };
 
 // Per-agent constants of docs/environments.md#agents that tasks and sensors use.

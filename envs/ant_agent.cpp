@@ -14,6 +14,7 @@
 #include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
+#include "envs/rigid_body_merge.h"
 #include "envs/world.h"
 
 namespace bsg::envs {
@@ -102,8 +103,33 @@ float scaled_rate(double qd) { return static_cast<float>(0.1 * qd); }
 
 }  // namespace
 
+// A capsule geom from 0 to `to` becomes a compound holding a two-sphere
+// btMultiSphereShape (Bullet's default margin 0.04), shifted so that the
+// link's inertial frame sits at the capsule's midpoint. Its inertia is
+// Bullet's bounding-box estimate of that compound (docs/environments.md#how-bodies-are-built), which is
+// what gives the table's (0.16394, 0.16394, 0.252698) for a stub.
+AntAgent::CapsuleLink AntAgent::make_capsule(const btVector3& to) {
+  const btVector3 from(0, 0, 0);
+  const btVector3 centres[2] = {from, to};
+  const btScalar radii[2] = {kCapsuleRadius, kCapsuleRadius};
+  CapsuleLink link;
+  link.spheres = world_.keep_shape(std::make_unique<btMultiSphereShape>(centres, radii, 2));
+  auto compound = std::make_unique<btCompoundShape>();
+  link.com_offset = 0.5 * (from + to);  // importer's inertialShift
+  btTransform child;
+  child.setIdentity();
+  child.setOrigin(-link.com_offset);
+  compound->addChildShape(child, link.spheres);
+  link.shape = world_.keep_shape(std::move(compound));
+  // The capsule's length is the norm of its float32 end point, as the importer computes it.
+  link.mass = capsule_mass_kg(to.length());
+  link.shape->calculateLocalInertia(link.mass, link.inertia);
+  return link;
+}
+
 AntAgent::AntAgent(World& world, const AgentOptions& options)
     : world_(world),
+      physics_(options.physics),
       torque_per_unit_action_((options.power_upgrade ? kUpgradedPower : kPower) * kTorqueScale) {
   traits_.action_dim = kActionDim;
   traits_.observation_dim = kObservationDim;
@@ -115,52 +141,61 @@ AntAgent::AntAgent(World& world, const AgentOptions& options)
   traits_.sensor_offset = {0, 0, 0};
 
   // Torso: a lone sphere, so its inertia is the sphere's 0.4·m·r² (docs/environments.md#ant).
-  auto* torso_shape = world.keep_shape(std::make_unique<btSphereShape>(kTorsoRadius));
-  const double torso_mass = sphere_mass_kg(kTorsoRadius);
-  btVector3 torso_inertia;
-  torso_shape->calculateLocalInertia(torso_mass, torso_inertia);
+  torso_shape_ = world.keep_shape(std::make_unique<btSphereShape>(kTorsoRadius));
+  torso_mass_ = sphere_mass_kg(kTorsoRadius);
+  torso_shape_->calculateLocalInertia(torso_mass_, torso_inertia_);
+  for (int leg = 0; leg < 4; ++leg) {
+    const LegGeometry& g = kLegs[leg];
+    legs_[leg].stub = make_capsule(btVector3(g.sign_x * kStubLength, g.sign_y * kStubLength, 0));
+    legs_[leg].thigh = make_capsule(btVector3(g.sign_x * kStubLength, g.sign_y * kStubLength, 0));
+    legs_[leg].foot = make_capsule(btVector3(g.sign_x * kFootLength, g.sign_y * kFootLength, 0));
+  }
+  if (physics_ == PhysicsModel::kLean) {
+    build_lean();
+  } else {
+    build_faithful();
+  }
+  set_base_pose(traits_.initial_position, btQuaternion::getIdentity());
+}
 
-  auto body = std::make_unique<btMultiBody>(kLinkCount, torso_mass, torso_inertia,
+btMultiBodyLinkCollider* AntAgent::add_collider(int link, btCollisionShape* shape) {
+  auto collider = std::make_unique<btMultiBodyLinkCollider>(body_, link);
+  collider->setCollisionShape(shape);
+  collider->setFriction(kFriction);
+  btMultiBodyLinkCollider* added = world_.add_collider(std::move(collider));
+  if (link < 0) {
+    body_->setBaseCollider(added);
+  } else {
+    body_->getLink(link).m_collider = added;
+  }
+  colliders_.push_back(added);
+  return added;
+}
+
+void AntAgent::add_joint_limits() {
+  // Hard limits on the 8 revolute joints (docs/environments.md#how-bodies-are-built), created in link
+  // order as the importer does; Bullet's default max impulse (100) is kept.
+  for (int k = 0; k < kActionDim; ++k) {
+    const int link = movable_links_[k];
+    body_->getLink(link).m_jointLowerLimit = kLimits[k].lower;
+    body_->getLink(link).m_jointUpperLimit = kLimits[k].upper;
+    world_.add_constraint(std::make_unique<btMultiBodyJointLimitConstraint>(
+        body_, link, kLimits[k].lower, kLimits[k].upper));
+  }
+}
+
+void AntAgent::build_faithful() {
+  auto body = std::make_unique<btMultiBody>(kLinkCount, torso_mass_, torso_inertia_,
                                             /*fixedBase=*/false, /*canSleep=*/false);
-
-  // A capsule geom from 0 to `length`·u becomes a compound holding a
-  // two-sphere btMultiSphereShape (Bullet's default margin 0.04), shifted so
-  // that the link's inertial frame sits at the capsule's midpoint. Its inertia
-  // is Bullet's bounding-box estimate of that compound (docs/environments.md#how-bodies-are-built),
-  // which is what gives the table's (0.16394, 0.16394, 0.252698) for a stub.
-  struct CapsuleLink {
-    btCollisionShape* shape;
-    double mass;
-    btVector3 inertia;
-    btVector3 com_offset;  // from the body frame's origin to the inertial frame
-  };
-  auto make_capsule = [&](const btVector3& to, double length) {
-    const btVector3 from(0, 0, 0);
-    const btVector3 centres[2] = {from, to};
-    const btScalar radii[2] = {kCapsuleRadius, kCapsuleRadius};
-    btCollisionShape* spheres = world.keep_shape(std::make_unique<btMultiSphereShape>(centres, radii, 2));
-    auto compound = std::make_unique<btCompoundShape>();
-    const btVector3 com_offset = 0.5 * (from + to);  // importer's inertialShift
-    btTransform child;
-    child.setIdentity();
-    child.setOrigin(-com_offset);
-    compound->addChildShape(child, spheres);
-    CapsuleLink link{world.keep_shape(std::move(compound)), capsule_mass_kg(length), {}, com_offset};
-    link.shape->calculateLocalInertia(link.mass, link.inertia);
-    return link;
-  };
-
   const btQuaternion no_rotation = btQuaternion::getIdentity();
   const btVector3 zero(0, 0, 0);
   std::array<btCollisionShape*, kLinkCount> link_shapes{};
   for (int leg = 0; leg < 4; ++leg) {
     const LegGeometry& g = kLegs[leg];
+    const CapsuleLink& stub = legs_[leg].stub;
+    const CapsuleLink& thigh = legs_[leg].thigh;
+    const CapsuleLink& foot = legs_[leg].foot;
     const btVector3 stub_end(g.sign_x * kStubLength, g.sign_y * kStubLength, 0);
-    const btVector3 foot_end(g.sign_x * kFootLength, g.sign_y * kFootLength, 0);
-    // The capsule's length is the norm of its float32 end point, as the importer computes it.
-    const CapsuleLink stub = make_capsule(stub_end, stub_end.length());
-    const CapsuleLink thigh = make_capsule(stub_end, stub_end.length());
-    const CapsuleLink foot = make_capsule(foot_end, foot_end.length());
     const int first = 5 * leg;
     // Joint pivots are the child bodies' MJCF positions (0.2·u from the parent
     // body frame), expressed from the parent's COM as URDF2Bullet does.
@@ -185,45 +220,25 @@ AntAgent::AntAgent(World& world, const AgentOptions& options)
     link_shapes[first] = stub.shape;
     link_shapes[first + 2] = thigh.shape;
     link_shapes[first + 4] = foot.shape;
+    // Every PyBullet link is a body link of its own.
+    for (int i = 0; i < 5; ++i) link_places_[first + i] = {first + i, zero};
   }
   body->finalizeMultiDof();
   // The MJCF geoms never collide with each other (docs/environments.md#how-bodies-are-built).
   body->setHasSelfCollision(false);
-  body_ = world.add_multibody(std::move(body));
+  body_ = world_.add_multibody(std::move(body));
+  std::copy(kMovableLinks.begin(), kMovableLinks.end(), movable_links_.begin());
 
   // Colliders in PyBullet's creation order: base, then links by index
   // (massless joint links have none).
-  int collider_count = 0;
-  auto add_collider = [&](int link, btCollisionShape* shape) {
-    auto collider = std::make_unique<btMultiBodyLinkCollider>(body_, link);
-    collider->setCollisionShape(shape);
-    collider->setFriction(kFriction);
-    btMultiBodyLinkCollider* added = world.add_collider(std::move(collider));
-    if (link < 0) {
-      body_->setBaseCollider(added);
-    } else {
-      body_->getLink(link).m_collider = added;
-    }
-    colliders_[collider_count++] = added;
-    return added;
-  };
-  add_collider(-1, torso_shape);
+  add_collider(-1, torso_shape_);
   for (int link = 0; link < kLinkCount; ++link) {
     if (link_shapes[link] == nullptr) continue;
     btMultiBodyLinkCollider* collider = add_collider(link, link_shapes[link]);
     const auto foot = std::find(kFootLinks.begin(), kFootLinks.end(), link);
     if (foot != kFootLinks.end()) feet_[foot - kFootLinks.begin()] = collider;
   }
-
-  // Hard limits on the 8 revolute joints (docs/environments.md#how-bodies-are-built), created in link
-  // order as the importer does; Bullet's default max impulse (100) is kept.
-  for (int k = 0; k < kActionDim; ++k) {
-    const int link = kMovableLinks[k];
-    body_->getLink(link).m_jointLowerLimit = kLimits[k].lower;
-    body_->getLink(link).m_jointUpperLimit = kLimits[k].upper;
-    world.add_constraint(std::make_unique<btMultiBodyJointLimitConstraint>(
-        body_, link, kLimits[k].lower, kLimits[k].upper));
-  }
+  add_joint_limits();
 
   // PyBullet then gives every revolute joint a velocity motor
   // (createJointMotors), which the agent disables at construction with a
@@ -237,12 +252,88 @@ AntAgent::AntAgent(World& world, const AgentOptions& options)
                                                          /*maxMotorImpulse=*/1.0);
     motor->setPositionTarget(0, 0);
     motor->setVelocityTarget(0, 1);
-    btMultiBodyConstraint* added = world.add_constraint(std::move(motor));
+    btMultiBodyConstraint* added = world_.add_constraint(std::move(motor));
     added->finalizeMultiDof();
     added->setMaxAppliedImpulse(0);
   }
+}
 
-  set_base_pose(traits_.initial_position, btQuaternion::getIdentity());
+void AntAgent::build_lean() {
+  // The same bodies welded where the faithful model has fixed joints: the
+  // torso and the four leg stubs are one base (the stubs' COMs sit
+  // symmetrically about the torso centre, so the base COM stays there and the
+  // products of inertia cancel); each massless hip link carries its thigh and
+  // each massless ankle link its foot, exactly (a massless body adds nothing).
+  // The disabled motors are left out: their max impulse is 0 for ever, and
+  // Bullet makes no solver row for them.
+  // One difference remains, below anything physical: Bullet's default
+  // velocity damping (0.04) acts per body, as 0.04·(1 + |v|)·m·v and
+  // 0.04·(1 + |ω|)·I·ω. Welding keeps its linear part exactly (equal
+  // coefficients make the stubs' drag at their own COMs equal the welded
+  // parallel-axis term), and the stubs' quadratic part, which cancels to first
+  // order over the four symmetric stubs, moves by about 0.025·|ω|² N and
+  // 0.025·|ω|·||v| − |ω|| N·m (SI units) beside a 950 N weight and 250 N·m
+  // joint torques.
+  std::array<RigidPart, 5> base_parts;
+  base_parts[0] = {torso_mass_, torso_inertia_, btVector3(0, 0, 0), btQuaternion::getIdentity()};
+  for (int leg = 0; leg < 4; ++leg) {
+    const CapsuleLink& stub = legs_[leg].stub;
+    base_parts[1 + leg] = {stub.mass, stub.inertia, stub.com_offset, btQuaternion::getIdentity()};
+  }
+  const MergedBody base = merge_rigid_parts(base_parts);
+  const btMatrix3x3& inertia = base.inertia;
+  if (!base.com.isZero() || inertia[0][1] != 0 || inertia[0][2] != 0 || inertia[1][2] != 0) {
+    throw std::logic_error("AntAgent: the lean base is not symmetric about the torso centre");
+  }
+  const btVector3 base_inertia(inertia[0][0], inertia[1][1], inertia[2][2]);
+
+  constexpr int kLeanLinkCount = 2 * 4;
+  auto body = std::make_unique<btMultiBody>(kLeanLinkCount, base.mass, base_inertia,
+                                            /*fixedBase=*/false, /*canSleep=*/false);
+  const btQuaternion no_rotation = btQuaternion::getIdentity();
+  const btVector3 zero(0, 0, 0);
+  auto base_shape = std::make_unique<btCompoundShape>();
+  btTransform at_base_com;
+  at_base_com.setIdentity();
+  base_shape->addChildShape(at_base_com, torso_shape_);
+  for (int leg = 0; leg < 4; ++leg) {
+    const LegGeometry& g = kLegs[leg];
+    const CapsuleLink& stub = legs_[leg].stub;
+    const CapsuleLink& thigh = legs_[leg].thigh;
+    const CapsuleLink& foot = legs_[leg].foot;
+    const btVector3 stub_end(g.sign_x * kStubLength, g.sign_y * kStubLength, 0);
+    const int hip = 2 * leg;
+    const int ankle = hip + 1;
+    // The stub's capsule, at the place its faithful link puts it (its
+    // compound shifts it by −com_offset from the stub COM, i.e. to the torso centre).
+    base_shape->addChildShape(at_base_com, stub.spheres);
+    // Pivots as the faithful chain reaches them: base COM → stub COM → hip.
+    const btVector3 hip_pivot_from_base_com = stub.com_offset + (stub_end - stub.com_offset);
+    body->setupRevolute(hip, thigh.mass, thigh.inertia, -1, no_rotation, btVector3(0, 0, 1),
+                        hip_pivot_from_base_com, thigh.com_offset,
+                        /*disableParentCollision=*/true);
+    body->setupRevolute(ankle, foot.mass, foot.inertia, hip, no_rotation,
+                        btVector3(g.ankle_axis_x, 1, 0), stub_end - thigh.com_offset,
+                        foot.com_offset, /*disableParentCollision=*/true);
+    const int first = 5 * leg;
+    link_places_[first] = {-1, stub.com_offset};             // <leg>: in the base
+    link_places_[first + 1] = {hip, -thigh.com_offset};      // hip_k: the hip pivot
+    link_places_[first + 2] = {hip, zero};                   // thigh COM
+    link_places_[first + 3] = {ankle, -foot.com_offset};     // ankle_k: the ankle pivot
+    link_places_[first + 4] = {ankle, zero};                 // foot COM
+    movable_links_[2 * leg] = hip;
+    movable_links_[2 * leg + 1] = ankle;
+  }
+  body->finalizeMultiDof();
+  body->setHasSelfCollision(false);
+  body_ = world_.add_multibody(std::move(body));
+
+  add_collider(-1, world_.keep_shape(std::move(base_shape)));
+  for (int leg = 0; leg < 4; ++leg) {
+    add_collider(2 * leg, legs_[leg].thigh.shape);
+    feet_[leg] = add_collider(2 * leg + 1, legs_[leg].foot.shape);
+  }
+  add_joint_limits();
 }
 
 void AntAgent::refresh_colliders() {
@@ -287,8 +378,8 @@ void AntAgent::set_joint_positions(std::span<const double> joint_positions) {
                                 std::to_string(joint_positions.size()));
   }
   for (int k = 0; k < kActionDim; ++k) {
-    body_->setJointPos(kMovableLinks[k], joint_positions[k]);
-    body_->setJointVel(kMovableLinks[k], 0);
+    body_->setJointPos(movable_links_[k], joint_positions[k]);
+    body_->setJointVel(movable_links_[k], 0);
   }
   refresh_colliders();
 }
@@ -302,7 +393,7 @@ void AntAgent::apply_action(std::span<const double> action) {
     last_action_[k] = action[k];
     // τ_k = (power·100)·clip(a_k, −1, 1), held for all sub-steps (docs/environments.md#ant, #motors-forces-and-contacts).
     const double clipped = std::clamp(action[k], -1.0, 1.0);
-    body_->addJointTorque(kMovableLinks[k], torque_per_unit_action_ * clipped);
+    body_->addJointTorque(movable_links_[k], torque_per_unit_action_ * clipped);
   }
 }
 
@@ -317,7 +408,7 @@ void AntAgent::after_step() {
   std::array<double, kActionDim> power{};
   std::array<double, kActionDim> action_squared{};
   for (int k = 0; k < kActionDim; ++k) {
-    const int link = kMovableLinks[k];
+    const int link = movable_links_[k];
     const float rho = relative_position(body_->getJointPos(link), kLimits[k]);
     if (std::abs(rho) > kAtLimitThreshold) ++at_limit;
     const double a = last_action_[k];
@@ -351,7 +442,7 @@ void AntAgent::write_observation(std::span<double> out) const {
   out[i++] = q.w();
   for (int axis = 0; axis < 3; ++axis) out[i++] = 0.15 * w[axis];
   for (int k = 0; k < kActionDim; ++k) {
-    const int link = kMovableLinks[k];
+    const int link = movable_links_[k];
     // 0.5·float32 is exact, so halving in double gives the same number.
     out[i++] = 0.5 * static_cast<double>(relative_position(body_->getJointPos(link), kLimits[k]));
     out[i++] = 0.5 * static_cast<double>(scaled_rate(body_->getJointVel(link)));
@@ -377,14 +468,14 @@ void AntAgent::joint_state(std::span<double> positions, std::span<double> veloci
                                 std::to_string(velocities.size()));
   }
   for (int k = 0; k < kActionDim; ++k) {
-    positions[k] = body_->getJointPos(kMovableLinks[k]);
-    velocities[k] = body_->getJointVel(kMovableLinks[k]);
+    positions[k] = body_->getJointPos(movable_links_[k]);
+    velocities[k] = body_->getJointVel(movable_links_[k]);
   }
 }
 
 double AntAgent::total_mass_kg() const {
   double mass = body_->getBaseMass();
-  for (int link = 0; link < kLinkCount; ++link) mass += body_->getLinkMass(link);
+  for (int link = 0; link < body_->getNumLinks(); ++link) mass += body_->getLinkMass(link);
   return mass;
 }
 
@@ -393,9 +484,10 @@ btTransform AntAgent::link_com_pose(int link) const {
     throw std::out_of_range("AntAgent::link_com_pose: link " + std::to_string(link) +
                             " outside [0, 20)");
   }
+  const LinkPlace& place = link_places_[link];
   btTransform pose;
-  pose.setOrigin(body_->localPosToWorld(link, btVector3(0, 0, 0)));
-  pose.setBasis(body_->localFrameToWorld(link, btMatrix3x3::getIdentity()));
+  pose.setOrigin(body_->localPosToWorld(place.body_link, place.offset));
+  pose.setBasis(body_->localFrameToWorld(place.body_link, btMatrix3x3::getIdentity()));
   return pose;
 }
 

@@ -7,6 +7,17 @@
 //              every reset from the seeded RNG and held for the episode;
 //              kSimulated: the angle advances 1 rad per simulated second, counted
 //              over env steps since construction (docs/environments.md#moving-box, golden files).
+//   physics    kFaithful (default): the agent's model as PyBullet builds it, link
+//              for link (the golden tests pin it down);
+//              kLean: a physically equivalent model that is cheaper to step:
+//              bodies joined by fixed joints merged into one rigid body with the
+//              combined mass, centre of mass and inertia, and motors that can
+//              never apply a force left out; shapes, friction, contacts, solver
+//              and sub-steps unchanged. Trajectories differ from faithful ones
+//              only by rounding (which chaos amplifies); episode statistics
+//              agree (tests/envs/lean_physics_statistics_test.cpp). Only the Ant
+//              has a lean model (ant_agent.h); make() rejects kLean for the
+//              others rather than quietly building their faithful model.
 //
 // Threading: an Env is not thread-safe; use one per thread. Observations and
 // cost terms returned by reset()/step() are views into buffers the Env owns,
@@ -65,8 +76,16 @@ struct StepResult {
 
 enum class BoxClock { kEpisodePhase, kSimulated };
 
+enum class PhysicsModel { kFaithful, kLean };
+
+// "faithful" or "lean"; parse_physics_model throws std::invalid_argument naming
+// the bad value and the valid ones.
+std::string_view to_string(PhysicsModel model);
+PhysicsModel parse_physics_model(std::string_view name);
+
 struct EnvOptions {
   BoxClock box_clock = BoxClock::kEpisodePhase;
+  PhysicsModel physics = PhysicsModel::kFaithful;
 };
 
 // A layout to reset to instead of a sampled one (evaluation on fixed layouts,
@@ -157,10 +176,14 @@ class Env {
 };
 
 // Makes a registered environment; throws std::invalid_argument listing every
-// valid id if `id` is unknown.
+// valid id if `id` is unknown, or naming the agent if options.physics is kLean
+// and the agent has no lean model.
 std::unique_ptr<Env> make(const std::string& id, const EnvOptions& options = {});
 
 // Every registered id, sorted.
 std::vector<std::string> registered_ids();
+
+// True if make(id) accepts PhysicsModel::kLean; throws like make() for an unknown id.
+bool has_lean_model(const std::string& id);
 
 }  // namespace bsg::envs

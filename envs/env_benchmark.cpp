@@ -17,7 +17,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-EnvBenchmark benchmark_env(const std::string& id, long steps, std::uint64_t seed) {
+EnvBenchmark benchmark_env(const std::string& id, long steps, std::uint64_t seed,
+                           const EnvOptions& options) {
   if (steps < 1) throw std::invalid_argument("benchmark_env: steps must be >= 1");
   EnvBenchmark result;
   result.id = id;
@@ -25,7 +26,7 @@ EnvBenchmark benchmark_env(const std::string& id, long steps, std::uint64_t seed
   Rng rng(seed);
 
   {
-    const std::unique_ptr<Env> env = make(id);
+    const std::unique_ptr<Env> env = make(id, options);
     std::vector<double> action(static_cast<size_t>(env->spec().action_dim));
     env->reset(seed);
     const auto start = std::chrono::steady_clock::now();
@@ -38,7 +39,7 @@ EnvBenchmark benchmark_env(const std::string& id, long steps, std::uint64_t seed
   }
   {
     // The same scene, driven by the same kind of actions, without the task.
-    const std::unique_ptr<Env> env = build_env(find_registration(id), EnvOptions{});
+    const std::unique_ptr<Env> env = build_env(find_registration(id), options);
     auto& assembled = static_cast<AssembledEnv&>(*env);
     std::vector<double> action(static_cast<size_t>(env->spec().action_dim));
     env->reset(seed);

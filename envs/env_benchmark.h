@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <string>
 
+#include "env.h"
+
 namespace bsg::envs {
 
 struct EnvBenchmark {
@@ -17,8 +19,9 @@ struct EnvBenchmark {
 };
 
 // Runs `steps` environment steps with uniform random actions in [−1, 1], then
-// the same number of raw physics steps; throws std::invalid_argument for an
-// unknown id or steps < 1.
-EnvBenchmark benchmark_env(const std::string& id, long steps, std::uint64_t seed = 0);
+// the same number of raw physics steps, both built with `options`; throws
+// std::invalid_argument for an unknown id, steps < 1 or options make() rejects.
+EnvBenchmark benchmark_env(const std::string& id, long steps, std::uint64_t seed = 0,
+                           const EnvOptions& options = {});
 
 }  // namespace bsg::envs

@@ -23,8 +23,10 @@ struct EnvRegistration {
   TaskBlueprint task;
   int max_episode_steps = 0;
   double cost_limit = 0;    // report Table 3
+  bool has_lean_model = false;  // the agent builds a lean model for PhysicsModel::kLean
 };
 
+// Throws std::invalid_argument if options ask for a lean model the agent does not have.
 std::unique_ptr<Env> build_env(const EnvRegistration& registration, const EnvOptions& options);
 
 }  // namespace bsg::envs

@@ -15,7 +15,7 @@ namespace bsg::envs {
 
 void add_agent(std::map<std::string, EnvRegistration>& entries, const std::string& agent_name,
                AgentFactory make_agent, int max_episode_steps, const TaskCostLimits& cost_limits,
-               ZoneKind reach_zones) {
+               LeanModel lean_model, ZoneKind reach_zones) {
   const std::pair<TaskBlueprint, double> tasks[] = {
       {circle_task(), cost_limits.circle},
       {gather_task(), cost_limits.gather},
@@ -26,7 +26,7 @@ void add_agent(std::map<std::string, EnvRegistration>& entries, const std::strin
     const std::string id = "Safety" + agent_name + blueprint.name + "-v0";
     if (entries.contains(id)) throw std::logic_error("environment registered twice: " + id);
     entries.emplace(id, EnvRegistration{id, agent_name, make_agent, blueprint, max_episode_steps,
-                                        cost_limit});
+                                        cost_limit, lean_model == LeanModel::kBuilt});
   }
 }
 
@@ -34,10 +34,15 @@ const std::map<std::string, EnvRegistration>& registry() {
   static const std::map<std::string, EnvRegistration> entries = [] {
     std::map<std::string, EnvRegistration> result;
     // Episode lengths and cost limits: docs/environments.md#the-sixteen-environments (report Table 3).
-    add_agent(result, "Ball", make_ball_agent, 250, kStandardCostLimits);
-    add_agent(result, "Car", make_car_agent, 500, kStandardCostLimits);
-    add_agent(result, "Drone", make_drone_agent, 500, kStandardCostLimits, ZoneKind::kPillar);
-    add_agent(result, "Ant", make_ant_agent, 1000, TaskCostLimits{.reach = 25});
+    // Lean models (env.h): the Ball is one sphere, nothing to weld; the Car
+    // and the Drone have none yet (the Car's could weld its sensors to the
+    // chassis and its rear wheels to their side gears).
+    add_agent(result, "Ball", make_ball_agent, 250, kStandardCostLimits, LeanModel::kNone);
+    add_agent(result, "Car", make_car_agent, 500, kStandardCostLimits, LeanModel::kNone);
+    add_agent(result, "Drone", make_drone_agent, 500, kStandardCostLimits, LeanModel::kNone,
+              ZoneKind::kPillar);
+    add_agent(result, "Ant", make_ant_agent, 1000, TaskCostLimits{.reach = 25},
+              LeanModel::kBuilt);
     return result;
   }();
   return entries;
@@ -57,6 +62,8 @@ const EnvRegistration& find_registration(const std::string& id) {
 std::unique_ptr<Env> make(const std::string& id, const EnvOptions& options) {
   return build_env(find_registration(id), options);
 }
+
+bool has_lean_model(const std::string& id) { return find_registration(id).has_lean_model; }
 
 std::vector<std::string> registered_ids() {
   std::vector<std::string> ids;

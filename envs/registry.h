@@ -2,10 +2,11 @@
 // static map). make() and registered_ids() of env.h read it.
 //
 // Registering an agent on all four tasks is one line in registry.cpp:
-//   add_agent(entries, "Car", make_car_agent, 500, kStandardCostLimits);
+//   add_agent(entries, "Car", make_car_agent, 500, kStandardCostLimits, LeanModel::kNone);
 // which registers SafetyCarCircle-v0, SafetyCarGather-v0, SafetyCarReach-v0
 // and SafetyCarRun-v0. The Drone's Reach uses pillars:
-//   add_agent(entries, "Drone", make_drone_agent, 500, kStandardCostLimits, ZoneKind::kPillar);
+//   add_agent(entries, "Drone", make_drone_agent, 500, kStandardCostLimits, LeanModel::kNone,
+//             ZoneKind::kPillar);
 // A new task is one more line in add_agent().
 #pragma once
 
@@ -28,11 +29,14 @@ struct TaskCostLimits {
 // Ball, Car and Drone; the Ant's Reach limit is 25 instead of 10.
 inline constexpr TaskCostLimits kStandardCostLimits{};
 
+// Whether the agent's factory builds a lean model for PhysicsModel::kLean (env.h).
+enum class LeanModel { kNone, kBuilt };
+
 // Registers Safety<agent_name><Task>-v0 for every task. Reach uses puddles,
 // or pillars for a flying agent (the Drone, docs/environments.md#the-sixteen-environments).
 void add_agent(std::map<std::string, EnvRegistration>& entries, const std::string& agent_name,
                AgentFactory make_agent, int max_episode_steps, const TaskCostLimits& cost_limits,
-               ZoneKind reach_zones = ZoneKind::kPuddle);
+               LeanModel lean_model, ZoneKind reach_zones = ZoneKind::kPuddle);
 
 // Every registered id, built once on first use.
 const std::map<std::string, EnvRegistration>& registry();

@@ -1,0 +1,132 @@
+// Statistical equivalence of the lean and the faithful physics (env.h): for
+// every environment with a lean model, 100 whole episodes with the random and
+// with the zero policy in each model; mean episode return and mean episode cost
+// must agree within 4 standard errors of their difference, or within 5 % of
+// the faithful mean. Trajectories themselves part after a few hundred steps
+// (chaos amplifies rounding), so only statistics can be compared.
+// One ctest entry per (environment, policy), so that ctest -j spreads them.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/random.h"
+#include "envs/env.h"
+
+namespace bsg::envs {
+namespace {
+
+constexpr int kEpisodes = 100;
+
+struct Sample {
+  std::vector<double> returns;
+  std::vector<double> costs;
+};
+
+// As `bsg rollout`: the first reset with `seed`, later ones continue the
+// environment's stream; the random policy has its own generator.
+Sample play(const std::string& id, PhysicsModel physics, bool random_policy, std::uint64_t seed) {
+  const std::unique_ptr<Env> env = make(id, {.physics = physics});
+  Rng policy_rng(seed ^ 0x9e3779b97f4a7c15ULL);
+  std::vector<double> action(static_cast<size_t>(env->spec().action_dim), 0.0);
+  Sample sample;
+  for (int k = 0; k < kEpisodes; ++k) {
+    if (k == 0) {
+      env->reset(seed);
+    } else {
+      env->reset();
+    }
+    double episode_return = 0;
+    double episode_cost = 0;
+    for (bool done = false; !done;) {
+      if (random_policy) {
+        for (double& a : action) a = uniform(policy_rng, -1, 1);
+      }
+      const StepResult step = env->step(action);
+      episode_return += step.reward;
+      episode_cost += step.cost;
+      done = step.terminated || step.truncated;
+    }
+    sample.returns.push_back(episode_return);
+    sample.costs.push_back(episode_cost);
+  }
+  return sample;
+}
+
+struct MeanAndError {
+  double mean = 0;
+  double variance_of_mean = 0;  // s²/n
+};
+
+MeanAndError mean_and_error(const std::vector<double>& x) {
+  const double n = static_cast<double>(x.size());
+  MeanAndError result;
+  for (double v : x) result.mean += v;
+  result.mean /= n;
+  double ss = 0;
+  for (double v : x) ss += (v - result.mean) * (v - result.mean);
+  result.variance_of_mean = ss / (n - 1) / n;
+  return result;
+}
+
+void expect_equivalent(const std::vector<double>& faithful, const std::vector<double>& lean,
+                       const std::string& what) {
+  const MeanAndError f = mean_and_error(faithful);
+  const MeanAndError l = mean_and_error(lean);
+  const double difference = std::abs(f.mean - l.mean);
+  const double standard_error = std::sqrt(f.variance_of_mean + l.variance_of_mean);
+  const bool within_errors = difference <= 4 * standard_error;
+  const bool within_percent = difference <= 0.05 * std::abs(f.mean);
+  EXPECT_TRUE(within_errors || within_percent)
+      << what << ": faithful mean " << f.mean << ", lean mean " << l.mean << ", difference "
+      << difference << " > 4 standard errors (" << 4 * standard_error << ") and > 5 % ("
+      << 0.05 * std::abs(f.mean) << ")";
+  std::printf("%s: faithful %.4f, lean %.4f, |diff| %.4f, 4 SE %.4f\n", what.c_str(), f.mean,
+              l.mean, difference, 4 * standard_error);
+}
+
+struct Case {
+  std::string id;
+  bool random_policy;
+};
+
+class LeanPhysicsStatistics : public ::testing::TestWithParam<Case> {};
+
+TEST_P(LeanPhysicsStatistics, MeanReturnAndCostAgreeWithFaithful) {
+  const Case& c = GetParam();
+  ASSERT_TRUE(has_lean_model(c.id));
+  constexpr std::uint64_t kSeed = 2024;
+  const Sample faithful = play(c.id, PhysicsModel::kFaithful, c.random_policy, kSeed);
+  const Sample lean = play(c.id, PhysicsModel::kLean, c.random_policy, kSeed);
+  expect_equivalent(faithful.returns, lean.returns, c.id + " return");
+  expect_equivalent(faithful.costs, lean.costs, c.id + " cost");
+}
+
+std::vector<Case> cases() {
+  std::vector<Case> result;
+  for (const std::string& id : registered_ids()) {
+    if (!has_lean_model(id)) continue;
+    result.push_back({id, true});
+    result.push_back({id, false});
+  }
+  return result;
+}
+
+std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+  std::string id = info.param.id;
+  std::string name;
+  for (char ch : id) {
+    if (std::isalnum(static_cast<unsigned char>(ch))) name += ch;
+  }
+  return name + (info.param.random_policy ? "_Random" : "_Zero");
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryLeanEnvironment, LeanPhysicsStatistics, ::testing::ValuesIn(cases()),
+                         case_name);
+
+}  // namespace
+}  // namespace bsg::envs
