@@ -1,4 +1,4 @@
-// The learner's networks and normalisers (spec §1 step 5, §2, §4): the
+// The learner's networks and normalisers (docs/algorithms.md#networks, #normalisers): the
 // Gaussian policy, the reward value net V, the cost value net V_C (always
 // built and evaluated during rollouts; trained only by algorithms that use
 // it), the observation normaliser and the return normaliser of reward
@@ -6,9 +6,9 @@
 // lockstep updates), so one copy describes the whole run.
 //
 // Parameters (from RunConfig):
-//   hidden_sizes, zero_bias_init          the three MLPs (spec §2)
+//   hidden_sizes, zero_bias_init          the three MLPs (docs/algorithms.md#networks)
 //   vf_lr                                 Adam learning rate of V and V_C
-//   use_standardized_obs, obs_clip,       observation normalisation (§4.1, Q3, Q4)
+//   use_standardized_obs, obs_clip,       observation normalisation (docs/algorithms.md#observation-normaliser, Q3, Q4)
 //   exact_parallel_variance
 #pragma once
 
@@ -44,10 +44,10 @@ struct ActorCritic {
   void normalize_observations(const Eigen::Ref<const Eigen::MatrixXd>& raw,
                               Eigen::Ref<Eigen::MatrixXd> normalized) const;
 
-  // Every rank takes rank 0's parameters and statistics (spec §1 step 5).
+  // Every rank takes rank 0's parameters and statistics (docs/algorithms.md#set-up, step 5).
   void broadcast_from_root(const MpiContext& mpi);
 
-  // Sum of every parameter of the three nets (spec §1 step 5's consistency check).
+  // Sum of every parameter of the three nets (docs/algorithms.md#set-up, step 5's consistency check).
   double parameter_sum() const;
   // Name of the first non-finite quantity among the nets and normalisers, or "".
   const char* first_non_finite() const;

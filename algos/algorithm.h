@@ -1,5 +1,5 @@
 // The interface of the five algorithms (TRPO, TRPO-L, CPO, PDO, PCPO): the
-// on-policy loop (spec §1) calls `update` once per epoch, after the rollout and
+// on-policy loop (docs/algorithms.md#the-epoch-loop) calls `update` once per epoch, after the rollout and
 // GAE and before the value fits; the algorithms differ only in this update
 // (design.md "Learning"). One file per algorithm implements it.
 //
@@ -7,7 +7,7 @@
 // the enum naming the algorithm in common/run_config.h; make_algorithm.h turns
 // a RunConfig into one.
 //
-// Order inside one epoch (spec §1): the loop calls update() (which, for TRPO-L
+// Order inside one epoch (docs/algorithms.md#the-epoch-loop): the loop calls update() (which, for TRPO-L
 // and PDO, first updates lambda and then takes the policy step), then fits V
 // and, if uses_cost_value_function(), V_C, then updates the normalisers.
 //
@@ -32,7 +32,7 @@
 
 namespace bsg {
 
-// One logged scalar (a progress.csv column, spec §13.1) or one saved state value.
+// One logged scalar (a progress.csv column, docs/algorithms.md#logged-columns) or one saved state value.
 struct NamedScalar {
   std::string name;
   double value = 0.0;
@@ -50,13 +50,13 @@ struct PolicyUpdateInputs {
 
 // Diagnostics of one update, in the fixed order of diagnostic_names(). The
 // first kCommonDiagnosticCount entries are the common columns every algorithm
-// fills (rank-LOCAL values, to be pooled by the logger as spec §9 says):
+// fills (rank-LOCAL values, to be pooled by the logger as docs/algorithms.md#across-mpi-ranks says):
 //   Loss/Pi       loss before the update (TRPO-L: the Lagrangian loss l_L; others l_R)
 //   Loss/DeltaPi  loss after minus loss before (true value for CPO too, Q18)
 //   Entropy       entropy per action dimension
 //   KL            full-batch KL(theta_old || theta) after the update
 //   PolicyRatio   mean ratio rho after the update
-// The rest are the algorithm's own columns in spec §13.1 order (identical on
+// The rest are the algorithm's own columns in docs/algorithms.md#logged-columns order (identical on
 // all ranks): Misc/AcceptanceStep, Misc/Alpha, Misc/FinalStepNorm,
 // Misc/gradient_norm, Misc/xHx, Misc/H_inv_g, then per algorithm
 // LagrangeMultiplier (TRPO-L); Misc/cost_gradient_norm, Misc/A, Misc/B, Misc/q,
@@ -121,7 +121,7 @@ LineSearchOptions line_search_options(const RunConfig& config);
 LinearOperator as_linear_operator(FisherVectorProduct& fisher);
 
 // g = avg grad L_R and b = avg grad L_C at the policy's parameters, with one
-// allreduce of length 2P (spec §6.2).
+// allreduce of length 2P (docs/algorithms.md#surrogates-and-gradients).
 struct PolicyGradients {
   Eigen::VectorXd reward;  // g
   Eigen::VectorXd cost;    // b
@@ -134,14 +134,14 @@ void apply_line_search_result(GaussianPolicy& policy, const Eigen::VectorXd& the
                               const LineSearchResult& result);
 
 // The per-step constraint violation c = (J_C - d) / (L + 1e-8) of CPO and
-// PCPO (spec §7.4 step 4); throws if J_C or L is not finite or L < 0.
+// PCPO (docs/algorithms.md#cpo, step 4); throws if J_C or L is not finite or L < 0.
 double per_step_constraint_violation(double mean_episode_cost, double mean_episode_length, double cost_limit);
 
 // Throws std::invalid_argument naming the field if J_C is not finite (used by
 // the algorithms that read it).
 void check_mean_episode_cost(const PolicyUpdateInputs& inputs, std::string_view algorithm);
 
-// The common first steps of every update (spec §7): theta_old <- theta, the
+// The common first steps of every update (docs/algorithms.md#algorithm-updates): theta_old <- theta, the
 // reference means mu_old for the KL, and the surrogates at theta_old.
 struct PolicyUpdateStart {
   Eigen::VectorXd theta_old;

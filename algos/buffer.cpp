@@ -90,7 +90,7 @@ void Buffer::finish_path(double last_value, double last_cost_value, std::optiona
   }
   const double gamma = options_.gamma;
 
-  // Rewards for GAE: r~_t = clip(r_t / (s_ret + 1e-5), -10, 10) under reward scaling (§4.2).
+  // Rewards for GAE: r~_t = clip(r_t / (s_ret + 1e-5), -10, 10) under reward scaling (docs/algorithms.md#reward-scaling).
   // The scaled rewards go into the target buffer first, which is then overwritten.
   auto scaled_rewards = value_targets_.segment(start, length);
   scaled_rewards = rewards_.segment(start, length);

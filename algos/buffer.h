@@ -1,4 +1,4 @@
-// The per-rank rollout buffer with GAE for reward and cost (spec §5.2–5.3).
+// The per-rank rollout buffer with GAE for reward and cost (docs/algorithms.md#buffer-and-gae).
 // It holds exactly `capacity` = N steps per epoch; paths (episode pieces) are
 // closed with finish_path(), which computes advantages, value targets and the
 // discounted returns G_t that feed the return normaliser.
@@ -53,7 +53,7 @@ class Buffer {
 
   // Closes the current path with bootstrap values (v_last, c_last) (0, 0 on a
   // true terminal). If `reward_scale_std` is set, rewards are scaled as
-  // clip(r / (s_ret + 1e-5), -10, 10) for GAE and the value targets (spec §4.2);
+  // clip(r / (s_ret + 1e-5), -10, 10) for GAE and the value targets (docs/algorithms.md#reward-scaling);
   // G_t always uses raw rewards with v_last appended (Q5). Records the episode
   // if `end` is episode_end.
   void finish_path(double last_value, double last_cost_value, std::optional<double> reward_scale_std,

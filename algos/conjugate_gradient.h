@@ -1,4 +1,4 @@
-// Conjugate gradient exactly as the original code (spec §6.5), including its
+// Conjugate gradient exactly as the original code (docs/algorithms.md#conjugate-gradient), including its
 // 1e-6 added to both denominators (quirk Q9), which shrinks the solution when
 // ||y||^2 is small against 1e-6. The first step computes r = y - F x_0 with
 // x_0 = 0 by one real operator call, so that every rank makes the same

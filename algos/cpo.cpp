@@ -12,7 +12,7 @@
 namespace bsg {
 namespace {
 
-constexpr double kEpsilon = 1e-8;  // every epsilon of spec §7.4 step 7
+constexpr double kEpsilon = 1e-8;  // every epsilon of docs/algorithms.md#cpo, step 7
 
 // Pi(t; lo, hi) = max(lo, min(t, hi)); lo > hi gives lo, as the original (np.clip-like).
 double project_onto_interval(double t, double lo, double hi) { return std::max(lo, std::min(t, hi)); }

@@ -1,4 +1,4 @@
-// CPO, constrained policy optimisation (spec §7.4; Achiam et al. 2017, as the
+// CPO, constrained policy optimisation (docs/algorithms.md#cpo; Achiam et al. 2017, as the
 // original's algs/cpo/cpo.py, whose dual follows safety-starter-agents):
 //   1. l_R(theta_old), g = avg grad L_R
 //   2. x = CG(F, g), q = x^T F x, alpha_T = sqrt(2 delta / (q + 1e-8))
@@ -28,7 +28,7 @@
 
 namespace bsg {
 
-// The case numbers of spec §7.4 (logged as Misc/OptimCase).
+// The case numbers of docs/algorithms.md#cpo (logged as Misc/OptimCase).
 enum class CpoCase : int {
   infeasible_recovery = 0,       // c >= 0, B < 0: pure cost decrease
   feasible_recovery = 1,         // c >= 0, B >= 0
@@ -75,7 +75,7 @@ class Cpo final : public TrustRegionAlgorithm {
   std::vector<std::string> diagnostic_names() const override;
 };
 
-// The nine CPO columns after the TRPO set (also PCPO's), in spec §13.1 order.
+// The nine CPO columns after the TRPO set (also PCPO's), in docs/algorithms.md#logged-columns order.
 std::vector<std::string> cpo_diagnostic_names();
 
 }  // namespace bsg

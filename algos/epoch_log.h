@@ -1,6 +1,6 @@
-// One progress.csv row per epoch (spec §13.1, §9). The columns, in order:
+// One progress.csv row per epoch (docs/algorithms.md#logged-columns, #across-mpi-ranks). The columns, in order:
 //
-//   epoch                   k, 0-based (spec "Epoch")
+//   epoch                   k, 0-based ("Epoch")
 //   total_env_steps         (k + 1) B, summed over ranks ("TotalEnvSteps")
 //   episode_return_{mean,std,min,max}   raw undiscounted return of the episodes
 //                           completed this epoch, pooled over ranks ("EpRet/*")

@@ -1,4 +1,4 @@
-// Statistics pooled over MPI ranks (spec §9): every rank contributes its local
+// Statistics pooled over MPI ranks (docs/algorithms.md#across-mpi-ranks): every rank contributes its local
 // values (e.g. the returns of the episodes it completed), and every rank gets
 // the global mean = sum of values / sum of counts, the population standard
 // deviation about that mean, and the global minimum and maximum. With no value

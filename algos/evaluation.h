@@ -1,4 +1,4 @@
-// Deterministic evaluation after training (spec §12): the mean action
+// Deterministic evaluation after training (docs/reproducing.md#evaluation): the mean action
 // mu_theta(s_hat) without noise, observations normalised with the frozen
 // statistics, each episode run until the environment terminates or truncates
 // (or max_ep_len steps). J and H are the undiscounted raw sums of reward and

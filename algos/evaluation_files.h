@@ -1,4 +1,4 @@
-// The evaluation files of a run directory (spec §12): returns.csv and
+// The evaluation files of a run directory (docs/reproducing.md#evaluation): returns.csv and
 // costs.csv with one value per line and no header, and evaluation.json:
 //   {"mean_return": J, "mean_cost": H, "episodes": n, "mean_length": L}
 #pragma once

@@ -1,4 +1,4 @@
-// Fisher-vector product of spec §6.4: the Hessian of the mean KL of §6.3 at
+// Fisher-vector product of docs/algorithms.md#fisher-vector-product: the Hessian of the mean KL of docs/algorithms.md#mean-kl at
 // theta_old, in closed (Gauss–Newton) form, averaged over ranks and damped:
 //   F v = avg( 1/(N_f d_a sigma^2) sum_{i in fvp} J_i^T (J_i v) ) + damping_coeff v
 // over the sub-sampled rows 0, 4, 8, ... (N_f = ceil(N/4)) of the local batch.

@@ -1,4 +1,4 @@
-// The Gaussian policy pi(a|s) = N(mu_theta(s), sigma^2 I) of spec §3: an MLP
+// The Gaussian policy pi(a|s) = N(mu_theta(s), sigma^2 I) of docs/algorithms.md#gaussian-policy: an MLP
 // for the mean and a fixed, non-trainable scalar standard deviation sigma,
 // linearly annealed per epoch. theta is the mean net's flat parameter vector;
 // sigma is not part of it.
@@ -35,14 +35,14 @@ class GaussianPolicy {
   double log_std() const;
   void set_std(double std);
 
-  // sigma_k = 0.499 (1 - k/E) + 0.01 for epoch k of E (spec §3.2, Q2).
+  // sigma_k = 0.499 (1 - k/E) + 0.01 for epoch k of E (docs/algorithms.md#exploration-noise, Q2).
   static double annealed_std(int epoch, int epochs);
   void set_annealed_std(int epoch, int epochs) { set_std(annealed_std(epoch, epochs)); }
 
   // Deterministic action mu_theta(s) (evaluation). No allocation once `workspace` is sized.
   void mean_action(const Eigen::Ref<const Eigen::VectorXd>& observation, Eigen::Ref<Eigen::VectorXd> action,
                    MlpSampleWorkspace& workspace) const;
-  // a = mu + sigma eps, eps ~ N(0, I) from `rng` (unclipped, spec §3.3); returns log pi(a|s).
+  // a = mu + sigma eps, eps ~ N(0, I) from `rng` (unclipped, docs/algorithms.md#gaussian-policy); returns log pi(a|s).
   double sample_action(const Eigen::Ref<const Eigen::VectorXd>& observation, Eigen::Ref<Eigen::VectorXd> action,
                        Rng& rng, MlpSampleWorkspace& workspace) const;
 
@@ -55,7 +55,7 @@ class GaussianPolicy {
   // Entropy of one action dimension: 1/2 + 1/2 log 2 pi + log sigma.
   double entropy_per_dimension() const;
 
-  // Mean KL(old || new) over samples AND action dimensions (spec §6.3, Q8):
+  // Mean KL(old || new) over samples AND action dimensions (docs/algorithms.md#mean-kl, Q8):
   // 1/(N d_a) sum_ij (mu_old,ij - mu_new,ij)^2 / (2 sigma^2), with this policy's sigma.
   double mean_kl(const Eigen::Ref<const Eigen::MatrixXd>& old_means,
                  const Eigen::Ref<const Eigen::MatrixXd>& new_means) const;

@@ -1,4 +1,4 @@
-// TRPO-L, Lagrangian TRPO (spec §7.2; the original's algs/lag-trpo):
+// TRPO-L, Lagrangian TRPO (docs/algorithms.md#trpo-l; the original's algs/lag-trpo):
 //   1. lambda update first, on the pooled J_C (SGD by default; see lagrange_multiplier.h)
 //   2. l_L(theta) = (-L_R(theta) + lambda L_C(theta)) / (1 + lambda), so
 //      g_L = -avg grad l_L = (g - lambda b) / (1 + lambda)

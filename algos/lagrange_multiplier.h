@@ -1,4 +1,4 @@
-// The Lagrange multiplier lambda >= 0 of TRPO-L (spec §7.2) and PDO (§7.3).
+// The Lagrange multiplier lambda >= 0 of TRPO-L (docs/algorithms.md#trpo-l) and PDO (docs/algorithms.md#pdo).
 // Its loss is -lambda (J_C - d), so d loss / d lambda = -(J_C - d); one step of
 // the configured optimiser per epoch, then lambda is clamped at 0 (after the
 // step; Adam's moments are kept, not reset, by the clamp).
@@ -7,7 +7,7 @@
 //   PID:  lambda = max(0, P + I + D), the PID Lagrangian (pid_lagrangian.h);
 //         its integral with gain K_I is the SGD rule with alpha_lambda = K_I
 // The update uses only the pooled J_C, so every rank computes the same lambda
-// without communication (spec §9).
+// without communication (docs/algorithms.md#across-mpi-ranks).
 //
 // Parameters:
 //   initial_value   lagrangian_multiplier_init, 0.001; the original uses max(init, 1e-5)

@@ -1,4 +1,4 @@
-// The two backtracking line searches of spec §6.7 and §6.8, reusable with any
+// The two backtracking line searches of docs/algorithms.md#trpo-line-search and #constrained-line-search, reusable with any
 // loss through callables. Trial j tries the step decay^j * Delta: the callable
 // must set theta = theta_old + step, evaluate on the full LOCAL batch and
 // return the local values; the search averages them over ranks (one fused
@@ -7,7 +7,7 @@
 //
 // Non-finite values: the original tests finiteness rank-locally (A) or with
 // "and" (B, quirk Q12); here a trial is rejected if any value on any rank is
-// not finite (the spec's C++ default, Q12).
+// not finite (this project's default, Q12).
 //
 // Parameters:
 //   budget            K: 15 (TRPO, TRPO-L, PDO), 20 (CPO, Q11), 25 (PCPO)

@@ -1,5 +1,5 @@
 // The natural-gradient step shared by TRPO, TRPO-L, PDO, CPO and PCPO
-// (spec §6.6): x = CG(F, g), q = x^T F x (one extra operator call) and
+// (docs/algorithms.md#natural-step): x = CG(F, g), q = x^T F x (one extra operator call) and
 // alpha = sqrt(2 delta / (q + 1e-8)); the full step is alpha x.
 #pragma once
 

@@ -1,4 +1,4 @@
-// PCPO, projection-based constrained policy optimisation (spec §7.5; Yang et
+// PCPO, projection-based constrained policy optimisation (docs/algorithms.md#pcpo; Yang et
 // al., ICLR 2020; not in the original repository):
 //   1. l_R(theta_old), g = avg grad L_R, x = CG(F, g), q = x^T F x,
 //      eta = sqrt(2 delta / (q + 1e-8)), reward step Delta_R = eta x

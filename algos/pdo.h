@@ -1,4 +1,4 @@
-// PDO, primal-dual optimisation (spec §7.3; the original's algs/pdo):
+// PDO, primal-dual optimisation (docs/algorithms.md#pdo; the original's algs/pdo):
 //   1. lambda update first, on the pooled J_C (Adam by default; moments persist)
 //   2. l_old = l_R(theta_old), g = avg grad L_R, b = avg grad L_C
 //   3. p = g - lambda b            (no 1/(1+lambda): irrelevant for the step)

@@ -1,4 +1,4 @@
-// The surrogate objectives of spec §6.1–6.3 on one rank's batch and their
+// The surrogate objectives of docs/algorithms.md#surrogates-and-gradients, docs/algorithms.md#mean-kl on one rank's batch and their
 // gradients with respect to theta (the policy mean net's parameters):
 //   rho_i = exp(log pi_theta(a_i|s_i) - log pi_old,i)
 //   L_R   = 1/N sum_i rho_i A_i        (reward surrogate; the loss is l_R = -L_R)

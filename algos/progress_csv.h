@@ -1,4 +1,4 @@
-// progress.csv of a run directory (spec §13.1): one comma-separated row per
+// progress.csv of a run directory (docs/algorithms.md#logged-columns): one comma-separated row per
 // epoch, written by rank 0. The header is fixed by the first row; every later
 // row must have the same columns in the same order. Values are written in the
 // shortest form that reads back to the same double (std::to_chars), so two

@@ -13,8 +13,10 @@ std::string format_duration(double seconds) {
     std::snprintf(text, sizeof(text), "%llds", total);
   } else if (total < 3600) {
     std::snprintf(text, sizeof(text), "%lldm%02llds", total / 60, total % 60);
-  } else {
+  } else if (total < 86400) {
     std::snprintf(text, sizeof(text), "%lldh%02lldm", total / 3600, (total % 3600) / 60);
+  } else {
+    std::snprintf(text, sizeof(text), "%lldd%02lldh", total / 86400, (total % 86400) / 3600);
   }
   return text;
 }

@@ -23,7 +23,7 @@ struct ProgressLineInputs {
 
 std::string format_progress_line(const ProgressLineInputs& inputs);
 
-// "45s", "3m08s", "2h05m".
+// "45s", "3m08s", "2h05m", "3d04h"; "?" if not finite or negative.
 std::string format_duration(double seconds);
 
 }  // namespace bsg

@@ -43,7 +43,7 @@ void RolloutCollector::collect(envs::Env& env, std::uint64_t epoch_env_seed, con
       options_.use_reward_scaling ? std::optional<double>(actor_critic.return_normalizer.std()[0]) : std::nullopt;
   const std::span<const double> action_view(action_.data(), static_cast<std::size_t>(action_.size()));
 
-  copy_observation(env.reset(epoch_env_seed));  // every epoch starts with a fresh episode (§5.1 step 1)
+  copy_observation(env.reset(epoch_env_seed));  // every epoch starts with a fresh episode (docs/algorithms.md#rollout)
   for (int t = 0; t < options_.local_steps; ++t) {
     actor_critic.normalize_observation(raw_observation_, normalized_observation_);
     const double log_prob =

@@ -1,10 +1,10 @@
-// One epoch of data collection on one rank (spec §5.1): N steps of the noisy
+// One epoch of data collection on one rank (docs/algorithms.md#rollout): N steps of the noisy
 // policy in one environment, with V and V_C values and log-probabilities,
-// paths closed with GAE (reward scaling §4.2) at every episode end and at the
+// paths closed with GAE (reward scaling docs/algorithms.md#reward-scaling) at every episode end and at the
 // epoch cut.
 //
 // Environment seeding: the environment is reset with `epoch_env_seed` at the
-// start of every epoch (spec §5.1 step 1 resets it anyway); later resets
+// start of every epoch (the rollout resets it anyway, docs/algorithms.md#rollout); later resets
 // within the epoch continue the environment's own RNG stream. The epoch's data
 // is therefore a function of (parameters, normalisers, sigma, epoch_env_seed,
 // noise RNG) alone, which is what makes a resumed run identical to an

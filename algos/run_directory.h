@@ -1,4 +1,4 @@
-// The layout of a run directory (design.md "Experiments", spec §11, §13):
+// The layout of a run directory (design.md "Experiments", docs/reproducing.md#grids, #run-directory):
 //
 //   <run dir>/config.yaml        the resolved configuration (run_config_yaml.h)
 //            /progress.csv       one row per epoch (epoch_log.h)

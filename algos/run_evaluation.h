@@ -1,4 +1,4 @@
-// `bsg eval DIR`: re-runs the deterministic evaluation (spec §12) of a run
+// `bsg eval DIR`: re-runs the deterministic evaluation (docs/reproducing.md#evaluation) of a run
 // directory's latest checkpoint, without writing anything.
 #pragma once
 

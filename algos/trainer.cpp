@@ -90,12 +90,12 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
     checkpoint_epochs_ = saved.epochs_completed;
     if (mpi_.is_root()) progress_csv_.emplace(ProgressCsv::resume(directory_.progress(), saved.epochs_completed));
   } else {
-    actor_critic_->broadcast_from_root(mpi_);  // spec §1 step 5
+    actor_critic_->broadcast_from_root(mpi_);  // docs/algorithms.md#set-up, step 5
     if (mpi_.is_root()) {
       prepare_new_run_directory(directory_);
       write_run_config(config_, directory_.config());
       progress_csv_.emplace(ProgressCsv::create(directory_.progress()));
-      save_checkpoint();  // spec §1 step 7: the initial model
+      save_checkpoint();  // docs/algorithms.md#set-up, step 7: the initial model
     }
   }
 }
@@ -152,7 +152,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   ActorCritic& ac = *actor_critic_;
   const int rank = mpi_.rank();
 
-  // 1. Exploration noise of this epoch (spec §3.2).
+  // 1. Exploration noise of this epoch (docs/algorithms.md#exploration-noise).
   ac.policy.set_std(config_.use_exploration_noise_anneal ? GaussianPolicy::annealed_std(epoch, config_.epochs)
                                                          : GaussianPolicy::kInitialStd);
   noise_rng_.seed(stream_seed(config_, SeedStream::action_noise, rank, epoch));
@@ -177,7 +177,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   if (const auto loss = find_diagnostic(update, "Loss/Pi")) check_finite(epoch, "policy loss", *loss);
   check_parameters_finite(epoch);
 
-  // 4. Value fits (spec §8).
+  // 4. Value fits (docs/algorithms.md#value-fits).
   const ValueFitOptions fit_options{config_.train_v_iterations, config_.num_mini_batches, 16};
   const ValueFitStats value_fit =
       ac.value.fit(normalized_observations_, buffer_.value_targets(), shuffle_rng_, mpi_, fit_options);
@@ -191,7 +191,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
     check_finite(epoch, "cost value minibatch loss", cost_value_fit->mean_minibatch_loss);
   }
 
-  // 5. Normalisers last (spec §1 step 3).
+  // 5. Normalisers last (docs/algorithms.md#each-epoch, step 5).
   if (ac.standardize_observations) ac.observation_normalizer.update(buffer_.observations(), mpi_);
   if (config_.use_reward_scaling) {
     returns_column_.col(0) = buffer_.discounted_returns();
@@ -268,7 +268,7 @@ TrainingOutcome OnPolicyTrainer::run() {
     return outcome;
   }
 
-  // Deterministic evaluation (spec §12) with the final statistics.
+  // Deterministic evaluation (docs/reproducing.md#evaluation) with the final statistics.
   EvaluationSummary summary = evaluate_policy(*env_, *actor_critic_, config_.eval_episodes, config_.seed,
                                               config_.max_ep_len, mpi_);
   if (mpi_.is_root()) {

@@ -1,12 +1,12 @@
-// The on-policy training loop shared by the five algorithms (spec §1,
+// The on-policy training loop shared by the five algorithms (docs/algorithms.md#the-epoch-loop,
 // design.md "Learning"). Per epoch k, on every rank:
-//   1. sigma_k (spec §3.2) into the policy;
+//   1. sigma_k (docs/algorithms.md#exploration-noise) into the policy;
 //   2. collect N = B / R steps from this rank's environment (rollout.h):
 //      normalised observations, V and V_C, log-probs, GAE for reward and
 //      cost with reward scaling, bootstrap at time-outs and the epoch cut;
 //   3. pool the episode statistics over ranks (J_C, L), algorithm.update();
-//   4. fit V, and V_C if the algorithm uses it (spec §8 schedule);
-//   5. update the observation and return normalisers (last, spec §1);
+//   4. fit V, and V_C if the algorithm uses it (docs/algorithms.md#value-fits schedule);
+//   5. update the observation and return normalisers (last, docs/algorithms.md#the-epoch-loop);
 //   6. check that every parameter is finite (and, every check_freq epochs,
 //      that the ranks agree), log the epoch (rank 0 writes progress.csv and
 //      prints a line), save a checkpoint every save_freq epochs and after the

@@ -1,5 +1,5 @@
 // The training checkpoint of a run directory: everything a run needs to
-// continue exactly where it stopped (spec §13.2 plus what resuming needs).
+// continue exactly where it stopped (docs/reproducing.md#run-directory plus what resuming needs).
 //
 // Payload (inside common/checkpoint_file.h's container: magic, version,
 // size, FNV-1a checksum), in order of named sections:

@@ -1,4 +1,4 @@
-// TRPO (spec §7.1; Schulman et al. 2015, as the original's algs/trpo/trpo.py
+// TRPO (docs/algorithms.md#trpo; Schulman et al. 2015, as the original's algs/trpo/trpo.py
 // on top of NPG):
 //   1. l_old = l_R(theta_old), g = avg grad L_R
 //   2. x = CG(F, g), q = x^T F x, alpha = sqrt(2 delta / (q + 1e-8)), Delta = alpha x
@@ -24,7 +24,7 @@ class Trpo final : public TrustRegionAlgorithm {
   std::vector<std::string> diagnostic_names() const override;
 };
 
-// The six TRPO columns shared by all five algorithms (spec §13.1), in order.
+// The six TRPO columns shared by all five algorithms (docs/algorithms.md#logged-columns), in order.
 std::vector<std::string> trpo_diagnostic_names();
 
 // Appends the values of those six columns, in that order: the line search's

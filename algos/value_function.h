@@ -1,4 +1,4 @@
-// A value network (V for rewards or V_C for costs, spec §2, §8) with its own
+// A value network (V for rewards or V_C for costs, docs/algorithms.md#networks, #value-fits) with its own
 // Adam optimiser and the original's fitting schedule: `iterations` passes,
 // each over a fresh shuffle of the local indices in minibatches of
 // m = floor(N / num_mini_batches) (the last may be shorter), with the loss
@@ -52,7 +52,7 @@ class ValueFunction {
   // Local mean squared error against `targets`.
   double loss(const Eigen::Ref<const Eigen::MatrixXd>& observations, const Eigen::Ref<const Eigen::VectorXd>& targets);
 
-  // The §8 schedule. Collective (one gradient allreduce per minibatch); `rng`
+  // The docs/algorithms.md#value-fits schedule. Collective (one gradient allreduce per minibatch); `rng`
   // is the rank's RNG (shuffles).
   ValueFitStats fit(const Eigen::Ref<const Eigen::MatrixXd>& observations,
                     const Eigen::Ref<const Eigen::VectorXd>& targets, Rng& rng, const MpiContext& mpi,

@@ -1,5 +1,5 @@
 // `bsg envs [--json]`: the registered environments with their observation and
-// action sizes, episode length and cost limit (spec §1.1, report Table 3).
+// action sizes, episode length and cost limit (docs/environments.md#the-sixteen-environments, report Table 3).
 #include <CLI/CLI.hpp>
 
 #include <iomanip>

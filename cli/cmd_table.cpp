@@ -1,16 +1,15 @@
-// `bsg table SWEEP_DIR`: applies the report's selection rule (common/
+// `bsg table SWEEP_DIR`: applies the report's selection rule (experiments/
 // selection.h) per environment and algorithm of a sweep and prints Table 1
-// (common/table1_render.h) as Markdown; writes table1.md, table1.csv,
+// (experiments/table1_render.h) as Markdown; writes table1.md, table1.csv,
 // table1.tex and configurations.csv into the sweep directory (or --output).
 #include <CLI/CLI.hpp>
 
 #include <iostream>
 
-#include "algos/sweep_results.h"
 #include "commands.h"
-#include "common/atomic_file.h"
-#include "common/table1.h"
-#include "common/table1_render.h"
+#include "experiments/sweep_results.h"
+#include "experiments/table1.h"
+#include "experiments/table1_render.h"
 
 namespace bsg::cli {
 
@@ -31,13 +30,8 @@ int run_table(const TableOptions& options) {
 
   const std::filesystem::path out =
       options.output_dir.empty() ? sweep_dir : std::filesystem::path(options.output_dir);
-  std::filesystem::create_directories(out);
-  const std::string markdown = table1_markdown(table);
-  write_file_atomically(out / "table1.md", markdown);
-  write_file_atomically(out / "table1.csv", table1_csv(table));
-  write_file_atomically(out / "table1.tex", table1_latex(table));
-  write_file_atomically(out / "configurations.csv", configurations_csv(table));
-  std::cout << markdown;
+  write_table1_files(table, out);
+  std::cout << table1_markdown(table);
   std::cerr << "bsg table: wrote table1.md, table1.csv, table1.tex and configurations.csv to "
             << out.string() << "\n";
   return 0;

@@ -1,4 +1,4 @@
-// Adam optimiser with PyTorch's update rule (spec §7.3, §8): the value nets use
+// Adam optimiser with PyTorch's update rule (docs/algorithms.md#pdo, #value-fits): the value nets use
 // lr = 1e-3, PDO's Lagrange multiplier a one-element instance. The state (first
 // and second moments, step count) persists across calls and can be saved.
 //

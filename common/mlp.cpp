@@ -57,7 +57,7 @@ Mlp::Mlp(std::vector<int> layer_sizes, Rng& rng, MlpInitOptions options)
     offset += out;
   }
   parameters_.resize(offset);
-  // Kaiming-uniform with a = sqrt(5): bound = 1/sqrt(fan_in) (spec §2.2); the
+  // Kaiming-uniform with a = sqrt(5): bound = 1/sqrt(fan_in) (docs/algorithms.md#networks); the
   // biases keep PyTorch's default, the same bound (Q1), unless zero_bias_init.
   for (int layer = 0; layer < num_layers(); ++layer) {
     const Eigen::Index in = layer_sizes_[layer];

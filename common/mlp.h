@@ -1,8 +1,8 @@
 // A fully connected network on Eigen with hand-written backward pass and
-// Jacobian-vector product (spec §2). Hidden layers use tanh, the output layer is
+// Jacobian-vector product (docs/algorithms.md#networks). Hidden layers use tanh, the output layer is
 // the identity; layer sizes come from the caller, e.g. {d_o, 64, 64, d_a}.
 //
-// Parameters live in one flat vector in the order of spec §2.3:
+// Parameters live in one flat vector in the order of docs/algorithms.md#networks:
 // [W_1, b_1, W_2, b_2, ..., W_L, b_L], every W_l of shape (out, in) flattened
 // row-major. Gradients, JVP directions and set/get all use this layout.
 //

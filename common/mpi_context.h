@@ -1,5 +1,5 @@
 // The MPI wrapper. Every quantity that must agree across ranks goes through an
-// MpiContext (spec §9), so single-process and `mpirun -np N` runs share all code.
+// MpiContext (docs/algorithms.md#across-mpi-ranks), so single-process and `mpirun -np N` runs share all code.
 //
 // Two classes:
 //  - MpiSession: the RAII owner of MPI_Init/MPI_Finalize, created once by main().

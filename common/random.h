@@ -9,7 +9,7 @@
 
 namespace bsg {
 
-// The engine every component draws from (seeded as `seed + 10000 * rank`, spec §9).
+// The engine every component draws from (seeded as `seed + 10000 * rank`, docs/algorithms.md#across-mpi-ranks).
 using Rng = std::mt19937_64;
 
 // Uniform on [0, 1) with 53 random bits.

@@ -5,7 +5,7 @@
 // Parameters: every key, its type, where its default comes from, its valid
 // range and meaning are listed in one table, run_config_schema.cpp
 // (`bsg train --print-config` and configs/README.md show the same). The key
-// names are those of the spec (algorithms.md §10, §16) and of the original
+// names are those of the original (docs/algorithms.md#hyper-parameters, #quirk-switches) and of its
 // code. A default-constructed RunConfig holds the TRPO defaults on
 // SafetyBallCircle-v0, which a test checks against configs/.
 #pragma once
@@ -24,21 +24,21 @@ enum class Algorithm { trpo, lag_trpo, cpo, pdo, pcpo };
 inline constexpr std::array<std::string_view, 5> kAlgorithmNames = {"trpo", "lag-trpo", "cpo",
                                                                     "pdo", "pcpo"};
 
-// Update rule of the Lagrange multiplier (spec §7.2 SGD for TRPO-L, §7.3 Adam
-// for PDO; PID: the PID Lagrangian of Stooke, Achiam and Abbeel 2020, with
+// Update rule of the Lagrange multiplier (docs/algorithms.md#trpo-l SGD for
+// TRPO-L, docs/algorithms.md#pdo Adam for PDO; PID: the PID Lagrangian of Stooke, Achiam and Abbeel 2020, with
 // the pid_* keys, algos/pid_lagrangian.h).
 enum class LambdaOptimizer { sgd, adam, pid };
 inline constexpr std::array<std::string_view, 3> kLambdaOptimizerNames = {"SGD", "Adam", "PID"};
 
-// Sign of r in CPO's dual solution (spec §7.4, quirk Q10).
+// Sign of r in CPO's dual solution (docs/algorithms.md#cpo, quirk Q10).
 enum class CpoRSign { original, corrected };
 inline constexpr std::array<std::string_view, 2> kCpoRSignNames = {"original", "corrected"};
 
-// Metric of PCPO's projection step (spec §7.5): Fisher (KL) or Euclidean (L2).
+// Metric of PCPO's projection step (docs/algorithms.md#pcpo): Fisher (KL) or Euclidean (L2).
 enum class PcpoProjection { kl, l2 };
 inline constexpr std::array<std::string_view, 2> kPcpoProjectionNames = {"kl", "l2"};
 
-// Hidden-layer activation of the MLPs (spec §2.1: tanh is the only one used).
+// Hidden-layer activation of the MLPs (docs/algorithms.md#networks: tanh is the only one used).
 enum class Activation { tanh };
 inline constexpr std::array<std::string_view, 1> kActivationNames = {"tanh"};
 
@@ -55,18 +55,18 @@ struct RunConfig {
   std::int64_t seed = 0;
   std::string log_dir = "runs";
 
-  // --- environment settings (report Table 3, spec §10.3) ---
+  // --- environment settings (report Table 3, docs/reproducing.md#environment-settings) ---
   double cost_limit = 25.0;        // d: limit on the undiscounted episode cost
   int epochs = 500;                // E
   int steps_per_epoch = 32000;     // B: env steps per epoch summed over ranks
   int max_ep_len = 250;            // episode time limit in steps
 
-  // --- networks (spec §2) ---
+  // --- networks (docs/algorithms.md#networks) ---
   std::vector<int> hidden_sizes = {64, 64};
   Activation activation = Activation::tanh;
   bool zero_bias_init = false;     // Q1
 
-  // --- returns and advantages (spec §4, §5) ---
+  // --- returns and advantages (docs/algorithms.md#normalisers, #rollout-and-gae) ---
   double gamma = 0.99;
   double lam = 0.95;               // GAE lambda, rewards
   double lam_c = 0.95;             // GAE lambda, costs
@@ -77,7 +77,7 @@ struct RunConfig {
   double obs_clip = 0.0;                     // Q3: 0 = no clipping
   bool exact_parallel_variance = false;      // Q4
 
-  // --- trust region (spec §6) ---
+  // --- trust region (docs/algorithms.md#trust-region-tools) ---
   double target_kl = 0.01;         // delta
   double cg_damping = 0.1;
   int cg_iters = 10;
@@ -86,7 +86,7 @@ struct RunConfig {
   double backtrack_decay = 0.8;
   double kl_accept_factor = 1.5;   // Q13
 
-  // --- Lagrange multiplier (TRPO-L, PDO; spec §7.2, §7.3) ---
+  // --- Lagrange multiplier (TRPO-L, PDO; docs/algorithms.md#trpo-l, #pdo) ---
   double lagrangian_multiplier_init = 0.001;
   double lambda_lr = 0.05;
   LambdaOptimizer lambda_optimizer = LambdaOptimizer::sgd;
@@ -101,18 +101,18 @@ struct RunConfig {
 
   // --- algorithm-specific switches ---
   CpoRSign cpo_r_sign = CpoRSign::original;  // Q10
-  bool cpo_clamp_a = false;                  // §7.4 degenerate A < 0
+  bool cpo_clamp_a = false;                  // docs/algorithms.md#cpo degenerate A < 0
   PcpoProjection pcpo_projection = PcpoProjection::kl;
   bool pcpo_line_search = true;
   bool pdo_line_search = true;               // Q14
 
-  // --- value networks (spec §8) ---
+  // --- value networks (docs/algorithms.md#value-fits) ---
   bool use_cost_value_function = false;
   double vf_lr = 0.001;
   int train_v_iterations = 5;      // Q15
   int num_mini_batches = 16;       // Q15
 
-  // --- bookkeeping (spec §1, §12) ---
+  // --- bookkeeping (docs/algorithms.md#the-epoch-loop, docs/reproducing.md#evaluation) ---
   int save_freq = 10;
   int check_freq = 25;
   int eval_episodes = 128;

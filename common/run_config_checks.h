@@ -35,7 +35,7 @@ void check_env_id(const std::string& env_id, const std::string& origin,
 // max_ep_len <= steps_per_epoch. Names both keys and their origins.
 void check_run_config_relations(const RunConfig& config, const ConfigOrigins& origins);
 
-// The set-up checks of spec §1 step 2 for `num_ranks` MPI processes:
+// The set-up checks of docs/algorithms.md#set-up, step 2 for `num_ranks` MPI processes:
 // steps_per_epoch divisible by num_ranks, max_ep_len <= local steps N, and
 // value-net minibatches of at least 16 samples (floor(N / num_mini_batches)).
 void check_run_config_for_ranks(const RunConfig& config, int num_ranks);

@@ -101,7 +101,7 @@ const std::vector<SchemaRow>& schema_rows() {
             "base seed; per-rank and per-environment seeds are derived from it (seeding.h)"),
     text("log_dir", &R::log_dir, L::run,
          "directory under which the run directory is created"),
-    // --- environment (report Table 3, spec 10.3) ---
+    // --- environment (report Table 3, docs/reproducing.md#environment-settings) ---
     real("cost_limit", &R::cost_limit, L::environment, at_least(0), all,
          "d: limit on the undiscounted episode cost"),
     integer("epochs", &R::epochs, L::environment, closed(1, kIntMax), all,
@@ -110,14 +110,14 @@ const std::vector<SchemaRow>& schema_rows() {
             "B: environment steps per epoch, summed over all MPI ranks"),
     integer("max_ep_len", &R::max_ep_len, L::environment, closed(1, kIntMax), all,
             "maximum episode length in steps (the environment's time limit)"),
-    // --- networks (spec 2) ---
+    // --- networks (docs/algorithms.md#networks) ---
     integer_list("hidden_sizes", &R::hidden_sizes, L::algorithm, closed(1, 4096), all,
                  "hidden layer widths of the policy net and both value nets"),
     choice("activation", enum_access<&R::activation>(), kActivationNames, L::algorithm, all,
            "hidden-layer activation of all nets"),
     boolean("zero_bias_init", &R::zero_bias_init, L::algorithm, all,
             "Q1: zero initial biases (report) instead of uniform +-1/sqrt(fan_in) (original)"),
-    // --- returns, advantages, normalisation (spec 3-5) ---
+    // --- returns, advantages, normalisation (docs/algorithms.md#normalisers, #rollout-and-gae) ---
     real("gamma", &R::gamma, L::algorithm, open_closed(0, 1), all,
          "discount factor for rewards and costs"),
     real("lam", &R::lam, L::algorithm, closed(0, 1), all,
@@ -136,7 +136,7 @@ const std::vector<SchemaRow>& schema_rows() {
          "Q3: clip normalised observations to +-obs_clip; 0 = no clipping (original)"),
     boolean("exact_parallel_variance", &R::exact_parallel_variance, L::algorithm, all,
             "Q4: Chan's exact parallel variance instead of the original's update"),
-    // --- trust region (spec 6) ---
+    // --- trust region (docs/algorithms.md#trust-region-tools) ---
     real("target_kl", &R::target_kl, L::algorithm, above(0), all,
          "delta: trust-region size (mean KL per action dimension, Q8)"),
     real("cg_damping", &R::cg_damping, L::algorithm, at_least(0), all,
@@ -151,7 +151,7 @@ const std::vector<SchemaRow>& schema_rows() {
          "line-search step shrink factor"),
     real("kl_accept_factor", &R::kl_accept_factor, L::algorithm, above(0), all,
          "Q13: the line search accepts a step with KL <= kl_accept_factor * target_kl"),
-    // --- Lagrange multiplier (spec 7.2, 7.3) ---
+    // --- Lagrange multiplier (docs/algorithms.md#trpo-l, #pdo) ---
     real("lagrangian_multiplier_init", &R::lagrangian_multiplier_init, L::algorithm,
          at_least(0), kLagrangian, "initial Lagrange multiplier lambda (PID: the initial integral I)"),
     real("lambda_lr", &R::lambda_lr, L::algorithm, above(0), kLagrangian,
@@ -175,7 +175,7 @@ const std::vector<SchemaRow>& schema_rows() {
          kLagrangian, "PID only: EMA factor a of the D input, J_ema <- a J_ema + (1 - a) J_C; 0 = none"),
     real("pid_lambda_max", &R::pid_lambda_max, L::algorithm, at_least(0), kLagrangian,
          "PID only: upper bound on lambda; 0 = no bound"),
-    // --- algorithm switches (spec 7.3-7.5) ---
+    // --- algorithm switches (docs/algorithms.md#pdo, #cpo, #pcpo) ---
     choice("cpo_r_sign", enum_access<&R::cpo_r_sign>(), kCpoRSignNames, L::algorithm,
            algorithm_bit(Algorithm::cpo),
            "Q10: sign of r in CPO's dual: original (as the code) or corrected"),
@@ -189,7 +189,7 @@ const std::vector<SchemaRow>& schema_rows() {
             "run the constrained line search on PCPO's step (false: apply it directly)"),
     boolean("pdo_line_search", &R::pdo_line_search, L::algorithm, algorithm_bit(Algorithm::pdo),
             "Q14: run the TRPO line search on PDO's reward loss (original); false: apply step"),
-    // --- value networks (spec 8) ---
+    // --- value networks (docs/algorithms.md#value-fits) ---
     boolean("use_cost_value_function", &R::use_cost_value_function, L::algorithm, all,
             "train the cost value net V_C"),
     real("vf_lr", &R::vf_lr, L::algorithm, above(0), all,
@@ -198,7 +198,7 @@ const std::vector<SchemaRow>& schema_rows() {
             "Q15: passes over the local batch per epoch when fitting the value nets"),
     integer("num_mini_batches", &R::num_mini_batches, L::algorithm, closed(1, 100000), all,
             "Q15: minibatches per pass; minibatch size floor(N / num_mini_batches) per rank"),
-    // --- bookkeeping (spec 1, 12) ---
+    // --- bookkeeping (docs/algorithms.md#the-epoch-loop, docs/reproducing.md#evaluation) ---
     integer("save_freq", &R::save_freq, L::algorithm, closed(1, kIntMax), all,
             "save a checkpoint every save_freq epochs and after the last"),
     integer("check_freq", &R::check_freq, L::algorithm, closed(1, kIntMax), all,

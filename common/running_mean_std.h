@@ -1,4 +1,4 @@
-// Online mean and standard deviation, merged across MPI ranks (spec §4.1):
+// Online mean and standard deviation, merged across MPI ranks (docs/algorithms.md#observation-normaliser):
 // the observation normaliser and the return normaliser of reward scaling.
 //
 // update() follows the original code, including quirk Q4: the batch variance
@@ -37,7 +37,7 @@ class RunningMeanStd {
   const RunningMeanStdOptions& options() const { return options_; }
 
   // Merge one epoch's samples (one per row) from every rank. Collective: every
-  // rank must call it; ranks may hold different row counts (the spec's equal
+  // rank must call it; ranks may hold different row counts (the original's equal
   // counts make this the average of the per-rank means).
   void update(const Eigen::Ref<const Eigen::MatrixXd>& batch, const MpiContext& mpi);
 
@@ -50,7 +50,7 @@ class RunningMeanStd {
   // Restores a saved state; sizes must match the dimension.
   void set_state(const Eigen::Ref<const Eigen::VectorXd>& mean, const Eigen::Ref<const Eigen::VectorXd>& std,
                  double count);
-  // Every rank takes rank 0's statistics (spec §1 step 5).
+  // Every rank takes rank 0's statistics (docs/algorithms.md#set-up, step 5).
   void broadcast_from_root(const MpiContext& mpi);
 
  private:

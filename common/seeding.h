@@ -4,7 +4,7 @@
 // SplitMix64 output function, so that streams are independent of each other
 // and of the rank count, and the same inputs always give the same seed.
 // The original code instead seeds everything on rank r with seed + 10000 r
-// (spec §1 step 4); original_rank_seed() reproduces that.
+// (docs/algorithms.md#set-up, step 4); original_rank_seed() reproduces that.
 #pragma once
 
 #include <cstdint>
@@ -44,7 +44,7 @@ std::uint64_t derive_seed(std::uint64_t run_seed, SeedStream stream, std::uint64
 std::uint64_t environment_seed(std::uint64_t run_seed, std::uint64_t rank,
                                std::uint64_t env_index);
 
-// The original's per-rank seed, seed + 10000 * rank (spec §1 step 4, §9).
+// The original's per-rank seed, seed + 10000 * rank (docs/algorithms.md#set-up, step 4, #across-mpi-ranks).
 std::int64_t original_rank_seed(std::int64_t run_seed, int rank);
 
 }  // namespace bsg

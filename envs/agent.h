@@ -1,6 +1,6 @@
 // An agent: builds its bodies and joints in a World, turns an action into
 // forces or motor targets, writes its own part of the observation and tells
-// its pose and velocity (spec §3, §4). Tasks and sensors see agents only
+// its pose and velocity (docs/environments.md#agents). Tasks and sensors see agents only
 // through this interface.
 #pragma once
 
@@ -19,11 +19,11 @@ class World;
 
 // What an agent needs to know about the task it is built for.
 struct AgentOptions {
-  // Reach and Gather give the Car and the Ant stronger motors (spec §3 "power upgrade").
+  // Reach and Gather give the Car and the Ant stronger motors (docs/environments.md#agents "power upgrade").
   bool power_upgrade = false;
 };
 
-// Per-agent constants of spec §3 that tasks and sensors use.
+// Per-agent constants of docs/environments.md#agents that tasks and sensors use.
 struct AgentTraits {
   int action_dim = 0;
   int observation_dim = 0;  // the agent's own part of the observation
@@ -41,7 +41,7 @@ class Agent {
 
   virtual const AgentTraits& traits() const = 0;
 
-  // Agent-specific part of a reset (spec §4, §2.6 step 3): velocities to zero,
+  // Agent-specific part of a reset (docs/environments.md#agents, #reset, step 3): velocities to zero,
   // base back to its initial pose, joint randomisation drawn from `rng`.
   virtual void reset(Rng& rng) = 0;
   // Teleports the base COM and orientation (PyBullet's
@@ -56,12 +56,12 @@ class Agent {
   // caller): forces or motor targets that act during the next World::step().
   virtual void apply_action(std::span<const double> action) = 0;
   // Post-step bookkeeping from the last internal step's contacts (Ant feet,
-  // Drone ground contacts); not called after the reset's engine step (§2.6).
+  // Drone ground contacts); not called after the reset's engine step (docs/environments.md#reset).
   virtual void after_step() {}
 
   // Writes traits().observation_dim entries.
   virtual void write_observation(std::span<double> out) const = 0;
-  // s_agent of spec §4 for the last applied action and step.
+  // s_agent of docs/environments.md#agents for the last applied action and step.
   virtual double specific_reward() const = 0;
   virtual bool alive() const = 0;
 

@@ -26,23 +26,23 @@ constexpr double kStubLength = static_cast<float>(0.2);  // leg stub and thigh: 
 constexpr double kFootLength = static_cast<float>(0.4);  // foot: 0 → 0.4·u
 constexpr double kCapsuleRadius = static_cast<float>(0.08);
 constexpr double kTorsoRadius = 0.25;  // sphere sizes are parsed as double
-// The importer ignores the MJCF density and uses 1000 kg/m³ (spec §2.2 item 2).
+// The importer ignores the MJCF density and uses 1000 kg/m³ (docs/environments.md#how-bodies-are-built).
 constexpr double kDensity = 1000;
-constexpr double kFriction = 1.5;  // MJCF default geom friction (spec §4.4 table)
+constexpr double kFriction = 1.5;  // MJCF default geom friction (docs/environments.md#ant)
 
 constexpr double kInitialHeight = 0.75;
-constexpr double kAliveHeight = 0.26;  // alive iff torso z > 0.26 (spec §4.4)
+constexpr double kAliveHeight = 0.26;  // alive iff torso z > 0.26 (docs/environments.md#ant)
 // Torque per unit action is power·power_coef: 2.5·100, or 10·100 with the upgrade.
 constexpr double kTorqueScale = 100;
 constexpr double kPower = 2.5;
 constexpr double kUpgradedPower = 10;
-// Reward factors (spec §10).
+// Reward factors (docs/environments.md#ant).
 constexpr double kElectricityCost = -2.0;
 constexpr double kStallTorqueCost = -0.1;
 constexpr double kJointsAtLimitCost = -0.1;
 constexpr float kAtLimitThreshold = 0.99f;  // NumPy compares the float32 ρ with float32(0.99)
 
-// One leg: direction u = (s_x, s_y, 0) and the ankle axis, un-normalised (spec §2.2 item 11).
+// One leg: direction u = (s_x, s_y, 0) and the ankle axis, un-normalised (docs/environments.md#how-bodies-are-built).
 struct LegGeometry {
   double sign_x;
   double sign_y;
@@ -55,7 +55,7 @@ constexpr std::array<LegGeometry, 4> kLegs = {{
     {+1, -1, +1},  // right_back: hip_4, ankle_4 about (1, 1, 0)
 }};
 
-// Joint limits are float32 values (spec §12 correction 9), in action order.
+// Joint limits are float32 values (docs/environments.md#ant), in action order.
 constexpr double kHipLimit = 0.6981317400932312;
 constexpr double kAnkleLow = 0.5235987901687622;
 constexpr double kAnkleHigh = 1.7453292608261108;
@@ -93,7 +93,7 @@ double numpy_mean8(const std::array<double, 8>& x) {
 
 // Half-span-normalised joint position ρ = 2(q − m)/(u − l) and the scaled
 // rate 0.1·q̇, rounded to float32 as the original's float32 array does
-// (spec §12 correction 1).
+// (docs/environments.md#ant).
 float relative_position(double q, const JointLimits& limits) {
   const double mid = 0.5 * (limits.lower + limits.upper);
   return static_cast<float>(2 * (q - mid) / (limits.upper - limits.lower));
@@ -114,7 +114,7 @@ AntAgent::AntAgent(World& world, const AgentOptions& options)
   traits_.sensor_rotates = false;
   traits_.sensor_offset = {0, 0, 0};
 
-  // Torso: a lone sphere, so its inertia is the sphere's 0.4·m·r² (spec §4.4).
+  // Torso: a lone sphere, so its inertia is the sphere's 0.4·m·r² (docs/environments.md#ant).
   auto* torso_shape = world.keep_shape(std::make_unique<btSphereShape>(kTorsoRadius));
   const double torso_mass = sphere_mass_kg(kTorsoRadius);
   btVector3 torso_inertia;
@@ -126,7 +126,7 @@ AntAgent::AntAgent(World& world, const AgentOptions& options)
   // A capsule geom from 0 to `length`·u becomes a compound holding a
   // two-sphere btMultiSphereShape (Bullet's default margin 0.04), shifted so
   // that the link's inertial frame sits at the capsule's midpoint. Its inertia
-  // is Bullet's bounding-box estimate of that compound (spec §2.2 item 1),
+  // is Bullet's bounding-box estimate of that compound (docs/environments.md#how-bodies-are-built),
   // which is what gives the table's (0.16394, 0.16394, 0.252698) for a stub.
   struct CapsuleLink {
     btCollisionShape* shape;
@@ -187,7 +187,7 @@ AntAgent::AntAgent(World& world, const AgentOptions& options)
     link_shapes[first + 4] = foot.shape;
   }
   body->finalizeMultiDof();
-  // The MJCF geoms never collide with each other (spec §2.2 item 10).
+  // The MJCF geoms never collide with each other (docs/environments.md#how-bodies-are-built).
   body->setHasSelfCollision(false);
   body_ = world.add_multibody(std::move(body));
 
@@ -215,7 +215,7 @@ AntAgent::AntAgent(World& world, const AgentOptions& options)
     if (foot != kFootLinks.end()) feet_[foot - kFootLinks.begin()] = collider;
   }
 
-  // Hard limits on the 8 revolute joints (spec §2.2 item 6), created in link
+  // Hard limits on the 8 revolute joints (docs/environments.md#how-bodies-are-built), created in link
   // order as the importer does; Bullet's default max impulse (100) is kept.
   for (int k = 0; k < kActionDim; ++k) {
     const int link = kMovableLinks[k];
@@ -227,7 +227,7 @@ AntAgent::AntAgent(World& world, const AgentOptions& options)
 
   // PyBullet then gives every revolute joint a velocity motor
   // (createJointMotors), which the agent disables at construction with a
-  // force-0 control call (max impulse 0, spec §2.3). The disabled motors exert
+  // force-0 control call (max impulse 0, docs/environments.md#motors-forces-and-contacts). The disabled motors exert
   // nothing, but they are in the world's constraint array, and Bullet
   // quick-sorts that array by island each step (not a stable sort): without
   // them the joint-limit rows are solved in a different order and the
@@ -252,13 +252,13 @@ void AntAgent::refresh_colliders() {
 
 void AntAgent::reset(Rng& rng) {
   // Velocities to zero and the base back to its initial pose (the snapshot
-  // restore of spec §2.6 step 1 reduces to this, §2.9).
+  // restore of docs/environments.md#reset, step 1 reduces to this, docs/environments.md#how-bodies-are-built).
   body_->setBaseVel(btVector3(0, 0, 0));
   body_->setBaseOmega(btVector3(0, 0, 0));
   body_->setBasePos(traits_.initial_position);
   body_->setWorldToBaseRot(btQuaternion::getIdentity());
   // 8 draws in joint order: hips U(−0.1, 0.1); ankles ±(π/2 + U(−0.1, 0.1))
-  // with the sign of their limit range (spec §4.4).
+  // with the sign of their limit range (docs/environments.md#ant).
   std::array<double, kActionDim> q{};
   for (int k = 0; k < kActionDim; ++k) {
     const double noise = uniform(rng, -0.1, 0.1);
@@ -266,7 +266,7 @@ void AntAgent::reset(Rng& rng) {
     q[k] = !ankle ? noise : (kLimits[k].lower > 0 ? 1.0 : -1.0) * (std::numbers::pi / 2 + noise);
   }
   set_joint_positions(q);
-  // The reset observation shows no feet contacts (spec §2.6 step 5).
+  // The reset observation shows no feet contacts (docs/environments.md#reset, step 5).
   feet_contact_.fill(0);
   last_action_.fill(0);
   joints_at_limit_reward_ = 0;
@@ -276,7 +276,7 @@ void AntAgent::reset(Rng& rng) {
 
 void AntAgent::set_base_pose(const btVector3& com_position, const btQuaternion& orientation) {
   body_->setBasePos(com_position);
-  // btMultiBody stores the world-to-base rotation (spec §2.2 item 12).
+  // btMultiBody stores the world-to-base rotation (docs/environments.md#how-bodies-are-built).
   body_->setWorldToBaseRot(orientation.inverse());
   refresh_colliders();
 }
@@ -300,19 +300,19 @@ void AntAgent::apply_action(std::span<const double> action) {
   }
   for (int k = 0; k < kActionDim; ++k) {
     last_action_[k] = action[k];
-    // τ_k = (power·100)·clip(a_k, −1, 1), held for all sub-steps (spec §4.4, §2.3).
+    // τ_k = (power·100)·clip(a_k, −1, 1), held for all sub-steps (docs/environments.md#ant, #motors-forces-and-contacts).
     const double clipped = std::clamp(action[k], -1.0, 1.0);
     body_->addJointTorque(kMovableLinks[k], torque_per_unit_action_ * clipped);
   }
 }
 
 void AntAgent::after_step() {
-  // Feet touching the ground body (not walls or obstacles), spec §4.4.
+  // Feet touching the ground body (not walls or obstacles), docs/environments.md#ant.
   for (int f = 0; f < kFootCount; ++f) {
     feet_contact_[f] = world_.touching(feet_[f], world_.ground()) ? 1.0 : 0.0;
   }
-  // J and E from the float32-rounded joint values (spec §12 correction 1);
-  // E uses the raw, unclipped action (spec §9 item 5).
+  // J and E from the float32-rounded joint values (docs/environments.md#ant);
+  // E uses the raw, unclipped action (docs/environments.md#kept-quirks, item 5).
   int at_limit = 0;
   std::array<double, kActionDim> power{};
   std::array<double, kActionDim> action_squared{};
@@ -337,7 +337,7 @@ void AntAgent::write_observation(std::span<double> out) const {
     throw std::invalid_argument("AntAgent::write_observation: expected 33 entries, got " +
                                 std::to_string(out.size()));
   }
-  // [0.1·p, 0.3·v, quaternion, 0.15·ω, (ρ_k/2, 0.05·q̇_k) for k = 0..7, feet] (spec §4.4).
+  // [0.1·p, 0.3·v, quaternion, 0.15·ω, (ρ_k/2, 0.05·q̇_k) for k = 0..7, feet] (docs/environments.md#ant).
   const btVector3 p = position();
   const btVector3 v = linear_velocity();
   const btQuaternion q = orientation();

@@ -1,11 +1,11 @@
-// The Ant (spec §4.4): the MJCF ant as PyBullet builds it, assembled directly
+// The Ant (docs/environments.md#ant): the MJCF ant as PyBullet builds it, assembled directly
 // with btMultiBody. A torso sphere plus 20 links in PyBullet's joint order
 // (fixed joints included), 8 torque-driven revolute joints, feet-contact
 // bookkeeping and the joint-limit and electricity terms of its reward.
 //
 // Parameters (AgentOptions):
 //   power_upgrade  false: 250 N·m per unit action (Circle, Run);
-//                  true: 1000 N·m per unit action (Reach, Gather; "max_force 2.5→10", spec §3)
+//                  true: 1000 N·m per unit action (Reach, Gather; "max_force 2.5→10", docs/environments.md#agents)
 #pragma once
 
 #include <array>
@@ -30,7 +30,7 @@ class AntAgent final : public Agent {
   static constexpr int kObservationDim = 33;
   // PyBullet's links of the MJCF ant: 5 per leg (leg stub, hip joint link,
   // thigh, ankle joint link, foot), legs in the order front_left,
-  // front_right, left_back, right_back (spec §4.4).
+  // front_right, left_back, right_back (docs/environments.md#ant).
   static constexpr int kLinkCount = 20;
   static constexpr int kFootCount = 4;
   // PyBullet link index of the k-th actuated joint (hip_1, ankle_1, …, ankle_4).
@@ -56,7 +56,7 @@ class AntAgent final : public Agent {
   void joint_state(std::span<double> positions, std::span<double> velocities) const override;
   std::span<const btCollisionObject* const> colliders() const override { return colliders_; }
 
-  // Post-step bookkeeping of the last after_step() (spec §4.4).
+  // Post-step bookkeeping of the last after_step() (docs/environments.md#ant).
   const std::array<double, kFootCount>& feet_contact() const { return feet_contact_; }
   double joints_at_limit_reward() const { return joints_at_limit_reward_; }  // J
   double electricity_reward() const { return electricity_reward_; }          // E

@@ -54,11 +54,11 @@ double AssembledEnv::clock_seconds() const {
 }
 
 std::span<const double> AssembledEnv::reset_impl(const Layout* injected) {
-  // §2.6 step 1: the original restores its first-reset snapshot: every
+  // docs/environments.md#reset, step 1: the original restores its first-reset snapshot: every
   // velocity zero, the agent back to its initial pose, no cached contacts.
   world_->forget_contacts();
   elapsed_steps_ = 0;
-  // §2.6 step 3: agent reset (joint noise) first, then the task's placement.
+  // docs/environments.md#reset, step 3: agent reset (joint noise) first, then the task's placement.
   agent_->reset(rng_);
   Layout layout;
   if (injected != nullptr) {
@@ -74,7 +74,7 @@ std::span<const double> AssembledEnv::reset_impl(const Layout* injected) {
   }
   task_->place(layout, clock_seconds());
   layout_ = std::move(layout);
-  // §2.6 step 5: one engine step without a new action; no agent bookkeeping.
+  // docs/environments.md#reset, step 5: one engine step without a new action; no agent bookkeeping.
   world_->step();
   has_reset_ = true;
   write_observation();
@@ -97,7 +97,7 @@ void AssembledEnv::check_action(std::span<const double> action) const {
 
 StepResult AssembledEnv::step(std::span<const double> action) {
   check_action(action);
-  // The order of spec §2.5.
+  // The order of docs/environments.md#one-step.
   ++elapsed_steps_;
   ++steps_since_construction_;
   agent_->apply_action(action);

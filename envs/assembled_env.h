@@ -1,6 +1,6 @@
 // The one Env implementation: a World, an Agent and a Task put together by the
 // builder (env_builder.h), stepping and resetting as the original's
-// EnvironmentBuilder does (spec §2.5, §2.6). The step path allocates nothing:
+// EnvironmentBuilder does (docs/environments.md#one-step, #reset). The step path allocates nothing:
 // the observation buffer and the task's cost terms are preallocated.
 #pragma once
 
@@ -35,9 +35,9 @@ class AssembledEnv final : public Env {
   Agent& agent() { return *agent_; }
 
  private:
-  // The shared reset path of spec §2.6; `injected` replaces the task's draws.
+  // The shared reset path of docs/environments.md#reset; `injected` replaces the task's draws.
   std::span<const double> reset_impl(const Layout* injected);
-  // The Box clock t (spec §12 item 7): steps since construction × 1/60 in
+  // The Box clock t (docs/environments.md#moving-box): steps since construction × 1/60 in
   // kSimulated mode; 0 in kEpisodePhase mode, where the drawn phase holds.
   double clock_seconds() const;
   void check_action(std::span<const double> action) const;

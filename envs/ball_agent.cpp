@@ -15,7 +15,7 @@
 namespace bsg::envs {
 namespace {
 
-// ball.urdf's <contact> block (spec §4.1).
+// ball.urdf's <contact> block (docs/environments.md#ball).
 constexpr double kLateralFriction = 1.1;
 constexpr double kRollingFriction = 0.03;
 constexpr double kSpinningFriction = 0.03;
@@ -39,7 +39,7 @@ AgentTraits ball_traits() {
 BallAgent::BallAgent(World& world, const AgentOptions& /*options: no power upgrade*/)
     : traits_(ball_traits()) {
   // Inertia from the collision sphere, 2/5·m·r² = 0.03 (the URDF's 1 is
-  // ignored by PyBullet, spec §2.2 item 1).
+  // ignored by PyBullet, docs/environments.md#how-bodies-are-built).
   const double inertia = 0.4 * kMass * kRadius * kRadius;
   auto body = std::make_unique<btMultiBody>(0, kMass, btVector3(inertia, inertia, inertia),
                                             /*fixedBase=*/false, /*canSleep=*/false);
@@ -86,8 +86,8 @@ void BallAgent::set_joint_positions(std::span<const double> joint_positions) {
 void BallAgent::apply_action(std::span<const double> action) {
   const double a0 = std::clamp(action[0], -1.0, 1.0);
   const double a1 = std::clamp(action[1], -1.0, 1.0);
-  // World-frame force at the COM: no torque (spec §4.1); Bullet holds it for
-  // every sub-step and clears it after the engine step (spec §2.3).
+  // World-frame force at the COM: no torque (docs/environments.md#ball); Bullet holds it for
+  // every sub-step and clears it after the engine step (docs/environments.md#motors-forces-and-contacts).
   body_->addBaseForce(btVector3(kForcePerAction * a0, kForcePerAction * a1, 0));
   specific_reward_ = -0.5 * std::sqrt(a0 * a0 + a1 * a1);  // s_ball = −0.5·‖a‖₂
 }

@@ -1,8 +1,8 @@
-// The Ball (spec §4.1, class `Ball` of the original): a 0.5-m sphere of 0.3 kg
+// The Ball (docs/environments.md#ball, class `Ball` of the original): a 0.5-m sphere of 0.3 kg
 // pushed by a horizontal world-frame force at its centre. It never dies and has
 // no joints.
 //
-// Parameters (spec §3, §4.1; none depends on the task):
+// Parameters (docs/environments.md#agents, #ball; none depends on the task):
 //   force per unit action  3.5 N (actions clipped to [-1, 1])
 //   initial position       (0, 0, 0.5), identity orientation
 //   collision radius       0.5 m; Run speed limit 2.5 m/s

@@ -24,12 +24,12 @@ namespace bsg::envs {
 namespace {
 
 // The model is `racecar_differential.urdf` of the original package with
-// globalScaling = 3 (spec §4.2). Lengths below are the URDF's own numbers and
+// globalScaling = 3 (docs/environments.md#car). Lengths below are the URDF's own numbers and
 // are multiplied by kUrdfScale exactly as PyBullet's URDF parser does, so that
 // every frame matches the original to the last bit; masses are not scaled.
 constexpr double kUrdfScale = 3.0;
 // URDF importer's collision margin for boxes, convex hulls and the compound
-// that wraps a link's shapes (spec §2.2 item 7).
+// that wraps a link's shapes (docs/environments.md#how-bodies-are-built).
 constexpr double kMargin = 0.001;
 // Angles as written in the URDF (not π/2: the file says 1.5708 and 1.570795).
 constexpr double kWheelRoll = 1.5708;
@@ -45,9 +45,9 @@ struct LinkSpec {
   JointKind joint;
   btVector3 origin_xyz;  // joint origin in the parent link frame (unscaled)
   btVector3 origin_rpy;
-  btVector3 axis;  // child frame, passed un-normalised (spec §2.2 item 11)
+  btVector3 axis;  // child frame, passed un-normalised (docs/environments.md#how-bodies-are-built)
   // Joint limits [−1, 1] are stored on both steering hinges, so both clamp
-  // their position-motor targets (spec §12 correction 10). Only the left hinge
+  // their position-motor targets (docs/environments.md#car). Only the left hinge
   // is a URDF "revolute" joint, and PyBullet's importer gives only revolute
   // joints a btMultiBodyJointLimitConstraint; the right hinge is "continuous"
   // and has none. The golden trajectories confirm it: with a limit constraint
@@ -70,7 +70,7 @@ const btVector3 kWheel(0.05, 0.045, 0);
 const btVector3 kSpider(0.015, 0.01, 0);
 const btVector3 kRing(0.025, 0.01, 0);
 
-// PyBullet link order (depth-first over the URDF tree, spec §4.2 table).
+// PyBullet link order (depth-first over the URDF tree, docs/environments.md#car).
 const LinkSpec kLinks[CarAgent::kLinkCount] = {
     {"left_steering_hinge",
      -1,
@@ -397,7 +397,7 @@ const LinkSpec kLinks[CarAgent::kLinkCount] = {
 // Chassis (base link): mass 4 kg, COM 0.2 (×3) ahead of the link frame. Its
 // collision mesh (chassis_differential.STL) is replaced by the convex hull of
 // its bounding box, x ∈ [−0.04, 0.365], |y| ≤ 0.1, |z| ≤ 0.03 (unscaled), the
-// approximation of spec §4.2; the hull's bounding box, hence the inertia
+// approximation of docs/environments.md#car; the hull's bounding box, hence the inertia
 // (0.133944, 0.508479, 0.619359), is the mesh's.
 constexpr double kChassisMassKg = 4.0;
 const btVector3 kChassisCom(0.2, 0, 0);
@@ -411,7 +411,7 @@ constexpr double kContactDamping = 1000;
 constexpr double kSteeringLimitRad = 1.0;
 
 // Gear constraints: (linkA, linkB, ratio, aux link), in the original's
-// creation order (spec §4.2 "Gear constraints").
+// creation order (docs/environments.md#car).
 struct GearSpec {
   int link_a;
   int link_b;
@@ -424,8 +424,8 @@ constexpr GearSpec kGears[] = {
 };
 constexpr double kGearMaxForce = 10000;
 
-// Motor constants (spec §2.3, §4.2). T_param = 1/60 s bounds motor impulses
-// whatever the number of sub-steps (PyBullet quirk, spec §9 item 1).
+// Motor constants (docs/environments.md#motors-forces-and-contacts, #car). T_param = 1/60 s bounds motor impulses
+// whatever the number of sub-steps (PyBullet quirk, docs/environments.md#kept-quirks, item 1).
 constexpr double kMotorImpulseSeconds = World::kEnvStepSeconds;
 constexpr double kSteeringPerAction = 0.5;  // [rad]
 constexpr double kSteeringKp = 0.1;
@@ -459,7 +459,7 @@ btTransform translation(const btVector3& xyz) {
   return transform;
 }
 
-// A URDF <cylinder>: a 32-gon prism as a convex hull (spec §2.2 item 8),
+// A URDF <cylinder>: a 32-gon prism as a convex hull (docs/environments.md#how-bodies-are-built),
 // built as PyBullet's importer does (margin, AABB, then vertex optimisation).
 std::unique_ptr<btConvexHullShape> cylinder_hull(double radius, double length) {
   const double half_length = 0.5 * length;
@@ -555,7 +555,7 @@ CarAgent::CarAgent(World& world, const AgentOptions& options)
   for (int i = 0; i < kLinkCount; ++i) {
     const LinkSpec& spec = kLinks[i];
     shapes[i] = link_shape(world, spec);
-    // Inertia from the collision shape, not the URDF (spec §2.2 item 1).
+    // Inertia from the collision shape, not the URDF (docs/environments.md#how-bodies-are-built).
     btVector3 inertia(0, 0, 0);
     shapes[i]->calculateLocalInertia(spec.mass_kg, inertia);
 
@@ -583,7 +583,7 @@ CarAgent::CarAgent(World& world, const AgentOptions& options)
   }
 
   // Colliders in PyBullet's creation order: base, then links 0..19.
-  // No self collision (spec §2.2 item 10).
+  // No self collision (docs/environments.md#how-bodies-are-built).
   auto add_collider = [&](int link, btCollisionShape* shape, double friction, bool soft) {
     auto collider = std::make_unique<btMultiBodyLinkCollider>(&mb, link);
     collider->setCollisionShape(shape);
@@ -623,11 +623,11 @@ CarAgent::CarAgent(World& world, const AgentOptions& options)
     motor->setPositionTarget(0, 0);
     motor->setVelocityTarget(0, 1);
     motor->finalizeMultiDof();
-    // The agent's constructor switches every motor off (force 0, spec §2.3).
+    // The agent's constructor switches every motor off (force 0, docs/environments.md#motors-forces-and-contacts).
     motor->setMaxAppliedImpulse(0);
     motors_[m] = static_cast<btMultiBodyJointMotor*>(world.add_constraint(std::move(motor)));
   }
-  const double gear_max_impulse = kGearMaxForce * world.internal_step_seconds();  // F·h, §2.3
+  const double gear_max_impulse = kGearMaxForce * world.internal_step_seconds();  // F·h, docs/environments.md#motors-forces-and-contacts
   const btMatrix3x3 identity = btMatrix3x3::getIdentity();
   for (const GearSpec& gear : kGears) {
     auto constraint = std::make_unique<btMultiBodyGearConstraint>(
@@ -651,7 +651,7 @@ void CarAgent::reset(Rng& rng) {
   body_->setBaseVel(btVector3(0, 0, 0));
   body_->setBaseOmega(btVector3(0, 0, 0));
   set_base_pose(traits_.initial_position, quaternion_from_euler(0, 0, traits_.initial_yaw));
-  // 14 draws, one per movable joint in order (spec §4.2 "Agent reset").
+  // 14 draws, one per movable joint in order (docs/environments.md#car).
   std::array<double, kMovableJointCount> angles{};
   for (double& angle : angles) angle = uniform(rng, -0.1, 0.1);
   set_joint_positions(angles);
@@ -686,10 +686,10 @@ void CarAgent::apply_action(std::span<const double> action) {
     throw std::invalid_argument("CarAgent::apply_action: expected 2 action entries, got " +
                                 std::to_string(action.size()));
   }
-  // Not clipped (spec §9 item 4).
+  // Not clipped (docs/environments.md#kept-quirks, item 4).
   wheel_target_rad_per_s_ = speed_per_action_rad_per_s_ * action[0];
   for (int m : {kRearRingMotor, kFrontRingMotor}) {
-    // VELOCITY_CONTROL: kd 1, kp 0, no rhs clamp, impulse F·T_param (spec §2.3).
+    // VELOCITY_CONTROL: kd 1, kp 0, no rhs clamp, impulse F·T_param (docs/environments.md#motors-forces-and-contacts).
     btMultiBodyJointMotor& motor = *motors_[m];
     motor.setVelocityTarget(wheel_target_rad_per_s_, kWheelKd);
     motor.setPositionTarget(0, 0);
@@ -699,7 +699,7 @@ void CarAgent::apply_action(std::span<const double> action) {
   const double steering_rad = kSteeringPerAction * action[1];
   for (int m : {kLeftHingeMotor, kRightHingeMotor}) {
     // POSITION_CONTROL with PyBullet's defaults; the target is clamped to the
-    // hinge limits (both hinges are limited, spec §12 correction 10).
+    // hinge limits (both hinges are limited, docs/environments.md#car).
     const btMultibodyLink& link = body_->getLink(kMovableLinks[m]);
     const double target = std::clamp(steering_rad, link.m_jointLowerLimit, link.m_jointUpperLimit);
     btMultiBodyJointMotor& motor = *motors_[m];
@@ -715,7 +715,7 @@ void CarAgent::write_observation(std::span<double> out) const {
     throw std::invalid_argument("CarAgent::write_observation: expected 7 entries, got " +
                                 std::to_string(out.size()));
   }
-  // [0.1·x, 0.1·y, v_x, v_y, sin ψ, cos ψ, 0.1·ω_z] (spec §4.2).
+  // [0.1·x, 0.1·y, v_x, v_y, sin ψ, cos ψ, 0.1·ω_z] (docs/environments.md#car).
   const btVector3 p = position();
   const btVector3 v = linear_velocity();
   const double yaw = euler_from_quaternion(orientation()).yaw;

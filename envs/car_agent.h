@@ -1,22 +1,22 @@
-// The Car (spec §4.2, class `RaceCar` of the original): the MIT racecar of
+// The Car (docs/environments.md#car, class `RaceCar` of the original): the MIT racecar of
 // `racecar_differential.urdf` loaded with global scaling 3, built here link by
 // link as PyBullet's URDF importer builds it (no importer). The rear wheels are
 // driven through differential 1 (ring = link 8), the front wheels are coupled
 // to differential 2 (ring = link 15) by gear constraints; the action sets the
 // two ring velocity motors and the two steering position motors. The car never
-// dies and its actions are not clipped (spec §9 item 4).
+// dies and its actions are not clipped (docs/environments.md#kept-quirks, item 4).
 //
-// Parameters (spec §3, §4.2):
+// Parameters (docs/environments.md#agents, #car):
 //   wheel speed per unit action  40 rad/s (power upgrade, Reach/Gather: 80)
 //   ring motor force             20 (power upgrade: 40); max impulse F/60 per internal step
 //   steering per unit action     0.5 rad, position motor kp 0.1, kd 1, force 100000,
-//                                target clamped to the hinge limits [-1, 1] (§12 correction 10)
+//                                target clamped to the hinge limits [-1, 1] (docs/environments.md#car)
 //   gear constraints             8, max force 10000 → max impulse 10000·h (h = internal step)
 //   initial pose                 COM (0, 0, 0.2), yaw π (facing world −x)
 //   collision radius             0.35 m; Run speed limit 1.5 m/s
 //   sensors                      rotate with the car, offset (0.2, 0, 0.3) in the base frame
 //
-// Link indices are PyBullet's (the `#` column of the spec's §4.2 table); the
+// Link indices are PyBullet's (the table in car_agent.cpp, docs/environments.md#car); the
 // movable joints, in the agent's own order, are 0, 1, 2, 3, 8, 9, 10, 11, 13,
 // 15, 16, 17, 18, 19.
 #pragma once
@@ -38,7 +38,7 @@ class CarAgent final : public Agent {
   static constexpr int kLinkCount = 20;
   static constexpr int kMovableJointCount = 14;
   // PyBullet link index of every movable joint, in the agent's joint order
-  // (also the order of the agent-reset draws, spec §4.2).
+  // (also the order of the agent-reset draws, docs/environments.md#car).
   static constexpr std::array<int, kMovableJointCount> kMovableLinks = {0,  1,  2,  3,  8,  9,  10,
                                                                         11, 13, 15, 16, 17, 18, 19};
 
@@ -51,8 +51,8 @@ class CarAgent final : public Agent {
   int movable_joint_count() const override { return kMovableJointCount; }
   void apply_action(std::span<const double> action) override;
   void write_observation(std::span<double> out) const override;
-  double specific_reward() const override { return 0.0; }  // spec §4.2
-  bool alive() const override { return true; }             // spec §4.2
+  double specific_reward() const override { return 0.0; }  // docs/environments.md#car
+  bool alive() const override { return true; }             // docs/environments.md#car
   btVector3 position() const override;
   btQuaternion orientation() const override;
   btVector3 linear_velocity() const override;
@@ -72,10 +72,10 @@ class CarAgent final : public Agent {
 
   AgentTraits traits_;
   double speed_per_action_rad_per_s_;
-  double ring_motor_max_impulse_;  // F·T_param per internal step (spec §2.3)
+  double ring_motor_max_impulse_;  // F·T_param per internal step (docs/environments.md#motors-forces-and-contacts)
   btMultiBody* body_ = nullptr;
   // One motor per movable joint in kMovableLinks order, all created disabled
-  // (PyBullet creates a motor for every revolute joint, spec §2.3).
+  // (PyBullet creates a motor for every revolute joint, docs/environments.md#motors-forces-and-contacts).
   std::array<btMultiBodyJointMotor*, kMovableJointCount> motors_{};
   // Base collider first, then links 0..19 (links without geometry carry an
   // empty compound, as in PyBullet).

@@ -10,7 +10,7 @@
 namespace bsg::envs {
 
 double circle_reward_core(double x, double y, double vx, double vy) {
-  const double radius = std::sqrt(x * x + y * y);  // NumPy's norm (spec §12 item 13)
+  const double radius = std::sqrt(x * x + y * y);  // NumPy's norm (docs/environments.md#planar-distances)
   return 0.1 * (y * vx - x * vy) / (1 + std::abs(radius - kCircleRadius));
 }
 
@@ -18,7 +18,7 @@ CircleTask::CircleTask(World& world, Agent& agent) : world_(world), agent_(agent
 
 void CircleTask::sample_layout(Rng& rng, Layout& layout) {
   // The original draws one point and discards it, then redraws until the point
-  // lies in the annulus 2 ≤ ‖p‖ ≤ 4 (spec §5.1).
+  // lies in the annulus 2 ≤ ‖p‖ ≤ 4 (docs/environments.md#circle).
   uniform(rng, -4, 4);
   uniform(rng, -4, 4);
   double x = 0, y = 0, radius = 0;
@@ -53,7 +53,7 @@ TaskOutcome CircleTask::evaluate(Rng& /*rng*/) {
 
 void CircleTask::write_observation(std::span<double> out) const {
   const btVector3 p = agent_.position();
-  // Octagon's env_dim is 10 although its ground is 30 m wide (spec §9 item 15).
+  // Octagon's env_dim is 10 although its ground is 30 m wide (docs/environments.md#kept-quirks, item 15).
   out[0] = (std::sqrt(p.x() * p.x() + p.y() * p.y()) - kCircleRadius) / world_.env_dim();
 }
 

@@ -1,7 +1,7 @@
-// Circle (spec §5.1, `CircleTask`): run clockwise along a circle of radius 7
+// Circle (docs/environments.md#circle, `CircleTask`): run clockwise along a circle of radius 7
 // in the Octagon while staying inside the band |x| ≤ 6.
 //
-// Parameters (spec §10):
+// Parameters (docs/environments.md#circle):
 //   circle radius R     7 m
 //   safe band           |x| ≤ 6 m (cost_outside_bounds)
 //   reward              0.1·(y·v_x − x·v_y)/(1 + |‖p‖ − 7|) + 0.01·s_agent
@@ -19,7 +19,7 @@ namespace bsg::envs {
 inline constexpr double kCircleRadius = 7.0;
 inline constexpr double kCircleXLimit = 6.0;
 
-// The first reward term, positive for clockwise motion (spec §5.1, §11 item 5).
+// The first reward term, positive for clockwise motion (docs/environments.md#circle).
 double circle_reward_core(double x, double y, double vx, double vy);
 
 class CircleTask final : public Task {

@@ -1,7 +1,7 @@
-// Apples and Bombs of Gather (spec §5.2, §7): visual spheres (no collision
+// Apples and Bombs of Gather (docs/environments.md#gather, #obstacles): visual spheres (no collision
 // shape) that are collected once the agent's COM comes within 1 m in the
 // plane. A collected object stays in place and stays visible to the
-// pseudo-LIDAR (spec §9 item 9).
+// pseudo-LIDAR (docs/environments.md#kept-quirks, item 9).
 #pragma once
 
 #include <memory>

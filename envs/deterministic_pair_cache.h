@@ -1,5 +1,5 @@
 // Bullet's hashed pair cache with its deterministic pair order (PyBullet's
-// m_deterministicOverlappingPairs, spec §2.1) kept, but without the heap
+// m_deterministicOverlappingPairs, docs/environments.md#physics-settings) kept, but without the heap
 // allocation Bullet's own version makes at every internal step: it sorts the
 // pair indices in a local array. Here that array is a member, sized once.
 #pragma once

@@ -24,7 +24,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Thrust-model constants of the original's Drone class (spec §4.3); they do not
+// Thrust-model constants of the original's Drone class (docs/environments.md#drone); they do not
 // follow the ×2 scaling of the model.
 constexpr double kRotorRadius = 0.14;                 // r [m]
 constexpr double kPropellerPitch = 4.7 * 0.0254;      // p [m]
@@ -38,7 +38,7 @@ constexpr double kMotorForce = 23.444;                // velocity-motor force F
 constexpr double kMaxJointVelocity = 1000;            // changeDynamics(maxJointVelocity)
 constexpr std::array<double, 4> kRotorDirections = {+1, -1, +1, -1};  // d_i
 
-// Multibody model (spec §4.3 table; lengths already ×2).
+// Multibody model (docs/environments.md#drone; lengths already ×2).
 constexpr int kLinkCount = 5;       // body box + 4 rotors; the base is a dummy
 constexpr int kBodyLink = 0;        // base_link_inertia, fixed to the base
 constexpr int kFirstRotorLink = 1;  // rotor_i is link 1 + i
@@ -48,14 +48,14 @@ constexpr double kRotorMass = 0.005;
 constexpr double kBodyHalfExtents[3] = {0.3, 0.3, 0.17};  // box 0.6 × 0.6 × 0.34
 constexpr double kRotorHullRadius = 0.28;
 constexpr double kRotorHullHalfLength = 0.005;     // cylinder length 0.01
-constexpr int kRotorHullSegments = 32;             // URDF cylinder → 32-gon prism (§2.2.8)
-constexpr double kCollisionMargin = 0.001;         // URDF importer default (§2.2.7)
+constexpr int kRotorHullSegments = 32;             // URDF cylinder → 32-gon prism (docs/environments.md#how-bodies-are-built)
+constexpr double kCollisionMargin = 0.001;         // URDF importer default (docs/environments.md#how-bodies-are-built)
 constexpr double kFriction = 0.5;                  // no <contact> tags
 // Rotor joint origins in the base frame.
 constexpr double kRotorOffsets[4][3] = {
     {0.34, 0, 0.02}, {0, -0.34, 0.02}, {-0.34, 0, 0.02}, {0, 0.34, 0.02}};
 
-// s_drone (spec §4.3).
+// s_drone (docs/environments.md#drone).
 constexpr double kAliveReward = 1.0;
 constexpr double kDeathReward = -10.0;
 constexpr double kSpinPenalty = 0.01;
@@ -64,7 +64,7 @@ constexpr double kRotorObservationScale = 2.5e-3;
 // The disc area A = π·r², written as the original computes it.
 double rotor_area_m2() { return kPi * (kRotorRadius * kRotorRadius); }
 
-// btConvexHullShape of the URDF importer's cylinder (spec §2.2.8): 32 points on
+// btConvexHullShape of the URDF importer's cylinder (docs/environments.md#how-bodies-are-built): 32 points on
 // each end cap, angle 2π·k/32, margin 0.001.
 std::unique_ptr<btConvexHullShape> make_rotor_hull() {
   auto hull = std::make_unique<btConvexHullShape>();
@@ -118,12 +118,12 @@ class DroneAgent final : public Agent {
   std::array<btMultiBodyJointMotor*, kRotorCount> motors_{};
   std::array<const btCollisionObject*, kLinkCount + 1> colliders_{};  // base, links 0..4
   double hover_speed_rad_per_s_ = 0;  // ω_h
-  int ground_contacts_ = 0;           // n_g after the last step (stale until then, §9 item 10)
+  int ground_contacts_ = 0;           // n_g after the last step (stale until then, docs/environments.md#kept-quirks, item 10)
   btAlignedObjectArray<btQuaternion> scratch_world_to_local_;
   btAlignedObjectArray<btVector3> scratch_local_origin_;
 };
 
-DroneAgent::DroneAgent(World& world, const AgentOptions& /*options: no power upgrade, §3*/)
+DroneAgent::DroneAgent(World& world, const AgentOptions& /*options: no power upgrade, docs/environments.md#agents*/)
     : world_(world), hover_speed_rad_per_s_(drone_hover_speed_rad_per_s()) {
   traits_.action_dim = 4;
   traits_.observation_dim = 17;
@@ -134,7 +134,7 @@ DroneAgent::DroneAgent(World& world, const AgentOptions& /*options: no power upg
   traits_.sensor_rotates = true;
   traits_.sensor_offset = btVector3(0, 0, 0);
 
-  // Inertias come from the collision shapes (spec §2.2.1): Bullet's box formula
+  // Inertias come from the collision shapes (docs/environments.md#how-bodies-are-built): Bullet's box formula
   // for the body, the hull's AABB approximation for the rotors; the dummy base
   // has no shape and hence zero inertia.
   auto body_box = std::make_unique<btBoxShape>(
@@ -161,8 +161,8 @@ DroneAgent::DroneAgent(World& world, const AgentOptions& /*options: no power upg
                              /*disableParentCollision=*/true);
   }
   multibody->finalizeMultiDof();
-  multibody->setHasSelfCollision(false);  // loaded without URDF_USE_SELF_COLLISION (§2.2.10)
-  // PyBullet's default 100 rad/s clamp would sit below hover speed (§4.3).
+  multibody->setHasSelfCollision(false);  // loaded without URDF_USE_SELF_COLLISION (docs/environments.md#how-bodies-are-built)
+  // PyBullet's default 100 rad/s clamp would sit below hover speed (docs/environments.md#drone).
   multibody->setMaxCoordinateVelocity(kMaxJointVelocity);
   multibody->setBasePos(traits_.initial_position);
   multibody->setWorldToBaseRot(btQuaternion::getIdentity());
@@ -198,7 +198,7 @@ DroneAgent::DroneAgent(World& world, const AgentOptions& /*options: no power upg
 
   // PyBullet creates a velocity motor per rotor joint at load; the original
   // switches it off at construction (force 0 → max impulse 0 removes its row,
-  // spec §2.3), so the rotors start free.
+  // docs/environments.md#motors-forces-and-contacts), so the rotors start free.
   for (int i = 0; i < kRotorCount; ++i) {
     auto motor = std::make_unique<btMultiBodyJointMotor>(body_, kFirstRotorLink + i, 0,
                                                          /*desiredVelocity=*/0.0,
@@ -216,9 +216,9 @@ void DroneAgent::refresh_kinematics() {
 }
 
 void DroneAgent::reset(Rng& rng) {
-  // Snapshot restore (§2.6 step 1): initial pose, all velocities zero; then the
-  // agent reset (§4.3): rotor angles U(−0.1, 0.1), rotor rates 0. Motor targets
-  // are left alone: they survive the reset (§9 item 10), and so does n_g.
+  // Snapshot restore (docs/environments.md#reset, step 1): initial pose, all velocities zero; then the
+  // agent reset (docs/environments.md#drone): rotor angles U(−0.1, 0.1), rotor rates 0. Motor targets
+  // are left alone: they survive the reset (docs/environments.md#kept-quirks, item 10), and so does n_g.
   body_->setBasePos(traits_.initial_position);
   body_->setWorldToBaseRot(btQuaternion::getIdentity());
   body_->setBaseVel(btVector3(0, 0, 0));
@@ -261,7 +261,7 @@ void DroneAgent::apply_action(std::span<const double> action) {
                                 std::to_string(action.size()));
   }
   // v₀ = v_base · (R·e_z): the COM velocity along the body's up axis, R from the
-  // base quaternion at the time of the call (spec §4.3).
+  // base quaternion at the time of the call (docs/environments.md#drone).
   const btVector3 up = btMatrix3x3(orientation()).getColumn(2);
   const btVector3 velocity = body_->getBaseVel();
   const double inflow_m_per_s = velocity.x() * up.x() + velocity.y() * up.y() + velocity.z() * up.z();
@@ -271,17 +271,17 @@ void DroneAgent::apply_action(std::span<const double> action) {
     // ω*_i = d_i·ω_h·(1 + 0.1·a_i)
     const double target_rad_per_s =
         (kRotorDirections[i] * hover_speed_rad_per_s_) * (1 + kActionRange * a);
-    // Velocity motor, kd 1, kp 0, max impulse F·T_param per internal step (§2.3).
+    // Velocity motor, kd 1, kp 0, max impulse F·T_param per internal step (docs/environments.md#motors-forces-and-contacts).
     btMultiBodyJointMotor* motor = motors_[i];
     motor->setVelocityTarget(target_rad_per_s, 1.0);
     motor->setPositionTarget(0, 0);
     motor->setRhsClamp(SIMD_INFINITY);
     motor->setMaxAppliedImpulse(kMotorForce * World::kEnvStepSeconds);
 
-    // Thrust from the commanded speed (§9 item 7) along the rotor's z axis, as a
+    // Thrust from the commanded speed (docs/environments.md#kept-quirks, item 7) along the rotor's z axis, as a
     // LINK_FRAME force at the rotor origin. PyBullet rotates it with the link's
-    // cached transform, left by the start of the last internal step (§12
-    // correction 3); the force at the COM carries no torque.
+    // cached transform, left by the start of the last internal step
+    // (docs/environments.md#drone); the force at the COM carries no torque.
     const double thrust_n =
         drone_thrust_newton(target_rad_per_s * kRotorDirections[i], inflow_m_per_s);
     const int link = kFirstRotorLink + i;
@@ -292,7 +292,7 @@ void DroneAgent::apply_action(std::span<const double> action) {
 
 void DroneAgent::after_step() {
   // n_g: links (body box, rotors) with at least one contact point with the
-  // ground after the last internal step (spec §4.3); the base's empty shape
+  // ground after the last internal step (docs/environments.md#drone); the base's empty shape
   // never has one.
   int count = 0;
   for (const btCollisionObject* collider : colliders_) {
@@ -309,7 +309,7 @@ void DroneAgent::write_observation(std::span<double> out) const {
   const btVector3 p = body_->getBasePos();
   const btVector3 v = body_->getBaseVel();
   const btVector3 w = body_->getBaseOmega();
-  // The original canonicalises the quaternion through Euler angles (§4.3).
+  // The original canonicalises the quaternion through Euler angles (docs/environments.md#drone).
   const RollPitchYaw rpy = euler_from_quaternion(orientation());
   const btQuaternion q = quaternion_from_euler(rpy.roll, rpy.pitch, rpy.yaw);
   const std::array<double, 13> base = {0.1 * p.x(), 0.1 * p.y(), 0.1 * p.z(), 0.2 * v.x(),
@@ -318,7 +318,7 @@ void DroneAgent::write_observation(std::span<double> out) const {
                                        0.1 * w.z()};
   std::copy(base.begin(), base.end(), out.begin());
   for (int i = 0; i < kRotorCount; ++i) {
-    // 2.5e-3·(ω_i − d_i·ω_h), with the unrounded ω_h (§12 correction 8).
+    // 2.5e-3·(ω_i − d_i·ω_h), with the unrounded ω_h (docs/environments.md#drone).
     const double hover_rad_per_s = kRotorDirections[i] * hover_speed_rad_per_s_;
     out[13 + i] =
         kRotorObservationScale * (body_->getJointVel(kFirstRotorLink + i) - hover_rad_per_s);
@@ -336,7 +336,7 @@ double DroneAgent::specific_reward() const {
 
 bool DroneAgent::alive() const {
   // |roll| ≤ π/2 and |pitch| ≤ π/2 from PyBullet's Euler angles; pitch = asin(·)
-  // never exceeds π/2, so only roll can end an episode (§9 item 6).
+  // never exceeds π/2, so only roll can end an episode (docs/environments.md#kept-quirks, item 6).
   const RollPitchYaw rpy = euler_from_quaternion(orientation());
   constexpr double kLimit = 0.5 * kPi;
   return std::abs(rpy.pitch) <= kLimit && std::abs(rpy.roll) <= kLimit;

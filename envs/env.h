@@ -6,7 +6,7 @@
 //   box_clock  kEpisodePhase (default): the Reach Box's pivot angle is drawn at
 //              every reset from the seeded RNG and held for the episode;
 //              kSimulated: the angle advances 1 rad per simulated second, counted
-//              over env steps since construction (spec §12 item 7, golden files).
+//              over env steps since construction (docs/environments.md#moving-box, golden files).
 //
 // Threading: an Env is not thread-safe; use one per thread. Observations and
 // cost terms returned by reset()/step() are views into buffers the Env owns,
@@ -27,7 +27,7 @@ namespace bsg::envs {
 using Vec3 = std::array<double, 3>;
 using Quat = std::array<double, 4>;  // [x, y, z, w], base-to-world (PyBullet order)
 
-// What a learner needs to know about an environment (spec §1.1).
+// What a learner needs to know about an environment (docs/environments.md#the-sixteen-environments).
 struct EnvSpec {
   std::string id;             // e.g. "SafetyBallCircle-v0"
   std::string agent;          // "Ball", "Car", "Drone", "Ant"
@@ -35,13 +35,13 @@ struct EnvSpec {
   int observation_dim = 0;
   int action_dim = 0;
   int max_episode_steps = 0;  // truncation (gym TimeLimit)
-  double cost_limit = 0;      // d of the report's Table 3 (spec §1.1), per episode
-  double action_low = -1;     // declared action bounds (spec §2.5)
+  double cost_limit = 0;      // d of the report's Table 3 (docs/environments.md#the-sixteen-environments), per episode
+  double action_low = -1;     // declared action bounds (docs/environments.md#one-step)
   double action_high = 1;
   double observation_bound = 1000;  // declared observation space ±1000 (never clipped)
 };
 
-// One named cost component, like the original's info keys (spec §5):
+// One named cost component, like the original's info keys (docs/environments.md#tasks):
 // cost_outside_bounds, cost_velocity_violation, cost_collisions,
 // number_collisions, cost_gathered_bombs, cost_out_of_range. Every term of
 // the task is reported at every step (0 when not violated; the original omits
@@ -71,11 +71,11 @@ struct EnvOptions {
 
 // A layout to reset to instead of a sampled one (evaluation on fixed layouts,
 // golden tests). reset_to() applies it in place of every random placement draw
-// of spec §5 and then does the reset's single engine step (spec §2.6), exactly
+// of docs/environments.md#tasks and then does the reset's single engine step (docs/environments.md#reset), exactly
 // as a sampled reset does. Fields a task does not use must be left empty;
 // fields a task needs must be given, except where "default" says otherwise.
 struct BoxPlacement {
-  Vec3 position{};       // circle centre c = bottom-face centre (spec §7.1)
+  Vec3 position{};       // circle centre c = bottom-face centre (docs/environments.md#moving-box)
   Quat orientation{0, 0, 0, 1};
   double phase = 0;      // φ: the pivot is c + 0.7·(sin(t+φ), cos(t+φ), 0)
 };
@@ -84,7 +84,7 @@ struct Layout {
   Vec3 agent_position{};             // base COM
   Quat agent_orientation{0, 0, 0, 1};
   // Movable joints in the agent's own order (Ball: none). Default (empty): the
-  // agent's own randomised reset angles (spec §4).
+  // agent's own randomised reset angles (docs/environments.md#agents).
   std::vector<double> joint_positions;
   // Reach.
   std::optional<Vec3> goal;
@@ -117,7 +117,7 @@ struct EnvState {
   Vec3 agent_angular_velocity{};
   std::vector<double> joint_positions;   // movable joints, agent order
   std::vector<double> joint_velocities;
-  double agent_reward = 0;  // s_agent of spec §4 for the last step
+  double agent_reward = 0;  // s_agent of docs/environments.md#agents for the last step
   bool alive = true;
   // Task fields, present for the tasks that have them.
   std::optional<Vec3> goal;
@@ -134,7 +134,7 @@ class Env {
 
   virtual const EnvSpec& spec() const = 0;
 
-  // Reseeds the environment's RNG with `seed`, then resets (spec §2.6).
+  // Reseeds the environment's RNG with `seed`, then resets (docs/environments.md#reset).
   virtual std::span<const double> reset(std::uint64_t seed) = 0;
   // Resets and keeps drawing from the current RNG stream (the RNG starts from
   // seed 0 if reset(seed) was never called).
@@ -144,7 +144,7 @@ class Env {
   // The layout placed by the last reset (sampled or injected).
   virtual const Layout& layout() const = 0;
 
-  // One step (spec §2.5). Throws std::invalid_argument if the action size is
+  // One step (docs/environments.md#one-step). Throws std::invalid_argument if the action size is
   // not spec().action_dim or an entry is NaN or infinite, and std::logic_error
   // if called before the first reset. Out-of-range entries are treated as the
   // original does (clipped by Ball, Drone, Ant; not by the Car).

@@ -15,7 +15,7 @@ namespace bsg::envs {
 // Every agent file exposes one of these, e.g. make_ball_agent (ball_agent.h).
 using AgentFactory = std::unique_ptr<Agent> (*)(World& world, const AgentOptions& options);
 
-// One registry entry: everything needed to build an id (spec §1.1).
+// One registry entry: everything needed to build an id (docs/environments.md#the-sixteen-environments).
 struct EnvRegistration {
   std::string id;           // "Safety<Agent><Task>-v0"
   std::string agent_name;   // "Ball", "Car", "Drone", "Ant"

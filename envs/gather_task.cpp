@@ -12,7 +12,7 @@ GatherTask::GatherTask(World& world, Agent& agent)
     : agent_(agent), sensor_(16, world.env_dim()) {}
 
 void GatherTask::sample_layout(Rng& rng, Layout& layout) {
-  // The agent starts at the origin with its initial orientation (spec §5.2).
+  // The agent starts at the origin with its initial orientation (docs/environments.md#gather).
   const AgentTraits& traits = agent_.traits();
   const btVector3 start(0, 0, traits.initial_position.z());
   layout.agent_position = to_vec3(start);
@@ -45,7 +45,7 @@ void GatherTask::place(const Layout& layout, double /*clock_seconds*/) {
 TaskOutcome GatherTask::evaluate(Rng& /*rng*/) {
   const btVector3 p = agent_.position();
   TaskOutcome outcome;
-  // Reward first (spec §2.5 item 6), no agent-specific term (spec §9 item 11).
+  // Reward first (docs/environments.md#one-step, item 6), no agent-specific term (docs/environments.md#kept-quirks, item 11).
   outcome.reward = kAppleReward * apples_.collect_near(p);
   if (!agent_.alive()) outcome.reward = kDeathReward;
   terms_[0].value = bombs_.collect_near(p);
@@ -58,7 +58,7 @@ TaskOutcome GatherTask::evaluate(Rng& /*rng*/) {
 void GatherTask::write_observation(std::span<double> out) const {
   const btVector3 p = agent_.position();
   const auto bins = static_cast<size_t>(sensor_.bins());
-  // Collected apples and touched bombs are still sensed (spec §9 item 9).
+  // Collected apples and touched bombs are still sensed (docs/environments.md#kept-quirks, item 9).
   sensor_.measure(p, apples_.positions(), out.first(bins));
   sensor_.measure(p, bombs_.positions(), out.subspan(bins, bins));
 }

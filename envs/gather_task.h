@@ -1,7 +1,7 @@
-// Gather (spec §5.2, `GatherTask`): collect 8 apples (+10 each) and avoid 8
+// Gather (docs/environments.md#gather, `GatherTask`): collect 8 apples (+10 each) and avoid 8
 // bombs (cost) in the SmallRoom, seeing both through two pseudo-LIDARs.
 //
-// Parameters (spec §5.2, §10):
+// Parameters (docs/environments.md#gather):
 //   apples, bombs       8 and 8, placed with agent clearance 1.0, pairwise 2.0
 //   detection distance  1.0 m in the plane
 //   apple reward        +10; death reward −10 (replaces the step's reward)

@@ -17,7 +17,7 @@ LidarSensor::LidarSensor(const World& world, int rays, double range_m)
                                             std::to_string(rays));
   if (!(range_m > 0)) throw std::invalid_argument("LidarSensor: range_m must be > 0");
   for (int i = 0; i < rays; ++i) {
-    const double theta = 2 * std::numbers::pi * i / rays;  // clockwise from +y (spec §6)
+    const double theta = 2 * std::numbers::pi * i / rays;  // clockwise from +y (docs/environments.md#sensors)
     directions_.emplace_back(std::sin(theta), std::cos(theta), 0);
   }
 }

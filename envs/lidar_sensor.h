@@ -1,4 +1,4 @@
-// LIDAR (spec §6.1): N horizontal rays of length L cast from the agent's
+// LIDAR (docs/environments.md#lidar): N horizontal rays of length L cast from the agent's
 // sensor mount against every collider of the world except the agent's own;
 // value_i = 1 − f_i with f_i the closest-hit fraction (0 = nothing in range).
 // Ray i points clockwise from world +y: (sin 2πi/N, cos 2πi/N, 0), turned by the

@@ -17,11 +17,11 @@ namespace {
 
 constexpr double kHalfWidth = 0.5;
 constexpr double kHalfHeight = 0.75;
-constexpr double kMargin = 0.001;  // URDF importer's box margin (spec §2.2 item 7)
+constexpr double kMargin = 0.001;  // URDF importer's box margin (docs/environments.md#how-bodies-are-built)
 
 // PyBullet's inertia of the URDF link: Bullet's compound-shape approximation,
 // the inertia of the shape's bounding box, whose extents include the margin
-// (spec §2.2 item 1): (1.35834, 1.35834, 0.83667).
+// (docs/environments.md#how-bodies-are-built): (1.35834, 1.35834, 0.83667).
 btVector3 box_inertia() {
   const double lx = 2 * (kHalfWidth + kMargin);
   const double lz = 2 * (kHalfHeight + kMargin);

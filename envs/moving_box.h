@@ -1,9 +1,9 @@
-// The Box of Reach (spec §7, §7.1): a dynamic 1×1×1.5 m box of 5 kg whose
+// The Box of Reach (docs/environments.md#obstacles, #moving-box): a dynamic 1×1×1.5 m box of 5 kg whose
 // bottom-face centre is held by a fixed constraint (max impulse 500 per
 // internal step) to a world pivot that circles its centre c:
 //   P(t) = c + 0.7·(sin(t + φ), cos(t + φ), 0).
 // Both constraint frames are identity, so the constraint also turns the box to
-// yaw 0. The clock t is supplied by the environment (spec §12 item 7).
+// yaw 0. The clock t is supplied by the environment (docs/environments.md#moving-box).
 #pragma once
 
 #include <LinearMath/btQuaternion.h>
@@ -28,7 +28,7 @@ class MovingBox {
   explicit MovingBox(World& world);
 
   // Teleports the box to circle centre `centre` with `orientation` and zero
-  // velocity, and sets its pivot to P(clock_seconds) (spec §7.1: "whenever
+  // velocity, and sets its pivot to P(clock_seconds) (docs/environments.md#moving-box: "whenever
   // the box is placed at c its circle centre becomes c").
   void place(const btVector3& centre, const btQuaternion& orientation, double phase,
              double clock_seconds);

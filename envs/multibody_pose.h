@@ -1,5 +1,5 @@
 // Reading and teleporting a btMultiBody's base the way PyBullet does
-// (spec §2.3 "resetBasePositionAndOrientation"): the base pose is the COM pose,
+// (PyBullet's resetBasePositionAndOrientation, docs/environments.md#motors-forces-and-contacts): the base pose is the COM pose,
 // orientations are base-to-world, and the colliders follow immediately so that
 // ray casts and the next collision detection see the new pose.
 #pragma once

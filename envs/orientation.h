@@ -1,4 +1,4 @@
-// PyBullet's Euler-angle conventions (spec §2.2 item 12), which the original
+// PyBullet's Euler-angle conventions (docs/environments.md#how-bodies-are-built), which the original
 // uses for every roll/pitch/yaw it reads or sets.
 #pragma once
 

@@ -37,7 +37,7 @@ std::vector<btVector3> sample_obstacle_positions(Rng& rng, int count, const btVe
     if (planar_distance(q, agent) < agent_clearance) continue;
     bool clear = true;
     for (const btVector3& other : accepted) {
-      // 3-d norm; every z here is 0 (spec §8 item 2).
+      // 3-d norm; every z here is 0 (docs/environments.md#placement-sampling).
       if ((q - other).length() <= pairwise_clearance) {
         clear = false;
         break;

@@ -1,7 +1,7 @@
-// Random placement of goals and obstacles in the SmallRoom (spec §2.4, §8):
+// Random placement of goals and obstacles in the SmallRoom (docs/environments.md#worlds, #placement-sampling):
 // uniform points in the square [−7, 7]² on the ground and the original's
 // rejection sampler `generate_obstacles_init_pos`, with an attempt guard in
-// place of the original's guard that never fires (spec §9 item 14).
+// place of the original's guard that never fires (docs/environments.md#kept-quirks, item 14).
 #pragma once
 
 #include <optional>
@@ -29,7 +29,7 @@ std::vector<btVector3> sample_obstacle_positions(Rng& rng, int count, const btVe
                                                  double pairwise_clearance,
                                                  double agent_clearance);
 
-// ‖a − b‖ in the plane, as NumPy's norm: sqrt(dx² + dy²) (spec §12 item 13).
+// ‖a − b‖ in the plane, as NumPy's norm: sqrt(dx² + dy²) (docs/environments.md#planar-distances).
 double planar_distance(const btVector3& a, const btVector3& b);
 
 }  // namespace bsg::envs

@@ -1,4 +1,4 @@
-// Pseudo-LIDAR (spec §6.2): no ray casting; for a list of objects, the bin of
+// Pseudo-LIDAR (docs/environments.md#pseudo-lidar): no ray casting; for a list of objects, the bin of
 // each object's bearing (clockwise from world +y) holds 1 − δ/L for the
 // nearest object within range L. World-aligned, never rotated with the agent.
 //
@@ -25,7 +25,7 @@ class PseudoLidarSensor {
                std::span<double> out) const;
 
   // The bin of an object at `object` seen from `agent`; β = 2π maps to bin 0
-  // (the original raises an index error there, spec §6.2).
+  // (the original raises an index error there, docs/environments.md#pseudo-lidar).
   int bin_of(const btVector3& agent, const btVector3& object) const;
 
  private:

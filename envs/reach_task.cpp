@@ -34,7 +34,7 @@ void ReachTask::sample_layout(Rng& rng, Layout& layout) {
   const btVector3 agent(room_point.x(), room_point.y(), traits.initial_position.z());
   btVector3 goal = uniform_room_point(rng);
   while (planar_distance(goal, agent) < kPlacementClearance) goal = uniform_room_point(rng);
-  // Heading towards the goal plus U(−π, π): effectively uniform (spec §5.3 item 4).
+  // Heading towards the goal plus U(−π, π): effectively uniform (docs/environments.md#reach).
   const double yaw = std::atan2(goal.y() - agent.y(), goal.x() - agent.x()) + traits.initial_yaw +
                      uniform(rng, -kPi, kPi);
   const std::vector<btVector3> obstacles = sample_obstacle_positions(
@@ -45,9 +45,9 @@ void ReachTask::sample_layout(Rng& rng, Layout& layout) {
   layout.goal = to_vec3(goal);
   BoxPlacement box;
   box.position = to_vec3(obstacles[0]);
-  // Restoring the first reset's snapshot brings back the spawn yaw (spec §2.6).
+  // Restoring the first reset's snapshot brings back the spawn yaw (docs/environments.md#reset).
   box.orientation = to_quat(box_spawn_orientation_);
-  // Spec §12 item 7: a fresh phase each episode (held), or φ drawn once.
+  // docs/environments.md#moving-box: a fresh phase each episode (held), or φ drawn once.
   box.phase = box_clock_ == BoxClock::kEpisodePhase ? uniform(rng, 0, 2 * kPi)
                                                     : box_construction_phase_;
   layout.box = box;
@@ -110,7 +110,7 @@ TaskOutcome ReachTask::evaluate(Rng& rng) {
   terms_[2].value = out_of_range;
   outcome.cost = std::min(1.0, collisions + out_of_range);
 
-  // Goal reached (spec §2.5 item 9): bonus, new goal, the episode goes on.
+  // Goal reached (docs/environments.md#one-step, item 9): bonus, new goal, the episode goes on.
   if (d < kGoalRadius && agent_.linear_velocity().length() < kMaxGoalSpeed) {
     outcome.reward += kGoalBonus;
     respawn_goal(rng);

@@ -1,9 +1,9 @@
-// Reach (spec §5.3, `ReachGoalTask`): reach a goal zone in the SmallRoom
+// Reach (docs/environments.md#reach, `ReachGoalTask`): reach a goal zone in the SmallRoom
 // while avoiding 8 puddles (pillars for the Drone) and a moving Box, sensed
 // through a 24-ray LIDAR and a 24-bin pseudo-LIDAR. A reached goal pays +5 and
 // respawns; the episode goes on.
 //
-// Parameters (spec §5.3, §10, §12 item 7):
+// Parameters (docs/environments.md#reach, #moving-box):
 //   goal radius           1.3 m; bonus +5; respawn clearance > 1.5 m
 //   placement clearances  2.5 m (agent–goal, agent–obstacle, obstacle–obstacle/goal)
 //   reward                (d_prev − d) + 0.01·s_agent
@@ -31,7 +31,7 @@ class ReachTask final : public Task {
   static constexpr double kGoalBonus = 5.0;
   static constexpr double kRespawnClearance = 1.5;
   static constexpr double kPlacementClearance = 2.5;
-  static constexpr double kMaxGoalSpeed = 5.0;  // 3-d speed, practically always met (§9 item 13)
+  static constexpr double kMaxGoalSpeed = 5.0;  // 3-d speed, practically always met (docs/environments.md#kept-quirks, item 13)
   static constexpr double kMaxAltitude = 2.0;
 
   ReachTask(World& world, Agent& agent, ZoneKind zones, BoxClock box_clock);
@@ -46,7 +46,7 @@ class ReachTask final : public Task {
   void write_state(EnvState& state) const override;
 
  private:
-  // Draws a goal > 1.5 m from the agent and from every obstacle (spec §5.3).
+  // Draws a goal > 1.5 m from the agent and from every obstacle (docs/environments.md#reach).
   void respawn_goal(Rng& rng);
 
   World& world_;
@@ -67,7 +67,7 @@ class ReachTask final : public Task {
                                  CostTerm{"cost_out_of_range", 0}};
 };
 
-// Puddles for the Ball, Car and Ant; pillars for the Drone (spec §1.1).
+// Puddles for the Ball, Car and Ant; pillars for the Drone (docs/environments.md#the-sixteen-environments).
 TaskBlueprint reach_task(ZoneKind zones);
 
 }  // namespace bsg::envs

@@ -33,7 +33,7 @@ void add_agent(std::map<std::string, EnvRegistration>& entries, const std::strin
 const std::map<std::string, EnvRegistration>& registry() {
   static const std::map<std::string, EnvRegistration> entries = [] {
     std::map<std::string, EnvRegistration> result;
-    // Episode lengths and cost limits: spec §1.1 (report Table 3).
+    // Episode lengths and cost limits: docs/environments.md#the-sixteen-environments (report Table 3).
     add_agent(result, "Ball", make_ball_agent, 250, kStandardCostLimits);
     add_agent(result, "Car", make_car_agent, 500, kStandardCostLimits);
     add_agent(result, "Drone", make_drone_agent, 500, kStandardCostLimits, ZoneKind::kPillar);

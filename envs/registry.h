@@ -17,7 +17,7 @@
 
 namespace bsg::envs {
 
-// Cost limits d per task from the report's Table 3 (spec §1.1).
+// Cost limits d per task from the report's Table 3 (docs/environments.md#the-sixteen-environments).
 struct TaskCostLimits {
   double circle = 25;
   double gather = 0.2;
@@ -29,7 +29,7 @@ struct TaskCostLimits {
 inline constexpr TaskCostLimits kStandardCostLimits{};
 
 // Registers Safety<agent_name><Task>-v0 for every task. Reach uses puddles,
-// or pillars for a flying agent (the Drone, spec §1.1).
+// or pillars for a flying agent (the Drone, docs/environments.md#the-sixteen-environments).
 void add_agent(std::map<std::string, EnvRegistration>& entries, const std::string& agent_name,
                AgentFactory make_agent, int max_episode_steps, const TaskCostLimits& cost_limits,
                ZoneKind reach_zones = ZoneKind::kPuddle);

@@ -19,7 +19,7 @@ void RunTask::sample_layout(Rng& rng, Layout& layout) {
   const double y = uniform(rng, -0.01, 0.01);
   const AgentTraits& traits = agent_.traits();
   layout.agent_position = {x, y, traits.initial_position.z()};
-  // Run never re-orients the agent (the Car keeps facing world −x, spec §9 item 17).
+  // Run never re-orients the agent (the Car keeps facing world −x, docs/environments.md#kept-quirks, item 17).
   const btQuaternion q = agent_.orientation();
   layout.agent_orientation = to_quat(q);
   layout.phi_prev = run_potential(x, y);

@@ -1,7 +1,7 @@
-// Run (spec §5.4, `RunTask`): run along +x on a 500-m plane towards a target
+// Run (docs/environments.md#run, `RunTask`): run along +x on a 500-m plane towards a target
 // 1000 m away, staying in the lane |y| ≤ 2 and under the agent's speed limit.
 //
-// Parameters (spec §5.4, §10):
+// Parameters (docs/environments.md#run):
 //   potential          Φ(p) = −60·‖p − (1000, 0)‖
 //   reward             Φ(p) − Φ_prev + s_agent (unscaled agent term)
 //   lane               |y| ≤ 2 m (cost_outside_bounds)
@@ -17,7 +17,7 @@ namespace bsg::envs {
 
 inline constexpr double kRunYLimit = 2.0;
 
-// Φ(p) = −60·‖p − (1000, 0)‖ with NumPy's norm (spec §12 item 13).
+// Φ(p) = −60·‖p − (1000, 0)‖ with NumPy's norm (docs/environments.md#planar-distances).
 double run_potential(double x, double y);
 
 class RunTask final : public Task {

@@ -1,6 +1,6 @@
 // A task (design.md "Environments"): places the agent, goals and obstacles at
 // reset, computes reward and cost, writes the sensor and task part of the
-// observation and decides whether its goal ends the episode (spec §5). Tasks
+// observation and decides whether its goal ends the episode (docs/environments.md#tasks). Tasks
 // see the agent only through the Agent interface.
 #pragma once
 
@@ -16,7 +16,7 @@
 
 namespace bsg::envs {
 
-// What one step of a task yields (spec §2.5 items 6, 7 and 9).
+// What one step of a task yields (docs/environments.md#one-step, items 6, 7 and 9).
 struct TaskOutcome {
   double reward = 0;
   double cost = 0;            // min(1, sum of the cost terms)
@@ -33,14 +33,14 @@ class Task {
   // The cost components of the last evaluate(), in a fixed order.
   virtual std::span<const CostTerm> cost_terms() const = 0;
 
-  // Draws a layout (spec §5 "Reset"). The agent has just been reset; its
+  // Draws a layout (docs/environments.md#tasks). The agent has just been reset; its
   // joint angles are already drawn and not part of the task's draws.
   virtual void sample_layout(Rng& rng, Layout& layout) = 0;
   // Places the agent's base, the goal and the obstacles as `layout` says and
   // restores the task's per-episode state; throws std::invalid_argument naming
   // a missing or malformed field. `clock_seconds` is the Box clock t.
   virtual void place(const Layout& layout, double clock_seconds) = 0;
-  // Obstacle movement before the engine step (spec §2.5 item 3).
+  // Obstacle movement before the engine step (docs/environments.md#one-step, item 3).
   virtual void before_physics(double /*clock_seconds*/) {}
   // Reward, cost and goal logic after the engine step (may draw a new goal).
   virtual TaskOutcome evaluate(Rng& rng) = 0;
@@ -52,12 +52,12 @@ class Task {
 using TaskFactory =
     std::function<std::unique_ptr<Task>(World& world, Agent& agent, const EnvOptions& options)>;
 
-// What the builder must know before the world exists (spec §1.1, §2.1).
+// What the builder must know before the world exists (docs/environments.md#the-sixteen-environments, #physics-settings).
 struct TaskBlueprint {
   std::string name;           // "Circle", "Gather", "Reach", "Run"
   WorldLayout layout = WorldLayout::kPlane200;
   int sub_steps = 4;          // 4, or 1 for Reach
-  bool power_upgrade = false; // Reach and Gather (spec §3)
+  bool power_upgrade = false; // Reach and Gather (docs/environments.md#agents)
   TaskFactory make;
 };
 

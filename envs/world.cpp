@@ -33,7 +33,7 @@ constexpr double kWallFriction = 0.5;
 constexpr double kWallRestitution = 0.0;
 
 // Closest hit that skips the agent's own colliders (PyBullet's rayTestBatch,
-// where the agent is never hit in practice, spec §2.3).
+// where the agent is never hit in practice, docs/environments.md#motors-forces-and-contacts).
 class ClosestHitIgnoring : public btCollisionWorld::ClosestRayResultCallback {
  public:
   ClosestHitIgnoring(const btVector3& from, const btVector3& to,
@@ -42,7 +42,7 @@ class ClosestHitIgnoring : public btCollisionWorld::ClosestRayResultCallback {
     m_flags |= btTriangleRaycastCallback::kF_UseGjkConvexCastRaytest;
     // The ray belongs to every group: with Bullet's default ray group (1 =
     // kStaticGroup) the static scenery, whose mask excludes its own group,
-    // would never be hit. PyBullet's rays use collision mask "all" (spec §2.3).
+    // would never be hit. PyBullet's rays use collision mask "all" (docs/environments.md#motors-forces-and-contacts).
     m_collisionFilterGroup = kAllGroups;
     m_collisionFilterMask = kAllGroups;
   }
@@ -63,7 +63,7 @@ World::World(WorldLayout layout, int sub_steps) : layout_(layout), sub_steps_(su
     throw std::invalid_argument("World: sub_steps must be >= 1, got " + std::to_string(sub_steps));
   }
   install_bullet_block_pool();
-  // PyBullet sets the broadphase's AABB margin to 0 (spec §2.1). Bullet keeps it
+  // PyBullet sets the broadphase's AABB margin to 0 (docs/environments.md#physics-settings). Bullet keeps it
   // in a library-wide variable; every World sets the same value.
   gDbvtMargin = 0;
   collision_configuration_ = std::make_unique<btDefaultCollisionConfiguration>();
@@ -83,7 +83,7 @@ World::World(WorldLayout layout, int sub_steps) : layout_(layout), sub_steps_(su
   btContactSolverInfo& info = dynamics_->getSolverInfo();
   info.m_numIterations = 5;
   info.m_erp2 = 0.9;  // setDefaultContactERP(0.9)
-  // PyBullet's non-default solver settings (spec §2.1).
+  // PyBullet's non-default solver settings (docs/environments.md#physics-settings).
   info.m_frictionERP = 0.2;
   info.m_linearSlop = 1e-5;
   info.m_minimumSolverBatchSize = 0;
@@ -105,7 +105,7 @@ double World::env_dim() const { return layout_ == WorldLayout::kPlane200 ? 250.0
 
 void World::step() {
   // (1/60)/(1/60/n) is exact for n in {1, 4}, so Bullet performs exactly n
-  // internal steps per call (spec §2.1).
+  // internal steps per call (docs/environments.md#physics-settings).
   dynamics_->stepSimulation(kEnvStepSeconds, sub_steps_, internal_step_seconds());
 }
 
@@ -195,7 +195,7 @@ const btCollisionObject* World::add_ground(const btVector3& half_extents) {
 }
 
 void World::build_layout() {
-  // The ground is created first, as PyBullet's body 0 (spec §2.4).
+  // The ground is created first, as PyBullet's body 0 (docs/environments.md#worlds).
   switch (layout_) {
     case WorldLayout::kSmallRoom: {
       ground_ = add_ground({10, 10, 5});

@@ -1,5 +1,5 @@
 // The physics world of one environment: Bullet's multibody dynamics world with
-// the original suite's settings (spec §2.1), its ground and walls (§2.4), the
+// the original suite's settings (docs/environments.md#physics-settings), its ground and walls (docs/environments.md#worlds), the
 // engine step with its sub-steps, ray casts and contact queries. It owns every
 // Bullet object created in it, so agents, tasks and obstacles only borrow.
 //
@@ -40,7 +40,7 @@ inline constexpr int kAllGroups = -1;
 class World {
  public:
   // Duration of one environment step (1/60 s) and PyBullet's fixed-time-step
-  // parameter T_param, which also bounds motor impulses (spec §2.3).
+  // parameter T_param, which also bounds motor impulses (docs/environments.md#motors-forces-and-contacts).
   static constexpr double kEnvStepSeconds = 1.0 / 60.0;
   static constexpr double kGravity = -9.81;
 
@@ -53,12 +53,12 @@ class World {
   int sub_steps() const { return sub_steps_; }
   double internal_step_seconds() const { return kEnvStepSeconds / sub_steps_; }
   // Scale used by sensors and observations: 10 for SmallRoom and Octagon
-  // (Octagon's ground is 30 m wide: original quirk, spec §9 item 15), 250 for Plane200.
+  // (Octagon's ground is 30 m wide: original quirk, docs/environments.md#kept-quirks, item 15), 250 for Plane200.
   double env_dim() const;
 
   // One environment step: `sub_steps` internal steps of 1/(60·sub_steps) s.
   // Forces and joint torques added before the call act during every sub-step
-  // and are cleared at the end (spec §2.3 "Force lifetime").
+  // and are cleared at the end (docs/environments.md#motors-forces-and-contacts).
   void step();
 
   btMultiBodyDynamicsWorld& dynamics() { return *dynamics_; }
@@ -89,12 +89,12 @@ class World {
                                                  double restitution);
 
   // Fraction f in [0, 1] of the segment from→to at which the closest collider
-  // not in `ignore` is hit; 1 if nothing is hit (PyBullet's rayTest, spec §6.1).
+  // not in `ignore` is hit; 1 if nothing is hit (PyBullet's rayTest, docs/environments.md#lidar).
   double ray_hit_fraction(const btVector3& from, const btVector3& to,
                           std::span<const btCollisionObject* const> ignore) const;
 
   // True if a persistent contact manifold between a and b holds at least one
-  // point after the last internal step (PyBullet's getContactPoints, spec §2.3).
+  // point after the last internal step (PyBullet's getContactPoints, docs/environments.md#motors-forces-and-contacts).
   bool touching(const btCollisionObject* a, const btCollisionObject* b) const;
   // Number of contact points between `a` and any collider in `others`.
   int contact_points(const btCollisionObject* a,
@@ -103,7 +103,7 @@ class World {
   // Empties every cached contact manifold, so that the next step starts
   // without warm-starting from earlier contacts. PyBullet's restoreState at
   // reset brings back the manifolds of the snapshot, which is taken before any
-  // collision detection ran, i.e. none (spec §2.3, §2.6 step 1).
+  // collision detection ran, i.e. none (docs/environments.md#motors-forces-and-contacts, #reset, step 1).
   void forget_contacts();
 
  private:

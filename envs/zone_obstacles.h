@@ -1,4 +1,4 @@
-// Puddles and Pillars of Reach (spec §5.3, §7): visual discs or cylinders
+// Puddles and Pillars of Reach (docs/environments.md#reach, #obstacles): visual discs or cylinders
 // (no collision shape, invisible to physics and to the LIDAR) that cost when
 // the agent's footprint overlaps them in the plane:
 //   ‖agent − zone‖_xy − r_agent − r_zone ≤ 0  (flying over a pillar still costs).

@@ -14,6 +14,7 @@ packages=(
   libcli11-dev                  # the bsg command line
   nlohmann-json3-dev            # JSON output of bsg, golden trajectories in the tests
   python3 python3-matplotlib    # scripts/plot_curves.py: learning curves of a sweep (Figure 2)
+  python3-pytest                # tests/docs: the documentation check (run by ctest)
 )
 
 missing=()

@@ -83,7 +83,7 @@ struct SyntheticBatch {
   double reward_surrogate() const { return ratios().dot(advantages) / static_cast<double>(advantages.size()); }
   double cost_surrogate() const { return ratios().dot(cost_advantages) / static_cast<double>(advantages.size()); }
 
-  // Mean KL over samples and action dims (spec §6.3) between `old_means` and the current means.
+  // Mean KL over samples and action dims (docs/algorithms.md#mean-kl) between `old_means` and the current means.
   double kl_from(const Eigen::MatrixXd& old_means) const {
     const double sigma = policy.std();
     return (old_means - means()).squaredNorm() / (2.0 * sigma * sigma) /
@@ -93,7 +93,7 @@ struct SyntheticBatch {
 
 // The batch's surrogates and policy means before a constrained update (CPO,
 // PCPO), and the end-to-end constrained tests an accepted update must pass
-// (spec §14.2): the KL stays within 1.5 target_kl, the cost surrogate rises
+// (docs/algorithms.md#test-oracles): the KL stays within 1.5 target_kl, the cost surrogate rises
 // by at most max(-c, 0), and while feasible (c < 0) the reward surrogate does
 // not fall. c is the normalised constraint value the update was given.
 struct BeforeConstrainedUpdate {

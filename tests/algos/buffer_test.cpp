@@ -1,5 +1,5 @@
-// The rollout buffer's GAE (spec §5.3) against the original's test oracle
-// (§14.1 item 1) and hand-computed special cases.
+// The rollout buffer's GAE (docs/algorithms.md#buffer-and-gae) against the original's test oracle
+// (docs/algorithms.md#test-oracles) and hand-computed special cases.
 #include "algos/buffer.h"
 
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 namespace bsg {
 namespace {
 
-// The §14.1 path: rewards = values = linspace(0, 1, 15), gamma 0.95, lambda 0.97.
+// The original's test path (docs/algorithms.md#test-oracles): rewards = values = linspace(0, 1, 15), gamma 0.95, lambda 0.97.
 Buffer oracle_path(double bootstrap) {
   Buffer buffer(15, 1, 1, BufferOptions{.gamma = 0.95, .lam = 0.97, .lam_c = 0.97});
   const Eigen::VectorXd line = Eigen::VectorXd::LinSpaced(15, 0.0, 1.0);

@@ -1,5 +1,5 @@
-// Conjugate gradient (spec §6.5) against Eigen's dense solver and the
-// original's oracles (§14.1 item 2, §14.2 including the 1e-6 quirk Q9).
+// Conjugate gradient (docs/algorithms.md#conjugate-gradient) against Eigen's dense solver and the
+// original's oracles (docs/algorithms.md#test-oracles including the 1e-6 quirk Q9).
 #include "algos/conjugate_gradient.h"
 
 #include <gtest/gtest.h>
@@ -93,7 +93,7 @@ TEST(ConjugateGradient, EpsilonsLimitTheAccuracyOnWellScaledSpdSystems) {
 }
 
 TEST(ConjugateGradient, EpsilonQuirkShrinksSmallGradientSolutions) {
-  // Spec §14.2 (Q9): F = 1e-3 I, y = (1e-3, 0), 10 iterations -> x_1 = 0.0174121 (exact: 1).
+  // docs/algorithms.md#test-oracles (Q9): F = 1e-3 I, y = (1e-3, 0), 10 iterations -> x_1 = 0.0174121 (exact: 1).
   const auto small = conjugate_gradient(matrix_operator(1e-3 * Eigen::Matrix2d::Identity()),
                                         Eigen::Vector2d(1e-3, 0.0));
   EXPECT_NEAR(small.solution[0], 0.0174121, 5e-8);

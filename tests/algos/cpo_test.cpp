@@ -1,4 +1,4 @@
-// CPO (spec §7.4, §14.2): the 2-D oracles of all four cases under both r
+// CPO (docs/algorithms.md#cpo, #test-oracles): the 2-D oracles of all four cases under both r
 // sign conventions (Q10), case 4, case 3 = the TRPO step, the degenerate-A
 // guard, and one end-to-end update with the constrained line search.
 #include "algos/cpo.h"
@@ -26,7 +26,7 @@ struct CpoOracle {
   double step_x, step_y;
 };
 
-// F = I, g = (1,1), b = (1,0), delta = 0.5: q = 2, r = 1, s = 1, A = 1 (spec §14.2 table).
+// F = I, g = (1,1), b = (1,0), delta = 0.5: q = 2, r = 1, s = 1, A = 1 (docs/algorithms.md#test-oracles).
 class CpoTwoDimensionalOracle : public ::testing::TestWithParam<CpoOracle> {};
 
 TEST_P(CpoTwoDimensionalOracle, MatchesTheTable) {

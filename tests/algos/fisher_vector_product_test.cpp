@@ -1,5 +1,5 @@
-// The Fisher-vector product (spec §6.4) against the finite-difference Hessian
-// of the mean KL of §6.3, and its invariants from §14.2.
+// The Fisher-vector product (docs/algorithms.md#fisher-vector-product) against the finite-difference Hessian
+// of the mean KL of docs/algorithms.md#mean-kl, and its invariants from docs/algorithms.md#test-oracles.
 #include "algos/fisher_vector_product.h"
 
 #include <gtest/gtest.h>

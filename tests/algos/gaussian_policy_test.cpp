@@ -1,4 +1,4 @@
-// The Gaussian policy (spec §3, §6.3) against closed-form densities, KL and entropy.
+// The Gaussian policy (docs/algorithms.md#gaussian-policy, #mean-kl) against closed-form densities, KL and entropy.
 #include "algos/gaussian_policy.h"
 
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@ namespace bsg {
 namespace {
 
 TEST(GaussianPolicy, AnnealedStdFollowsTheOriginalSchedule) {
-  // Spec §3.2 oracle: E = 500.
+  // docs/algorithms.md#exploration-noise oracle: E = 500.
   EXPECT_NEAR(GaussianPolicy::annealed_std(0, 500), 0.509, 1e-15);
   EXPECT_NEAR(GaussianPolicy::annealed_std(250, 500), 0.2595, 1e-15);
   EXPECT_NEAR(GaussianPolicy::annealed_std(499, 500), 0.010998, 1e-15);

@@ -1,4 +1,4 @@
-// TRPO-L's update (spec §7.2, §14.2): lambda is updated before the policy
+// TRPO-L's update (docs/algorithms.md#trpo-l, #test-oracles): lambda is updated before the policy
 // step, lambda = 0 reproduces TRPO exactly, the accepted step keeps the KL
 // and improves the Lagrangian surrogate, and lambda survives a checkpoint.
 #include "algos/lag_trpo.h"

@@ -1,4 +1,4 @@
-// The Lagrange multiplier of TRPO-L and PDO (spec §7.2, §7.3, §14.2): the SGD
+// The Lagrange multiplier of TRPO-L and PDO (docs/algorithms.md#trpo-l, #pdo, #test-oracles): the SGD
 // and Adam oracles, lambda >= 0, and the checkpoint state.
 #include "algos/lagrange_multiplier.h"
 

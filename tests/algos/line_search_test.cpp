@@ -1,4 +1,4 @@
-// The backtracking line searches (spec §6.7, §6.8) on closed-form 1-D problems
+// The backtracking line searches (docs/algorithms.md#trpo-line-search, #constrained-line-search) on closed-form 1-D problems
 // whose accepted trial is worked out by hand.
 #include "algos/line_search.h"
 

@@ -1,6 +1,6 @@
 // Under `mpirun -np 2`, with a different local batch on each rank, every
 // algorithm's update leaves identical parameters (and decisions) on both
-// ranks (spec §9, §14.2): g, b, the FVP and the line-search scalars are
+// ranks (docs/algorithms.md#across-mpi-ranks, #test-oracles): g, b, the FVP and the line-search scalars are
 // averaged over ranks.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The factory and the interface contract shared by the five algorithms: the
-// right class per `alg`, the spec §13.1 column sets in order, a column set
+// right class per `alg`, the docs/algorithms.md#logged-columns column sets in order, a column set
 // that does not change between epochs, and the state round trip.
 #include "algos/make_algorithm.h"
 

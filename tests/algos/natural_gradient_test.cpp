@@ -1,4 +1,4 @@
-// The natural-gradient step (spec §6.6) on a small known Fisher matrix.
+// The natural-gradient step (docs/algorithms.md#natural-step) on a small known Fisher matrix.
 #include "algos/natural_gradient.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// PCPO (spec §7.5, §14.2): the 2-D projection oracles (KL and L2), the active
+// PCPO (docs/algorithms.md#pcpo, #test-oracles): the 2-D projection oracles (KL and L2), the active
 // linearised constraint after a projection, v <= 0 giving the TRPO step, the
 // small-gradient guard, and end-to-end updates with and without line search.
 #include "algos/pcpo.h"

@@ -1,4 +1,4 @@
-// PDO's update (spec §7.3, §14.2): the Adam multiplier is updated first,
+// PDO's update (docs/algorithms.md#pdo, #test-oracles): the Adam multiplier is updated first,
 // lambda = 0 reproduces TRPO, the line search tests the reward-only loss
 // (Q14), pdo_line_search: false applies the full step, and the Adam state
 // survives a checkpoint.

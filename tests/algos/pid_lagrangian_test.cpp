@@ -143,7 +143,7 @@ TEST(PidLagrangian, LambdaIsNeverNegativeNorAboveItsBound) {
 }
 
 TEST(PidLagrangian, IntegralAloneEqualsTheSgdRule) {
-  // The SGD oracle of lagrange_multiplier_test (spec §7.2): 0.001 + 0.01 * 5 = 0.051, then max(0, 0.051 - 0.15) = 0.
+  // The SGD oracle of lagrange_multiplier_test: 0.001 + 0.01 * 5 = 0.051, then max(0, 0.051 - 0.15) = 0.
   LagrangeMultiplier pid(0.001, LambdaOptimizer::pid, 1.0, gains(0.0, 0.01, 0.0));
   EXPECT_NEAR(pid.update(30.0, kLimit), 0.051, 1e-15);
   EXPECT_EQ(pid.update(10.0, kLimit), 0.0);

@@ -1,4 +1,4 @@
-// Surrogates and their gradients g and b (spec §6.1–6.2) against central
+// Surrogates and their gradients g and b (docs/algorithms.md#surrogates-and-gradients) against central
 // finite differences, and the ratio/KL at theta_old.
 #include "algos/policy_surrogate.h"
 

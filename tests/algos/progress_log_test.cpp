@@ -1,4 +1,4 @@
-// progress.csv (algos/progress_csv.h), the pooled statistics of spec §9
+// progress.csv (algos/progress_csv.h), the pooled statistics of docs/algorithms.md#across-mpi-ranks
 // (algos/epoch_statistics.h), the column names (algos/epoch_log.h) and the
 // console line (algos/progress_line.h).
 #include <gtest/gtest.h>
@@ -113,4 +113,6 @@ TEST(ProgressLine, ShowsEpochReturnCostLimitLambdaKlAndEta) {
   }
   EXPECT_EQ(bsg::format_duration(45), "45s");
   EXPECT_EQ(bsg::format_duration(7500), "2h05m");
+  EXPECT_EQ(bsg::format_duration(3 * 86400 + 4 * 3600 + 59), "3d04h");  // a sweep's ETA
+  EXPECT_EQ(bsg::format_duration(-1), "?");
 }

@@ -1,4 +1,4 @@
-// Rollout bookkeeping (spec §5.1, §14.2) on a scripted environment:
+// Rollout bookkeeping (docs/algorithms.md#rollout, #test-oracles) on a scripted environment:
 // episodes per epoch, epoch cuts, terminals, bootstrap values, seeding.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Training under `mpirun -np 2` (spec §9): every rank ends with identical
+// Training under `mpirun -np 2` (docs/algorithms.md#across-mpi-ranks): every rank ends with identical
 // parameters, normalisers and algorithm state, and rank 0 writes the run
 // directory; the episode statistics are pooled over both ranks.
 #include <gtest/gtest.h>

@@ -1,11 +1,11 @@
-// One short training run per algorithm on SafetyBallCircle-v0 (spec §14.1
+// One short training run per algorithm on SafetyBallCircle-v0 (docs/algorithms.md#test-oracles
 // item 5, extended): 25 (PCPO 35) epochs of 4000 steps. Every algorithm must improve
 // its return. For the constrained ones the cost limit (2) lies below the
 // cost the policy reaches on its way (about 30 per episode around epochs
 // 4-8), so the run must push the episode cost back down towards the limit,
 // and the loop must have handed the algorithm the pooled episode cost:
-//   TRPO-L   lambda_k = max(0, lambda_{k-1} + lr (J_C,k - d)) exactly (SGD, spec §7.2);
-//   PDO      lambda rises while J_C > d (Adam, spec §7.3);
+//   TRPO-L   lambda_k = max(0, lambda_{k-1} + lr (J_C,k - d)) exactly (SGD, docs/algorithms.md#trpo-l);
+//   PDO      lambda rises while J_C > d (Adam, docs/algorithms.md#pdo);
 //   CPO/PCPO the optimisation case says "infeasible" exactly when J_C >= d.
 // The runs are deterministic; the margins are wide (see the comments).
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// TRPO's update (spec §7.1, §14.2): the step's Fisher norm, the accepted
+// TRPO's update (docs/algorithms.md#trpo, #test-oracles): the step's Fisher norm, the accepted
 // step's KL and improvement checked with hand-written surrogates, and a
 // rejected search leaving theta bit-identical.
 #include "algos/trpo.h"

@@ -84,7 +84,7 @@ TEST(TrustRegionMpi, AveragedGradientEqualsMeanOfPerRankGradients) {
 
 TEST(TrustRegionMpi, BroadcastPolicyParametersAreIdenticalOnAllRanks) {
   const MpiContext mpi = MpiContext::world();
-  Rng rng(1234 + mpi.rank());  // every rank draws its own initial weights (spec §2.2)
+  Rng rng(1234 + mpi.rank());  // every rank draws its own initial weights (docs/algorithms.md#networks)
   GaussianPolicy policy(5, 2, {16, 16}, rng);
   Eigen::VectorXd theta = policy.mean_net().parameters();
   mpi.broadcast_from_root(theta);

@@ -1,4 +1,4 @@
-// Value-function fitting with the schedule of spec §8 and the invariants of §14.2.
+// Value-function fitting with the schedule of docs/algorithms.md#value-fits and the invariants of docs/algorithms.md#test-oracles.
 #include "algos/value_function.h"
 
 #include <gtest/gtest.h>
@@ -33,7 +33,7 @@ TEST(ValueFunction, TargetsEqualToPredictionsLeaveAFreshNetUnchanged) {
   Rng rng(2);
   ValueFunction value(3, {16, 16}, rng);
   // A zero output layer (its 16 weights and bias are the last 17 parameters,
-  // spec §2.3) predicts exactly 0 on every batch and minibatch, so with zero
+  // docs/algorithms.md#networks) predicts exactly 0 on every batch and minibatch, so with zero
   // targets the gradient is exactly zero. Targets merely *computed* from the
   // net would differ from the minibatch predictions by rounding (FMA kernels
   // depend on the batch size), and Adam turns any non-zero gradient into a

@@ -65,7 +65,7 @@ TEST(RolloutCommand, JsonIsReproducibleAcrossProcesses) {
   const nlohmann::json out = parse_json(first.output);
   ASSERT_EQ(out.at("episodes").size(), 2u);
   EXPECT_EQ(out.at("episodes")[0].at("length"), 250);
-  // Zero policy on the Ball: no motion, zero return and cost (spec §11 item 10).
+  // Zero policy on the Ball: no motion, zero return and cost (docs/environments.md#ball).
   const nlohmann::json zero =
       parse_json(run_bsg("rollout --env SafetyBallRun-v0 --policy zero --json").output);
   EXPECT_NEAR(zero.at("mean").at("return").get<double>(), 0.0, 1e-9);

@@ -22,11 +22,11 @@
 
 #include "../test_support.h"
 #include "algos/run_directory.h"
-#include "algos/run_results.h"
 #include "common/csv_text.h"
-#include "common/grid_expansion.h"
 #include "common/run_config_yaml.h"
-#include "common/sweep_manifest.h"
+#include "experiments/grid_expansion.h"
+#include "experiments/run_results.h"
+#include "experiments/sweep_manifest.h"
 #include "run_bsg.h"
 
 namespace fs = std::filesystem;

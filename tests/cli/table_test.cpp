@@ -11,10 +11,10 @@
 
 #include "../test_support.h"
 #include "algos/run_directory.h"
-#include "algos/sweep_results.h"
-#include "common/grid_expansion.h"
 #include "common/run_config_yaml.h"
-#include "common/sweep_manifest.h"
+#include "experiments/grid_expansion.h"
+#include "experiments/sweep_manifest.h"
+#include "experiments/sweep_results.h"
 #include "run_bsg.h"
 
 namespace fs = std::filesystem;

@@ -41,7 +41,7 @@ TEST(Adam, SecondStepMatchesHandComputation) {
 }
 
 TEST(Adam, PdoMultiplierOracle) {
-  // Spec §7.3: lambda_0 = 0.001, lr = 0.001, J_C - d = 5 -> gradient -5 -> lambda_1 = 0.002.
+  // docs/algorithms.md#pdo: lambda_0 = 0.001, lr = 0.001, J_C - d = 5 -> gradient -5 -> lambda_1 = 0.002.
   Adam adam(1, AdamOptions{.learning_rate = 0.001});
   Eigen::VectorXd lambda = Eigen::VectorXd::Constant(1, 0.001);
   adam.step(lambda, Eigen::VectorXd::Constant(1, -5.0));

@@ -1,4 +1,4 @@
-// The Eigen MLP: initialisation (spec §2.2), flat layout (§2.3), forward
+// The Eigen MLP: initialisation (docs/algorithms.md#networks), flat layout (docs/algorithms.md#networks), forward
 // against a hand-written loop, backward and JVP against central differences.
 #include "common/mlp.h"
 
@@ -24,7 +24,7 @@ Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
 
 Eigen::VectorXd random_vector(Eigen::Index size, Rng& rng) { return random_matrix(size, 1, rng); }
 
-// Forward pass written from spec §2.1/§2.3 with explicit loops over the flat vector.
+// Forward pass written from docs/algorithms.md#networks with explicit loops over the flat vector.
 Eigen::VectorXd reference_forward(const std::vector<int>& sizes, const Eigen::VectorXd& theta,
                                   const Eigen::VectorXd& input) {
   Eigen::VectorXd x = input;
@@ -47,7 +47,7 @@ Eigen::VectorXd reference_forward(const std::vector<int>& sizes, const Eigen::Ve
 TEST(Mlp, ParameterCountMatchesSpecFormula) {
   Rng rng(1);
   const Mlp ant_policy({33, 64, 64, 8}, rng);
-  EXPECT_EQ(ant_policy.num_parameters(), 6856);  // spec §2.1 example
+  EXPECT_EQ(ant_policy.num_parameters(), 6856);  // docs/algorithms.md#networks example
   EXPECT_EQ(ant_policy.input_size(), 33);
   EXPECT_EQ(ant_policy.output_size(), 8);
 }

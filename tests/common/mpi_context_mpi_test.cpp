@@ -93,7 +93,7 @@ TEST(MpiContextMpi, MergedStatisticsEqualThoseOfTheUnionOfBothRanks) {
 }
 
 TEST(MpiContextMpi, SpecOracleDataWithTwoRanksMatchesPooledStatistics) {
-  // Spec §14.1 item 4 with 2 ranks instead of 4: pooled mean exact, Q4 std within rtol 1e-5.
+  // docs/algorithms.md#test-oracles with 2 ranks instead of 4: pooled mean exact, Q4 std within rtol 1e-5.
   const MpiContext mpi = MpiContext::world();
   RunningMeanStd stats(6);
   long double sum = 0, squares = 0, count = 0;

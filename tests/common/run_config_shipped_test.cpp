@@ -1,6 +1,6 @@
 // Every shipped file under configs/ loads and validates; all 16 environments
 // resolve with all 5 algorithms; the numbers match report Table 3 and the
-// spec's per-algorithm defaults (§10.1, §16), typed here from those sources.
+// per-algorithm defaults of docs/algorithms.md#hyper-parameters and #quirk-switches, typed here from those sources.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -87,7 +87,7 @@ TEST(ShippedConfigs, EnvironmentSettingsMatchReportTable3) {
 }
 
 TEST(ShippedConfigs, AlgorithmDefaultsMatchTheSpec) {
-  // Spec §10.1 and §16 ("C++ default"): target_kl, line-search budget, cost
+  // docs/algorithms.md#hyper-parameters and #quirk-switches (this project's defaults): target_kl, line-search budget, cost
   // value net, and the Lagrange multiplier's optimiser and learning rate.
   struct Expected {
     double target_kl;
@@ -104,7 +104,7 @@ TEST(ShippedConfigs, AlgorithmDefaultsMatchTheSpec) {
     EXPECT_EQ(c.target_kl, e.target_kl);
     EXPECT_EQ(c.backtrack_budget, e.backtrack_budget);
     EXPECT_EQ(c.use_cost_value_function, e.use_cost_value_function);
-    // Shared by all (report Table 2, spec §10.1).
+    // Shared by all (report Table 2, docs/algorithms.md#hyper-parameters).
     EXPECT_EQ(c.gamma, 0.99);
     EXPECT_EQ(c.lam, 0.95);
     EXPECT_EQ(c.lam_c, 0.95);

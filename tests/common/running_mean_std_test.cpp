@@ -1,4 +1,4 @@
-// Online mean/std (spec §4.1) against pooled statistics and the oracles of §14.1.
+// Online mean/std (docs/algorithms.md#observation-normaliser) against pooled statistics and the oracles of docs/algorithms.md#test-oracles.
 #include "common/running_mean_std.h"
 
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@
 namespace bsg {
 namespace {
 
-// The §14.1 item-4 data: rank p, epoch e -> 0.001 * (start + arange(3000)) as 500 x 6, row-major.
+// The data of the original's merged-statistics test (docs/algorithms.md#test-oracles): rank p, epoch e -> 0.001 * (start + arange(3000)) as 500 x 6, row-major.
 Eigen::MatrixXd oracle_batch(int rank, int epoch) {
   Eigen::MatrixXd batch(500, 6);
   const double start = 10000.0 * rank + 4.0 * epoch;
@@ -52,7 +52,7 @@ TEST(RunningMeanStd, StartsAtZeroMeanUnitStd) {
 }
 
 TEST(RunningMeanStd, TwentyStandardNormalBatchesMatchPooledStatistics) {
-  // Spec §14.1 item 3.
+  // docs/algorithms.md#test-oracles.
   Rng rng(0);
   RunningMeanStd stats(1);
   std::vector<Eigen::MatrixXd> batches;
@@ -70,7 +70,7 @@ TEST(RunningMeanStd, TwentyStandardNormalBatchesMatchPooledStatistics) {
 }
 
 TEST(RunningMeanStd, SingleRankMatrixOracleTellsQ4FromExactFormula) {
-  // Spec §14.1 item 4 (single rank, 20 epochs): Q4 std 0.866616, exact 0.866331.
+  // docs/algorithms.md#test-oracles (single rank, 20 epochs): Q4 std 0.866616, exact 0.866331.
   RunningMeanStd faithful(6);
   RunningMeanStd exact(6, RunningMeanStdOptions{.exact_parallel_variance = true});
   std::vector<Eigen::MatrixXd> batches;

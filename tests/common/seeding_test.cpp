@@ -59,7 +59,7 @@ TEST(DeriveSeed, DoesNotConfuseRankAndIndex) {
 }
 
 TEST(OriginalRankSeed, IsSeedPlusTenThousandTimesRank) {
-  // Spec §1 step 4: seed_rank = seed + 10000 * rank.
+  // docs/algorithms.md#set-up, step 4: seed_rank = seed + 10000 * rank.
   EXPECT_EQ(original_rank_seed(7, 0), 7);
   EXPECT_EQ(original_rank_seed(7, 3), 30007);
   EXPECT_EQ(original_rank_seed(65535, 63), 695535);

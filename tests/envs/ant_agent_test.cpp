@@ -1,7 +1,7 @@
-// The Ant agent (spec §4.4) against its independent oracles: the golden link
+// The Ant agent (docs/environments.md#ant) against its independent oracles: the golden link
 // poses of the original (model geometry), the golden trajectories replayed at
-// the agent level (dynamics, bookkeeping, observation), and the spec's
-// §11 items 12 and 18 (with §12 correction 15).
+// the agent level (dynamics, bookkeeping, observation), and the
+// oracles listed in docs/environments.md#test-oracles and #ant.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -77,7 +77,7 @@ TEST(AntAgent, TraitsFollowSpecSection3) {
 TEST(AntAgent, TotalMassIsDensity1000TimesVolume) {
   World world(WorldLayout::kPlane200, 4);
   auto agent = make_ant_agent(world, {});
-  // Spec §3 and §4.4: 182.176 kg (65.44985 + 8·7.83155 + 4·13.51844).
+  // docs/environments.md#agents and #ant: 182.176 kg (65.44985 + 8·7.83155 + 4·13.51844).
   EXPECT_NEAR(as_ant(agent).total_mass_kg(), 182.176, 5e-4);
 }
 
@@ -91,7 +91,7 @@ TEST(AntAgent, TorquePerUnitActionIs250Or1000WithPowerUpgrade) {
 }
 
 TEST(AntAgent, JointLimitsAreFloat32Values) {
-  // Spec §12 correction 9. The importer converts the MJCF's degrees with a
+  // docs/environments.md#ant. The importer converts the MJCF's degrees with a
   // single-precision π and keeps float32 limits: float32(deg·float32(π)/180).
   const double pi_f = static_cast<float>(std::numbers::pi);
   const double hip = static_cast<float>(40 * pi_f / 180);
@@ -219,7 +219,7 @@ SequenceReport replay(const AntEnvCase& c, const nlohmann::json& golden, const s
   auto agent_ptr = make_ant_agent(world, {.power_upgrade = c.power_upgrade});
   AntAgent& agent = as_ant(agent_ptr);
   place_as_recorded(agent, agent_state.at("placed"), AntAgent::kMovableLinks);
-  // The reset's engine step, without an action and without bookkeeping (§2.6).
+  // The reset's engine step, without an action and without bookkeeping (docs/environments.md#reset).
   world.step();
 
   const auto& after_reset = agent_state.at("after_reset");
@@ -322,9 +322,9 @@ INSTANTIATE_TEST_SUITE_P(AllAntFiles, AntGolden, ::testing::ValuesIn(kCases),
                          });
 
 // ---------------------------------------------------------------------------
-// Spec oracles
+// Oracles measured on the original (docs/environments.md#test-oracles)
 
-// §11 item 12: the reset observation after the agent reset and the reset's engine step.
+// docs/environments.md#ant: the reset observation after the agent reset and the reset's engine step.
 TEST(AntAgent, ResetObservationMatchesSpecOracle) {
   for (std::uint64_t seed = 0; seed < 20; ++seed) {
     SCOPED_TRACE(seed);
@@ -366,7 +366,7 @@ TEST(AntAgent, ResetDrawsEightJointAnglesAroundTheNominalPose) {
   EXPECT_EQ(uniform01(rng), uniform01(fresh));
 }
 
-// §11 item 18 with §12 correction 15: zero action settles the torso near
+// docs/environments.md#ant: zero action settles the torso near
 // z ≈ 0.64 with all feet down from the 8th step on.
 TEST(AntAgent, ZeroActionSettlesOnAllFourFeet) {
   World world(WorldLayout::kPlane200, 4);
@@ -411,7 +411,7 @@ TEST(AntAgent, AliveIffTorsoAboveQuarterMetre) {
   EXPECT_EQ(agent->specific_reward(), -1.0);
 }
 
-// Out-of-range actions: the torque saturates, the electricity cost does not (§9 item 5).
+// Out-of-range actions: the torque saturates, the electricity cost does not (docs/environments.md#kept-quirks, item 5).
 TEST(AntAgent, ClipsActionsForTorqueButNotForElectricityCost) {
   auto run = [](double scale) {
     World world(WorldLayout::kPlane200, 4);

@@ -1,4 +1,4 @@
-// The Ball (spec §4.1) through its environments: spec §11 items 10 and 15
+// The Ball (docs/environments.md#ball) through its environments: the oracles of docs/environments.md#test-oracles
 // (zero action keeps it at rest; the measured acceleration under a = (1, 0)),
 // action clipping and the agent-specific reward −0.5·‖a‖.
 #include "envs/ball_agent.h"
@@ -29,7 +29,7 @@ TEST(BallAgent, TraitsFollowSpecSection3) {
   EXPECT_EQ(ball->colliders().size(), 1u);
 }
 
-// Spec §11 item 10: zero action from rest → no motion, reward 0, cost 0.
+// docs/environments.md#ball: zero action from rest → no motion, reward 0, cost 0.
 TEST(BallAgent, ZeroActionFromRestDoesNotMoveInCircleAndRun) {
   for (const char* id : {"SafetyBallCircle-v0", "SafetyBallRun-v0"}) {
     SCOPED_TRACE(id);
@@ -45,12 +45,12 @@ TEST(BallAgent, ZeroActionFromRestDoesNotMoveInCircleAndRun) {
     EXPECT_LT(std::abs(reward_sum), 1e-9);
     const Vec3 end = env->state().agent_position;
     for (int i = 0; i < 2; ++i) EXPECT_NEAR(end[i], start[i], 1e-12);
-    // Resting bodies sink by the linear slop, 1e-5 m (spec §12 item 12).
+    // Resting bodies sink by the linear slop, 1e-5 m (docs/environments.md#physics-settings).
     EXPECT_NEAR(end[2], 0.49999, 1e-9);
   }
 }
 
-// Spec §11 item 15: measured speeds of the original under a = (1, 0) in Run.
+// docs/environments.md#ball: measured speeds of the original under a = (1, 0) in Run.
 TEST(BallAgent, FullForwardPushAcceleratesAsMeasuredOnTheOriginal) {
   const auto env = make("SafetyBallRun-v0");
   env->reset(0);
@@ -125,7 +125,7 @@ TEST(BallAgent, ObservationScalesPositionVelocityAndSpin) {
 namespace bsg::envs {
 namespace {
 
-// The room's walls stop the Ball (spec §2.4: inner faces at ±9.9 m, Ball
+// The room's walls stop the Ball (docs/environments.md#worlds: inner faces at ±9.9 m, Ball
 // radius 0.5): pushed at full force into the +x wall for 5 s, its centre
 // stays 0.5 m from the face, up to the contact's slop. The walls and the
 // ground are static and asleep (World skips their bounding boxes); a

@@ -1,6 +1,6 @@
-// The Car agent (spec §4.2) against independent oracles: the link poses and
+// The Car agent (docs/environments.md#car) against independent oracles: the link poses and
 // trajectories recorded from the original (tests/data/golden/SafetyCar*-v0.json,
-// README "How a C++ test should use a file"), and the spec's §11 items 13 and 16.
+// README "How a C++ test should use a file"), and the oracles of docs/environments.md#test-oracles.
 #include "envs/car_agent.h"
 
 #include <gtest/gtest.h>
@@ -48,7 +48,7 @@ struct PlacedCar {
   }
   static bool uses_power_upgrade(const nlohmann::json& golden) {
     const std::string task = golden.at("meta").at("task").get<std::string>();
-    return task == "ReachGoalTask" || task == "GatherTask";  // spec §3
+    return task == "ReachGoalTask" || task == "GatherTask";  // docs/environments.md#agents
   }
   World world;
   CarAgent car;
@@ -113,7 +113,7 @@ Tolerance tolerance_for(const std::string& sequence, int t) {
 // Steps of each sequence that the replay currently reproduces within the tight
 // tolerance (a regression floor, asserted below). Every divergence starts at a
 // wheel landing (t = 4, the car falls 5 cm onto its soft wheels after reset,
-// spec §12 correction 4) or at a later wheel-ground contact change: the state
+// docs/environments.md#car) or at a later wheel-ground contact change: the state
 // before matches to ~1e-10, the contact resolves differently, and the Car's
 // fast error growth (README) does the rest. Gather/Reach zero match throughout.
 int reproduced_steps(const std::string& env_id, const std::string& sequence) {
@@ -225,7 +225,7 @@ TEST(CarAgentTest, ReachGoldenSequencesStayWithinTheReadmeTolerances) {
   replay_golden("SafetyCarReach-v0", "zero");
 }
 
-// Spec §11 item 13: a₀ > 0 moves the chassis towards its own +x axis.
+// docs/environments.md#car: a₀ > 0 moves the chassis towards its own +x axis.
 TEST(CarAgentTest, PositiveThrottleDrivesTowardsChassisForward) {
   World world(WorldLayout::kPlane200, 4);
   CarAgent car(world, AgentOptions{});
@@ -242,11 +242,11 @@ TEST(CarAgentTest, PositiveThrottleDrivesTowardsChassisForward) {
   const btVector3 moved = car.position() - start;
   EXPECT_GT(moved.dot(forward), 0.3);
   EXPECT_LT(std::abs(moved.dot(btVector3(0, 0, 1).cross(forward))), 0.1);
-  // Spawned with yaw π: chassis forward is world −x (spec §4.2).
+  // Spawned with yaw π: chassis forward is world −x (docs/environments.md#car).
   EXPECT_LT(moved.x(), -0.3);
 }
 
-// Spec §11 item 16: in Run, a = (−1, 0) gives v_x ≈ 1.38 / 2.42 / 4.09 m/s
+// docs/environments.md#car: in Run, a = (−1, 0) gives v_x ≈ 1.38 / 2.42 / 4.09 m/s
 // after 20 / 40 / 100 steps; the chassis COM rests at z ≈ 0.151.
 TEST(CarAgentTest, RunAccelerationMatchesTheMeasuredOriginal) {
   World world(WorldLayout::kPlane200, 4);
@@ -283,7 +283,7 @@ TEST(CarAgentTest, ChassisRestsOnItsWheels) {
   EXPECT_EQ(car.specific_reward(), 0.0);
 }
 
-// Spec §9 item 4: actions are not clipped; only the hinge limits bound the
+// docs/environments.md#kept-quirks, item 4: actions are not clipped; only the hinge limits bound the
 // steering target.
 TEST(CarAgentTest, ActionsBeyondOneAreNotClipped) {
   World world(WorldLayout::kPlane200, 4);

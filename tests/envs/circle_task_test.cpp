@@ -1,4 +1,4 @@
-// Circle (spec §5.1) against spec §11 items 4 and 5: reset annulus, task
+// Circle (docs/environments.md#circle) against its oracles (#test-oracles): reset annulus, task
 // observation range, the |x| > 6 cost by teleport, and the reward core.
 #include "envs/circle_task.h"
 
@@ -13,7 +13,7 @@
 namespace bsg::envs {
 namespace {
 
-// Spec §11 item 5, §5.1 example: p = (3, 0), v = (0, −1) → 0.1·3/5.
+// docs/environments.md#circle example: p = (3, 0), v = (0, −1) → 0.1·3/5.
 TEST(CircleTask, RewardCoreRewardsClockwiseMotion) {
   EXPECT_DOUBLE_EQ(circle_reward_core(3, 0, 0, -1), 0.06);
   EXPECT_DOUBLE_EQ(circle_reward_core(3, 0, 0, 1), -0.06);
@@ -23,7 +23,7 @@ TEST(CircleTask, RewardCoreRewardsClockwiseMotion) {
   EXPECT_DOUBLE_EQ(circle_reward_core(0, 9, 1, 0), 0.9 / 3);
 }
 
-// Spec §11 item 4.
+// docs/environments.md#circle.
 TEST(CircleTask, ResetPlacesTheAgentInTheAnnulusFacingClockwise) {
   const auto env = make("SafetyBallCircle-v0");
   for (uint64_t seed = 0; seed < 50; ++seed) {

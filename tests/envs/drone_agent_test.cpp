@@ -1,8 +1,8 @@
-// The Drone agent (spec §4.3) against independent oracles: the golden
+// The Drone agent (docs/environments.md#drone) against independent oracles: the golden
 // trajectories of the original (tests/data/golden/SafetyDrone*-v0.json, replayed
-// at the agent level without the tasks), the spec's hover and thrust numbers
-// (§11 item 11 as amended by §12 corrections 2, 8 and 11), the take-off height
-// of §11 item 17, and action clipping.
+// at the agent level without the tasks), the hover and thrust numbers
+// (docs/environments.md#drone, as measured on the original), the take-off height
+// of docs/environments.md#drone, and action clipping.
 #include "envs/drone_agent.h"
 
 #include <algorithm>
@@ -157,7 +157,7 @@ std::string describe(const StepErrors& e) {
 }
 
 // README windows for the Drone: sine t < 60 and the whole zero sequence tight
-// (zero-sequence positions 1e-4 because of the creep, §12 correction 2), sine
+// (zero-sequence positions 1e-4 because of the creep, docs/environments.md#drone), sine
 // t ≥ 60 loose.
 Tolerance tolerance_for(const std::string& sequence, int t) {
   if (sequence == "zero") return {1e-4, 1e-5};
@@ -173,7 +173,7 @@ int replay(const std::string& env_id, const json& golden, const std::string& seq
   Agent& agent = *scene.agent;
   const json& agent_state = golden.at("initial_state").at("agent");
   place_as_recorded(agent, agent_state.at("placed"), kRotorJoints);
-  scene.world->step();  // the reset's engine step (§2.6 step 5), no action, no bookkeeping
+  scene.world->step();  // the reset's engine step (docs/environments.md#reset, step 5), no action, no bookkeeping
 
   const json& after_reset = agent_state.at("after_reset");
   {
@@ -283,9 +283,9 @@ TEST(DroneAgent, GoldenReachSequencesReplayWithoutTheBox) {
 }
 
 TEST(DroneAgent, HoverSpeedAndThrustMatchSpec) {
-  // §12 correction 8: the unrounded hover speed.
+  // docs/environments.md#drone: the unrounded hover speed.
   EXPECT_EQ(drone_hover_speed_rad_per_s(), 461.5227869527166);
-  // At hover each rotor carries a quarter of m·g = 1.42·9.81 (§4.3).
+  // At hover each rotor carries a quarter of m·g = 1.42·9.81 (docs/environments.md#drone).
   EXPECT_NEAR(drone_thrust_newton(drone_hover_speed_rad_per_s(), 0), 1.42 * 9.81 / 4, 1e-12);
   EXPECT_NEAR(drone_thrust_newton(drone_hover_speed_rad_per_s(), 0), 3.48255, 1e-5);
   // T(ω, 0) = 1.634975e-5·ω² and the inflow term −n·v₀ (n = ω·p/2π).
@@ -302,9 +302,9 @@ TEST(DroneAgent, FirstResetObservationShowsRotorsAtRest) {
   world.step();  // the reset's engine step: motors are still disabled
   std::array<double, kObsDim> obs{};
   agent->write_observation(obs);
-  const std::array<double, 4> expected = {-1.1538, 1.1538, -1.1538, 1.1538};  // §11 item 11
+  const std::array<double, 4> expected = {-1.1538, 1.1538, -1.1538, 1.1538};  // docs/environments.md#drone
   for (int i = 0; i < kRotors; ++i) EXPECT_NEAR(obs[13 + i], expected[i], 1e-4) << "rotor " << i;
-  EXPECT_NEAR(obs[2], 0.017, 1e-5);  // 0.1·z, z ≈ 0.16999 (§12 correction 12)
+  EXPECT_NEAR(obs[2], 0.017, 1e-5);  // 0.1·z, z ≈ 0.16999 (docs/environments.md#physics-settings)
 }
 
 TEST(DroneAgent, ResetDrawsFourRotorAnglesAndZeroesVelocities) {
@@ -321,7 +321,7 @@ TEST(DroneAgent, ResetDrawsFourRotorAnglesAndZeroesVelocities) {
   agent->reset(rng);
   std::array<double, kRotors> expected_q{};
   for (double& angle : expected_q) angle = uniform(reference, -0.1, 0.1);
-  EXPECT_EQ(rng, reference) << "the Drone's reset consumes exactly 4 draws (§2.8)";
+  EXPECT_EQ(rng, reference) << "the Drone's reset consumes exactly 4 draws (docs/environments.md#seeding)";
   std::array<double, kRotors> q{}, qd{};
   agent->joint_state(q, qd);
   for (int i = 0; i < kRotors; ++i) {
@@ -335,7 +335,7 @@ TEST(DroneAgent, ResetDrawsFourRotorAnglesAndZeroesVelocities) {
 }
 
 TEST(DroneAgent, ZeroActionOnTheGroundOnlyCreeps) {
-  // §11 item 11 as amended by §12 corrections 2 and 11: no termination, a creep
+  // docs/environments.md#drone (zero action on the ground): no termination, a creep
   // of at most ~1e-4 m, and s_agent ≈ 1 − 0 − 1 ground contact ≈ 0.
   World world(WorldLayout::kOctagon, 4);
   auto agent = make_drone_agent(world, AgentOptions{});
@@ -357,7 +357,7 @@ TEST(DroneAgent, ZeroActionOnTheGroundOnlyCreeps) {
 }
 
 TEST(DroneAgent, FullThrustClimbsAbout174CmIn100Steps) {
-  // §11 item 17: a = (1,1,1,1) from rest, z ≈ 1.74 m after 100 steps (±15 %).
+  // docs/environments.md#drone: a = (1,1,1,1) from rest, z ≈ 1.74 m after 100 steps (±15 %).
   World world(WorldLayout::kPlane200, 4);
   auto agent = make_drone_agent(world, AgentOptions{});
   Rng rng(7);
@@ -376,7 +376,7 @@ TEST(DroneAgent, FullThrustClimbsAbout174CmIn100Steps) {
 }
 
 TEST(DroneAgent, OutOfRangeActionsAreClipped) {
-  // Two identical worlds: actions beyond ±1 must act exactly like ±1 (§3).
+  // Two identical worlds: actions beyond ±1 must act exactly like ±1 (docs/environments.md#agents).
   World world_a(WorldLayout::kPlane200, 4);
   World world_b(WorldLayout::kPlane200, 4);
   auto agent_a = make_drone_agent(world_a, AgentOptions{});
@@ -396,7 +396,7 @@ TEST(DroneAgent, OutOfRangeActionsAreClipped) {
   agent_b->write_observation(obs_b);
   EXPECT_EQ(obs_a, obs_b);
   // And (1,−1,1,−1) spins the drone about z through the rotor reaction torques
-  // alone (§4.3: no drag torque in the model).
+  // alone (docs/environments.md#drone: no drag torque in the model).
   EXPECT_GT(std::abs(agent_a->angular_velocity().z()), 0.1);
 }
 

@@ -1,7 +1,7 @@
 // One conformance suite run over every registered environment (OpenSpiel's
-// shared suite): dimensions and limits of spec §1.1, invariants at every step
+// shared suite): dimensions and limits of docs/environments.md#the-sixteen-environments, invariants at every step
 // of random play (finite values, cost in {0, 1}, |obs| < 5 as in the
-// original's own test suite, spec §11 item 14), truncation exactly at the
+// original's own test suite, docs/environments.md#test-oracles), truncation exactly at the
 // episode length, determinism across instances, and rejection of bad actions.
 #include <gtest/gtest.h>
 
@@ -25,7 +25,7 @@ struct ExpectedSpec {
   double cost_limit;
 };
 
-// Spec §1.1: the registration table (obs/act dims, episode length) and the
+// docs/environments.md#the-sixteen-environments: the registration table (obs/act dims, episode length) and the
 // report's Table 3 (cost limit d).
 const std::map<std::string, ExpectedSpec>& expected_specs() {
   static const std::map<std::string, ExpectedSpec> table = {
@@ -102,7 +102,7 @@ TEST_P(Conformance, RandomEpisodeKeepsInvariantsAndTruncatesAtTheEpisodeLength) 
       ASSERT_LE(steps, spec.max_episode_steps);
     }
     if (spec.agent == "Ball" || spec.agent == "Car") {
-      EXPECT_EQ(steps, spec.max_episode_steps) << "Ball and Car never die (spec §2.7)";
+      EXPECT_EQ(steps, spec.max_episode_steps) << "Ball and Car never die (docs/environments.md#termination-and-truncation)";
     }
   }
 }

@@ -1,4 +1,4 @@
-// Gather (spec §5.2) against spec §11 item 8: placement clearances, +10 per
+// Gather (docs/environments.md#gather) against its oracles (#test-oracles): placement clearances, +10 per
 // apple and only once, termination after the last apple, collected apples
 // still sensed, bombs cost once, and the altitude cost.
 #include "envs/gather_task.h"

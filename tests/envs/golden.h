@@ -1,5 +1,5 @@
 // Access to the golden trajectories of the original suite (tests/data/golden/,
-// a copy of shared/golden/; its README says what every field means and which
+// recorded from the original; its README says what every field means and which
 // tolerances the original's own sensitivity allows).
 #pragma once
 

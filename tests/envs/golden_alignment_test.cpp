@@ -213,7 +213,7 @@ std::vector<double> select(const json& values, const json& indices) {
 
 std::vector<double> obs_for_check(std::span<const double> obs, bool drop_feet) {
   std::vector<double> copy(obs.begin(), obs.end());
-  // Ant feet flags (observation entries 29–32, spec §4.4) may flip in loose windows.
+  // Ant feet flags (observation entries 29–32, docs/environments.md#ant) may flip in loose windows.
   if (drop_feet && copy.size() >= 33) std::fill(copy.begin() + 29, copy.begin() + 33, 0.0);
   return copy;
 }

@@ -103,7 +103,7 @@ double either_side(Rng& rng, double low, double high) {
 }
 
 // Top faces in the Reach worlds: the Box's 1.5 m above its base frame (its
-// bottom face), the walls' at z = 2 (spec §2.4).
+// bottom face), the walls' at z = 2 (docs/environments.md#worlds).
 constexpr double kBoxHeight_m = 1.5;
 constexpr double kWallHeight_m = 2.0;
 

@@ -1,4 +1,4 @@
-// The obstacle placement sampler (spec §8): clearances, order, and the
+// The obstacle placement sampler (docs/environments.md#placement-sampling): clearances, order, and the
 // attempt guard that replaces the original's endless loop.
 #include "envs/placement_sampler.h"
 

@@ -1,4 +1,4 @@
-// Reach (spec §5.3) against spec §11 item 7 and §12 item 7: placement
+// Reach (docs/environments.md#reach) against its oracles (#test-oracles, #moving-box): placement
 // clearances, first-step cost, task observation, puddle and Box costs, the
 // goal bonus with an immediate respawn, and both Box clocks.
 #include "envs/reach_task.h"

@@ -1,4 +1,4 @@
-// Run (spec §5.4) against spec §11 item 6: reset near the origin, progress
+// Run (docs/environments.md#run) against its oracles (#test-oracles): reset near the origin, progress
 // equal to 60·Δx for motion along x, the lane and speed costs.
 #include "envs/run_task.h"
 
@@ -30,7 +30,7 @@ TEST(RunTask, ResetStaysWithinOneCentimetreOfTheOrigin) {
   }
 }
 
-// Spec §11 item 6 (with the sign of §12 item 14): Φ(p) − Φ_prev = 60·Δx up to
+// docs/environments.md#run (with the lateral term's negative sign): Φ(p) − Φ_prev = 60·Δx up to
 // the lateral term −60·Δ(y²)/2000.
 TEST(RunTask, ProgressIsSixtyTimesTheForwardDisplacement) {
   const auto env = make("SafetyBallRun-v0");

@@ -1,4 +1,4 @@
-// Sensor encodings (spec §6, §11 item 9) against hand-computed bearings and
+// Sensor encodings (docs/environments.md#sensors) against hand-computed bearings and
 // distances: the pseudo-LIDAR's bins and the LIDAR's hit fractions.
 #include <gtest/gtest.h>
 
@@ -46,7 +46,7 @@ TEST(PseudoLidar, NearestObjectWinsItsBinAndFarObjectsAreIgnored) {
   EXPECT_EQ(out[3], 0);
 }
 
-// A wall 1 m away along ray i gives 0.8 at range 5 (spec §11 item 9): the
+// A wall 1 m away along ray i gives 0.8 at range 5 (docs/environments.md#sensors): the
 // Ball at x = 8.9 faces the east wall's inner face at x = 9.9 with ray 6.
 TEST(Lidar, WallOneMetreAwayReadsPointEight) {
   const auto env = make("SafetyBallReach-v0");

@@ -8,9 +8,10 @@
 // "J=" with the raw return when TRPO's J is missing or zero.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
-#include "common/table1.h"
+#include "experiments/table1.h"
 
 namespace bsg {
 
@@ -21,5 +22,9 @@ std::string table1_latex(const Table1& table);
 // J, H, d, J/J_TRPO, H/d, whether H <= d, best constrained.
 std::string table1_csv(const Table1& table);
 std::string configurations_csv(const Table1& table);
+
+// Writes table1.md, table1.csv, table1.tex and configurations.csv into
+// `out_dir` (created if missing), each atomically.
+void write_table1_files(const Table1& table, const std::filesystem::path& out_dir);
 
 }  // namespace bsg

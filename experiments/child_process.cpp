@@ -1,4 +1,4 @@
-#include "child_process.h"
+#include "experiments/child_process.h"
 
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -9,7 +9,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace bsg::cli {
+namespace bsg {
 
 pid_t start_child(const ChildCommand& command) {
   if (command.argv.empty()) throw std::invalid_argument("start_child: empty command");
@@ -91,4 +91,4 @@ std::string command_line_text(const std::vector<std::string>& argv) {
   return text;
 }
 
-}  // namespace bsg::cli
+}  // namespace bsg

@@ -1,9 +1,9 @@
-// The report's selection rule (§6.1, spec §12) on hand-made results: the
+// The report's selection rule (report §6.1, docs/reproducing.md#selection-rule) on hand-made results: the
 // best mean return among configurations that meet the cost limit; if none
 // does, the lowest cost, marked infeasible; TRPO by return alone; missing
 // configurations never count as zero; and the original plot script's
 // mean - std score (Q17).
-#include "common/selection.h"
+#include "experiments/selection.h"
 
 #include <gtest/gtest.h>
 

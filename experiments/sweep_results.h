@@ -1,4 +1,4 @@
-// Collecting a sweep directory's results (layout in common/sweep_manifest.h)
+// Collecting a sweep directory's results (layout in experiments/sweep_manifest.h)
 // for the selection rule: one ConfigurationResults per configuration
 // directory <env_id>/<alg>/<config>, with the runs the manifest expects and
 // the finished ones among them (evaluation.json). Run directories found below
@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "common/selection.h"
+#include "experiments/selection.h"
 
 namespace bsg {
 

@@ -1,4 +1,4 @@
-#include "common/table1.h"
+#include "experiments/table1.h"
 
 #include <algorithm>
 #include <array>

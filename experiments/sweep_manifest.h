@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "common/grid_expansion.h"
+#include "experiments/grid_expansion.h"
 
 namespace bsg {
 

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-namespace bsg::cli {
+namespace bsg {
 
 struct ChildCommand {
   std::vector<std::string> argv;  // argv[0] is looked up in PATH if it has no '/'
@@ -44,4 +44,4 @@ std::filesystem::path current_executable();
 // Shell-quoted words joined by spaces, for logs and messages.
 std::string command_line_text(const std::vector<std::string>& argv);
 
-}  // namespace bsg::cli
+}  // namespace bsg

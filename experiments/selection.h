@@ -1,4 +1,4 @@
-// The report's selection rule (report §6.1, spec §12) over the configurations
+// The report's selection rule (report §6.1, docs/reproducing.md#selection-rule) over the configurations
 // of one (environment, algorithm) of a grid. Each configuration's J and H are
 // the deterministic-evaluation means, averaged over its finished seeds.
 //

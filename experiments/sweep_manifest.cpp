@@ -1,4 +1,4 @@
-#include "common/sweep_manifest.h"
+#include "experiments/sweep_manifest.h"
 
 #include <algorithm>
 #include <fstream>

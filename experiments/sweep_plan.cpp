@@ -1,4 +1,4 @@
-#include "sweep_plan.h"
+#include "experiments/sweep_plan.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -10,9 +10,10 @@
 #include "common/config_error.h"
 #include "common/run_config_checks.h"
 #include "common/run_config_yaml.h"
-#include "sweep_progress.h"
+#include "experiments/sweep_manifest.h"
+#include "experiments/sweep_progress.h"
 
-namespace bsg::cli {
+namespace bsg {
 
 namespace {
 
@@ -114,6 +115,13 @@ SweepPlan make_sweep_plan(const SweepPlanRequest& request) {
   return plan;
 }
 
+void prepare_sweep_directory(const SweepPlanRequest& request, const SweepPlan& plan) {
+  std::filesystem::create_directories(request.out_dir);
+  std::filesystem::copy_file(request.grid_file, request.out_dir / kSweepGridCopyName,
+                             std::filesystem::copy_options::overwrite_existing);
+  write_sweep_manifest(request.out_dir, plan.all_runs);
+}
+
 std::string dry_run_listing(const SweepPlan& plan) {
   std::string text = "state      epochs       env steps  run directory\n";
   long long total = 0;
@@ -146,4 +154,4 @@ std::string dry_run_listing(const SweepPlan& plan) {
   return text;
 }
 
-}  // namespace bsg::cli
+}  // namespace bsg

@@ -1,4 +1,4 @@
-#include "common/grid_file.h"
+#include "experiments/grid_file.h"
 
 #include <yaml-cpp/yaml.h>
 

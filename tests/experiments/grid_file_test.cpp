@@ -1,7 +1,7 @@
 // Parsing grid files: the accepted format (envs, seeds, fixed, algorithms
 // with their fixed settings and axes) and every kind of bad input, each
 // error naming the file, the line and the key at fault.
-#include "common/grid_file.h"
+#include "experiments/grid_file.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,10 @@
-#include "common/table1_render.h"
+#include "experiments/table1_render.h"
 
 #include <cmath>
 #include <cstdio>
 #include <optional>
 
+#include "common/atomic_file.h"
 #include "common/config_scalar.h"
 #include "common/csv_text.h"
 
@@ -147,6 +148,14 @@ std::string configurations_csv(const Table1& table) {
             (config.selected ? "true" : "false") + "\n";
   }
   return text;
+}
+
+void write_table1_files(const Table1& table, const std::filesystem::path& out_dir) {
+  std::filesystem::create_directories(out_dir);
+  write_file_atomically(out_dir / "table1.md", table1_markdown(table));
+  write_file_atomically(out_dir / "table1.csv", table1_csv(table));
+  write_file_atomically(out_dir / "table1.tex", table1_latex(table));
+  write_file_atomically(out_dir / "configurations.csv", configurations_csv(table));
 }
 
 }  // namespace bsg

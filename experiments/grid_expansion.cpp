@@ -1,4 +1,4 @@
-#include "common/grid_expansion.h"
+#include "experiments/grid_expansion.h"
 
 #include "common/config_error.h"
 #include "common/run_config_resolve.h"

@@ -1,10 +1,12 @@
-#include "sweep_progress.h"
+#include "experiments/sweep_progress.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-namespace bsg::cli {
+#include "algos/progress_line.h"
+
+namespace bsg {
 
 std::string progress_line(const SweepCounts& counts, std::optional<double> eta_seconds,
                           std::size_t bar_width) {
@@ -26,21 +28,6 @@ std::optional<double> estimate_seconds_left(double steps_done, double elapsed_se
   return steps_left / (steps_done / elapsed_seconds);
 }
 
-std::string format_duration(double seconds) {
-  const long long s = static_cast<long long>(std::llround(std::max(0.0, seconds)));
-  char text[64];
-  if (s < 60) {
-    std::snprintf(text, sizeof text, "%llds", s);
-  } else if (s < 3600) {
-    std::snprintf(text, sizeof text, "%lldm%02llds", s / 60, s % 60);
-  } else if (s < 86400) {
-    std::snprintf(text, sizeof text, "%lldh%02lldm", s / 3600, s % 3600 / 60);
-  } else {
-    std::snprintf(text, sizeof text, "%lldd%02lldh", s / 86400, s % 86400 / 3600);
-  }
-  return text;
-}
-
 std::string format_count(long long count) {
   std::string digits = std::to_string(count < 0 ? -count : count);
   std::string text;
@@ -51,4 +38,4 @@ std::string format_count(long long count) {
   return (count < 0 ? "-" : "") + text;
 }
 
-}  // namespace bsg::cli
+}  // namespace bsg

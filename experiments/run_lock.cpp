@@ -1,4 +1,4 @@
-#include "run_lock.h"
+#include "experiments/run_lock.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -8,7 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace bsg::cli {
+namespace bsg {
 
 std::optional<RunLock> RunLock::try_acquire(const std::filesystem::path& run_dir) {
   const std::filesystem::path path = run_dir / kRunLockName;
@@ -29,4 +29,4 @@ RunLock::~RunLock() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-}  // namespace bsg::cli
+}  // namespace bsg

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "algos/run_results.h"
-#include "common/grid_expansion.h"
 #include "common/run_config.h"
+#include "experiments/grid_expansion.h"
+#include "experiments/run_results.h"
 
-namespace bsg::cli {
+namespace bsg {
 
 struct PlannedRun {
   GridRun run;
@@ -48,7 +48,12 @@ struct SweepPlan {
 // a run with a different configuration.
 SweepPlan make_sweep_plan(const SweepPlanRequest& request);
 
+// Creates the sweep directory (request.out_dir) with a copy of the grid file
+// and the manifest of all the grid's runs; the runs' own directories are
+// made when they start.
+void prepare_sweep_directory(const SweepPlanRequest& request, const SweepPlan& plan);
+
 // The listing of --dry-run: one line per run, then the cost in env steps.
 std::string dry_run_listing(const SweepPlan& plan);
 
-}  // namespace bsg::cli
+}  // namespace bsg

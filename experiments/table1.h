@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "common/run_config.h"
-#include "common/selection.h"
+#include "experiments/selection.h"
 
 namespace bsg {
 

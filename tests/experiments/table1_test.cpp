@@ -2,13 +2,13 @@
 // order and labels, the best constrained algorithm in bold, infeasible
 // fallbacks and incomplete or missing results marked, and the CSV and LaTeX
 // forms.
-#include "common/table1.h"
+#include "experiments/table1.h"
 
 #include <gtest/gtest.h>
 
 #include "../test_support.h"
 #include "common/csv_text.h"
-#include "common/table1_render.h"
+#include "experiments/table1_render.h"
 
 namespace bsg {
 namespace {

@@ -1,4 +1,4 @@
-#include "common/selection.h"
+#include "experiments/selection.h"
 
 #include <cmath>
 #include <stdexcept>

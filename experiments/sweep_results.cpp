@@ -1,4 +1,4 @@
-#include "algos/sweep_results.h"
+#include "experiments/sweep_results.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <stdexcept>
 
 #include "algos/run_directory.h"
-#include "algos/run_results.h"
 #include "common/run_config_yaml.h"
-#include "common/sweep_manifest.h"
+#include "experiments/run_results.h"
+#include "experiments/sweep_manifest.h"
 
 namespace bsg {
 

@@ -2,7 +2,7 @@
 // product of their axis sizes) x seeds, the loop order is env, algorithm,
 // axes (first outermost), seed, and every run's directory names its
 // settings. The shipped grids expand and resolve against configs/.
-#include "common/grid_expansion.h"
+#include "experiments/grid_expansion.h"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-namespace bsg::cli {
+namespace bsg {
 
 struct SweepCounts {
   std::size_t total = 0;     // runs this sweep covers
@@ -26,10 +26,7 @@ std::string progress_line(const SweepCounts& counts, std::optional<double> eta_s
 std::optional<double> estimate_seconds_left(double steps_done, double elapsed_seconds,
                                             double steps_left);
 
-// "45s", "3m05s", "2h07m", "3d04h".
-std::string format_duration(double seconds);
-
 // 12345678 -> "12 345 678".
 std::string format_count(long long count);
 
-}  // namespace bsg::cli
+}  // namespace bsg

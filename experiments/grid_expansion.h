@@ -1,7 +1,7 @@
 // Expanding a grid (grid_file.h) into its runs: for each environment, for each
 // algorithm, for each point of the algorithm's axes (Cartesian product, first
 // axis outermost), for each seed - the loop order of the original benchmark
-// driver (spec §11). Unlike the original, whose seed counter runs on across
+// driver (docs/reproducing.md#grids). Unlike the original, whose seed counter runs on across
 // configurations, every configuration uses the grid's own seed list, so that
 // configurations are compared on the same seeds.
 //
@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "common/grid_file.h"
 #include "common/run_config.h"
+#include "experiments/grid_file.h"
 
 namespace bsg {
 

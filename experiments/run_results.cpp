@@ -1,4 +1,4 @@
-#include "algos/run_results.h"
+#include "experiments/run_results.h"
 
 #include <yaml-cpp/yaml.h>
 

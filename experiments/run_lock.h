@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <optional>
 
-namespace bsg::cli {
+namespace bsg {
 
 inline constexpr const char* kRunLockName = "train.lock";
 
@@ -32,4 +32,4 @@ class RunLock {
   int fd_ = -1;
 };
 
-}  // namespace bsg::cli
+}  // namespace bsg

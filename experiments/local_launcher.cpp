@@ -1,0 +1,283 @@
+#include "experiments/local_launcher.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <thread>
+
+#include "algos/progress_line.h"
+#include "algos/run_directory.h"
+#include "common/atomic_file.h"
+#include "common/csv_text.h"
+#include "common/run_config_yaml.h"
+#include "experiments/child_process.h"
+#include "experiments/run_lock.h"
+#include "experiments/sweep_manifest.h"
+#include "experiments/sweep_progress.h"
+
+namespace bsg {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string timestamp() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", std::localtime(&now));
+  return text;
+}
+
+// sweep_events.csv: one line per scheduling event, appended and flushed.
+class EventLog {
+ public:
+  explicit EventLog(const std::filesystem::path& path) {
+    const bool is_new = !std::filesystem::exists(path);
+    file_.open(path, std::ios::app);
+    if (!file_) throw std::runtime_error("cannot write " + path.string());
+    if (is_new) file_ << "time,event,run_dir,detail\n" << std::flush;
+  }
+  void record(const std::string& event, const std::filesystem::path& run_dir, const std::string& detail) {
+    file_ << timestamp() << "," << event << "," << csv_field(run_dir.generic_string()) << ","
+          << csv_field(detail) << "\n"
+          << std::flush;
+  }
+
+ private:
+  std::ofstream file_;
+};
+
+// The child command of one run: `bsg train RUN_FILE --out DIR` for a new run,
+// `bsg train --resume DIR` for an unfinished one, under `mpirun -np K` if K > 1.
+// The run file is fully resolved; --configs only spares `bsg train` the
+// search for a configs/ directory above the run directory.
+ChildCommand train_command(const PlannedRun& run, const std::filesystem::path& bsg_program,
+                           const std::filesystem::path& configs_dir, int ranks_per_run) {
+  ChildCommand command;
+  if (ranks_per_run > 1) {
+    command.argv = {"mpirun", "-np", std::to_string(ranks_per_run)};
+    if (::geteuid() == 0) {
+      command.argv.push_back("--oversubscribe");
+      command.environment = {{"OMPI_ALLOW_RUN_AS_ROOT", "1"}, {"OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"}};
+    }
+  }
+  command.argv.push_back(bsg_program.string());
+  command.argv.push_back("train");
+  if (run.state == RunState::resumable) {
+    command.argv.insert(command.argv.end(), {"--resume", run.dir.string()});
+  } else {
+    command.argv.insert(command.argv.end(),
+                        {(run.dir / kSweepRunFileName).string(), "--out", run.dir.string(), "--configs",
+                         configs_dir.string()});
+  }
+  command.log_file = run.dir / kSweepRunLogName;
+  return command;
+}
+
+// Leftovers of a start killed before its first checkpoint would make
+// `bsg train` refuse the directory; a fresh start owns it.
+void clear_unstarted_run(const RunDirectory& directory) {
+  std::error_code error;
+  std::filesystem::remove(directory.progress(), error);
+  std::filesystem::remove(directory.config(), error);
+}
+
+class SweepRunner {
+ public:
+  SweepRunner(SweepPlan plan, const LocalLaunchOptions& options, std::filesystem::path out_dir)
+      : plan_(std::move(plan)),
+        options_(options),
+        out_dir_(std::move(out_dir)),
+        configs_dir_(std::filesystem::absolute(options.configs_dir)),
+        bsg_program_(options.bsg_program),
+        events_(out_dir_ / kSweepEventsName),
+        interactive_(::isatty(STDERR_FILENO) != 0) {}
+
+  int run();
+
+ private:
+  struct Running {
+    std::size_t index;
+    Clock::time_point started;
+  };
+
+  void start(std::size_t index);
+  void finish(const ChildExit& exit);
+  void show_progress(bool force);
+  double steps_done_now() const;
+
+  SweepPlan plan_;
+  LocalLaunchOptions options_;
+  std::filesystem::path out_dir_;
+  std::filesystem::path configs_dir_;
+  std::filesystem::path bsg_program_;
+  EventLog events_;
+  bool interactive_;
+  std::map<pid_t, Running> running_;
+  std::vector<std::size_t> failed_;
+  std::size_t finished_ = 0;
+  double steps_done_at_start_ = 0;
+  double steps_total_ = 0;
+  Clock::time_point started_ = Clock::now();
+  Clock::time_point last_shown_{};
+};
+
+// Env steps done: all of a finished run's, the logged epochs of a running
+// one (read now), and for the others what the plan found.
+double SweepRunner::steps_done_now() const {
+  double done = 0;
+  for (const PlannedRun& run : plan_.runs) done += static_cast<double>(run.steps_logged());
+  for (const auto& [pid, running] : running_) {
+    const PlannedRun& run = plan_.runs[running.index];
+    const int epochs = std::min(logged_epochs(RunDirectory(run.dir)), run.config.epochs);
+    done += static_cast<double>(epochs) * run.config.steps_per_epoch - static_cast<double>(run.steps_logged());
+  }
+  return done;
+}
+
+void SweepRunner::start(std::size_t index) {
+  PlannedRun& run = plan_.runs[index];
+  std::filesystem::create_directories(run.dir);
+  const std::optional<RunLock> lock = RunLock::try_acquire(run.dir);
+  if (!lock) {
+    throw std::runtime_error("another process is running it (it holds " + (run.dir / kRunLockName).string() +
+                             "); run the sweep again once it has ended");
+  }
+  const RunDirectory directory(run.dir);
+  run.state = run_state(directory);
+  if (run.state == RunState::finished) {  // finished since the plan was made
+    ++finished_;
+    events_.record("skip", run.run.relative_dir(), "finished by another process");
+    return;
+  }
+  if (run.state == RunState::fresh) clear_unstarted_run(directory);
+  // The resolved run file, so that the run can be reproduced by hand.
+  write_file_atomically(run.dir / kSweepRunFileName, to_yaml(run.config));
+  ChildCommand command = train_command(run, bsg_program_, configs_dir_, options_.ranks_per_run);
+  command.inherited_fd = lock->fd();  // the child holds the lock until it ends
+  {
+    std::ofstream log(command.log_file, std::ios::app);
+    log << "=== bsg sweep " << timestamp() << ": " << command_line_text(command.argv) << "\n";
+  }
+  const pid_t pid = start_child(command);
+  running_[pid] = Running{index, Clock::now()};
+  events_.record(run.state == RunState::resumable ? "resume" : "start", run.run.relative_dir(),
+                 command_line_text(command.argv));
+  if (!interactive_) {
+    std::cerr << (run.state == RunState::resumable ? "resume " : "start  ") << run.run.relative_dir().string()
+              << "\n";
+  }
+}
+
+void SweepRunner::finish(const ChildExit& exit) {
+  const auto found = running_.find(exit.pid);
+  if (found == running_.end()) return;  // not ours (e.g. a grandchild reparented)
+  const std::size_t index = found->second.index;
+  PlannedRun& run = plan_.runs[index];
+  const double seconds = std::chrono::duration<double>(Clock::now() - found->second.started).count();
+  running_.erase(found);
+  run.state = run_state(RunDirectory(run.dir));
+  const std::filesystem::path log = run.dir / kSweepRunLogName;
+  if (exit.exit_code == 0 && run.state == RunState::finished) {
+    ++finished_;
+    events_.record("done", run.run.relative_dir(), format_duration(seconds));
+    if (!interactive_) {
+      std::cerr << "done   " << run.run.relative_dir().string() << " (" << format_duration(seconds) << ")\n";
+    }
+    return;
+  }
+  failed_.push_back(index);
+  const std::string why = exit.exit_code == 0 ? "exit code 0 but no " + RunDirectory(run.dir).evaluation().filename().string()
+                                              : describe(exit);
+  events_.record("failed", run.run.relative_dir(), why);
+  if (interactive_) std::cerr << "\r\033[K";
+  std::cerr << "FAILED " << run.run.relative_dir().string() << ": " << why << "; log: " << log.string() << "\n";
+}
+
+void SweepRunner::show_progress(bool force) {
+  const Clock::time_point now = Clock::now();
+  if (!force && now - last_shown_ < std::chrono::seconds(interactive_ ? 1 : 30)) return;
+  last_shown_ = now;
+  const double done = steps_done_now();
+  const double elapsed = std::chrono::duration<double>(now - started_).count();
+  const SweepCounts counts{plan_.runs.size(), finished_, running_.size(), failed_.size()};
+  const std::string line =
+      progress_line(counts, estimate_seconds_left(done - steps_done_at_start_, elapsed, steps_total_ - done));
+  if (interactive_) {
+    std::cerr << "\r\033[K" << line << std::flush;
+  } else {
+    std::cerr << line << "\n";
+  }
+}
+
+int SweepRunner::run() {
+  std::vector<std::size_t> queue;
+  for (std::size_t i = 0; i < plan_.runs.size(); ++i) {
+    steps_total_ += static_cast<double>(plan_.runs[i].training_steps());
+    if (plan_.runs[i].state == RunState::finished) {
+      ++finished_;
+    } else {
+      queue.push_back(i);
+    }
+  }
+  steps_done_at_start_ = steps_done_now();
+  const int jobs = options_.jobs;
+  std::cerr << "bsg sweep: " << plan_.runs.size() << " runs in " << out_dir_.string() << ": " << finished_
+            << " already finished, " << queue.size() << " to run, " << jobs << " at a time"
+            << (options_.ranks_per_run > 1 ? " with " + std::to_string(options_.ranks_per_run) + " ranks each" : "")
+            << "\n";
+
+  std::size_t next = 0;
+  while (next < queue.size() || !running_.empty()) {
+    while (next < queue.size() && running_.size() < static_cast<std::size_t>(jobs)) {
+      try {
+        start(queue[next]);
+      } catch (const std::exception& e) {
+        const PlannedRun& run = plan_.runs[queue[next]];
+        failed_.push_back(queue[next]);
+        events_.record("failed", run.run.relative_dir(), e.what());
+        std::cerr << "FAILED " << run.run.relative_dir().string() << ": " << e.what() << "\n";
+      }
+      ++next;
+      if (interactive_) show_progress(true);
+    }
+    bool reaped = false;
+    while (const std::optional<ChildExit> exit = reap_exited_child()) {
+      finish(*exit);
+      reaped = true;
+    }
+    show_progress(reaped);
+    if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  if (interactive_) {
+    show_progress(true);
+    std::cerr << "\n";
+  }
+
+  if (failed_.empty()) {
+    std::cerr << "bsg sweep: all " << plan_.runs.size() << " runs finished; 'bsg table " << out_dir_.string()
+              << "' selects and tabulates them\n";
+    return 0;
+  }
+  std::cerr << "bsg sweep: " << failed_.size() << " of " << plan_.runs.size()
+            << " runs failed (run the sweep again to retry them):\n";
+  for (const std::size_t index : failed_) {
+    const PlannedRun& run = plan_.runs[index];
+    std::cerr << "  " << run.dir.string() << "  log: " << (run.dir / kSweepRunLogName).string() << "\n";
+  }
+  return 1;
+}
+
+}  // namespace
+
+int run_sweep_locally(SweepPlan plan, const std::filesystem::path& sweep_dir,
+                      const LocalLaunchOptions& options) {
+  return SweepRunner(std::move(plan), options, sweep_dir).run();
+}
+
+}  // namespace bsg
