@@ -119,21 +119,15 @@ TEST(Train, AResumedPidRunReproducesAnUninterruptedOne) {
   TemporaryDirectory dir;
   expect_resume_reproduces_whole_run(dir, tiny_run_file(dir, 6, kPidSettings));
   // The P, I and D terms are logged, and all three were in play.
-  const auto rows = read_csv_rows(dir.path() / "whole" / "progress.csv");
-  const auto column = [&](const std::string& name) {
-    const auto found = std::find(rows[0].begin(), rows[0].end(), name);
-    EXPECT_NE(found, rows[0].end()) << name;
-    std::vector<double> values;
-    for (std::size_t r = 1; found != rows[0].end() && r < rows.size(); ++r) {
-      values.push_back(std::stod(rows[r][static_cast<std::size_t>(found - rows[0].begin())]));
-    }
-    return values;
-  };
-  const std::vector<double> lambda = column("lagrange_multiplier");
-  const std::vector<double> p = column("pid_p_term");
-  const std::vector<double> i = column("pid_i_term");
-  const std::vector<double> d = column("pid_d_term");
+  auto columns = bsg::testing::read_csv_columns(dir.path() / "whole" / "progress.csv");
+  const std::vector<double>& lambda = columns["lagrange_multiplier"];
+  const std::vector<double>& p = columns["pid_p_term"];
+  const std::vector<double>& i = columns["pid_i_term"];
+  const std::vector<double>& d = columns["pid_d_term"];
   ASSERT_EQ(lambda.size(), 6u);
+  ASSERT_EQ(p.size(), 6u);
+  ASSERT_EQ(i.size(), 6u);
+  ASSERT_EQ(d.size(), 6u);
   for (std::size_t k = 0; k < lambda.size(); ++k) {
     EXPECT_EQ(lambda[k], std::max(0.0, p[k] + i[k] + d[k])) << "epoch " << k;
   }
