@@ -256,6 +256,11 @@ TrainingOutcome OnPolicyTrainer::run() {
     } catch (const std::exception& e) {
       throw std::runtime_error("epoch " + std::to_string(epoch) + ": " + e.what());
     }
+    if (options_.stop_requested && progress_.epochs_completed < config_.epochs && options_.stop_requested()) {
+      if (checkpoint_epochs_ != progress_.epochs_completed) save_checkpoint();
+      outcome.stop_requested = true;
+      break;
+    }
   }
   outcome.epochs_completed = progress_.epochs_completed;
   outcome.finished = progress_.epochs_completed == config_.epochs;

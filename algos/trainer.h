@@ -36,6 +36,7 @@
 // epoch prepended.
 #pragma once
 
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -64,11 +65,16 @@ struct TrainerOptions {
   bool resume = false;          // continue from the directory's checkpoint
   int stop_after_epochs = 0;    // > 0: stop (with a checkpoint) once this many epochs are done
   std::ostream* log = nullptr;  // progress lines on rank 0; null: quiet
+  // Asked on every rank after each epoch (a collective point: it must give
+  // every rank the same answer); true: save a checkpoint and stop there, as
+  // stop_after_epochs does. `bsg train` stops on SIGTERM / SIGINT this way.
+  std::function<bool()> stop_requested;
 };
 
 struct TrainingOutcome {
   int epochs_completed = 0;
   bool finished = false;                      // all epochs done
+  bool stop_requested = false;                // stopped early by options.stop_requested
   std::optional<EvaluationSummary> evaluation;  // rank 0, if evaluated
 };
 

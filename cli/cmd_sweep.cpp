@@ -1,8 +1,11 @@
 // `bsg sweep GRID`: the command line of a sweep. The grid (configs/grids/
 // *.yaml, experiments/grid_file.h) is planned (experiments/sweep_plan.h) and
-// run by the local launcher (experiments/local_launcher.h); the sweep
-// directory's layout is in experiments/sweep_manifest.h. Exit code 0 iff
-// every run of the sweep has finished.
+// run by the local launcher (experiments/local_launcher.h) or, with --slurm,
+// submitted as a Slurm job array (experiments/slurm_launcher.h); the sweep
+// directory's layout is in experiments/sweep_manifest.h. Exit code of a
+// local sweep: 0 iff every run has finished; of --slurm: 0 iff submitted.
+// `bsg sweep --status DIR` reports a sweep of either kind
+// (experiments/sweep_status.h).
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -10,10 +13,12 @@
 #include <thread>
 
 #include "commands.h"
-#include "common/run_config_resolve.h"
+#include "configs_search.h"
 #include "experiments/child_process.h"
 #include "experiments/local_launcher.h"
+#include "experiments/slurm_launcher.h"
 #include "experiments/sweep_plan.h"
+#include "experiments/sweep_status.h"
 
 namespace bsg::cli {
 
@@ -28,15 +33,16 @@ struct SweepOptions {
   bool dry_run = false;
   std::vector<std::string> only_env_ids;
   std::vector<std::string> only_algorithms;
+  bool slurm = false;
+  SlurmJobOptions slurm_job;
+  std::string status_dir;
 };
 
 int run_sweep(SweepOptions options) {
   const std::filesystem::path grid_file(options.grid_file);
   SweepPlanRequest request;
   request.grid_file = grid_file;
-  request.configs_dir = options.configs_dir.empty()
-                            ? locate_configs_dir(grid_file.has_parent_path() ? grid_file.parent_path() : ".")
-                            : std::filesystem::path(options.configs_dir);
+  request.configs_dir = find_configs(options.configs_dir, grid_file, "grid file").dir;
   request.out_dir = options.out_dir.empty() ? std::filesystem::path("sweeps") / grid_file.stem()
                                             : std::filesystem::path(options.out_dir);
   request.only_env_ids = options.only_env_ids;
@@ -48,6 +54,16 @@ int run_sweep(SweepOptions options) {
   }
 
   SweepPlan plan = make_sweep_plan(request);
+  if (options.slurm) {
+    SlurmLaunchOptions launch;
+    launch.job = options.slurm_job;
+    launch.job.ranks_per_run = options.ranks_per_run;
+    launch.configs_dir = request.configs_dir;
+    launch.bsg_program = current_executable();
+    launch.dry_run = options.dry_run;
+    if (!options.dry_run) prepare_sweep_directory(request, plan);
+    return submit_sweep_to_slurm(plan, request.out_dir, launch, std::cout);
+  }
   if (options.dry_run) {
     std::cout << "bsg sweep --dry-run " << grid_file.string() << " -> " << request.out_dir.string() << "\n"
               << dry_run_listing(plan);
@@ -68,21 +84,49 @@ void add_sweep_command(CLI::App& app, Action& run) {
   auto options = std::make_shared<SweepOptions>();
   CLI::App* sweep = app.add_subcommand(
       "sweep", "Run a grid of training runs (configs/grids/*.yaml), N at a time; a killed sweep resumes");
-  sweep->add_option("GRID", options->grid_file, "grid file, e.g. configs/grids/report.yaml")->required();
-  sweep->add_option("--jobs,-j", options->jobs, "runs at a time (default: cores / ranks per run)")
-      ->check(CLI::PositiveNumber);
+  sweep->add_option("GRID", options->grid_file, "grid file, e.g. configs/grids/report.yaml");
+  auto* jobs = sweep->add_option("--jobs,-j", options->jobs, "runs at a time (default: cores / ranks per run)")
+                   ->check(CLI::PositiveNumber);
   sweep->add_option("--ranks-per-run", options->ranks_per_run,
                     "MPI processes per run (mpirun -np K bsg train ...)")
       ->check(CLI::PositiveNumber);
   sweep->add_option("--out", options->out_dir, "sweep directory (default: sweeps/<grid name>)");
   sweep->add_option("--configs", options->configs_dir,
-                    "configs directory (default: the one at or above the grid file)");
+                    "configs folder (default: searched as by bsg train, from the grid file's folder)");
   sweep->add_option("--env", options->only_env_ids, "run only this environment of the grid (repeatable)")
       ->allow_extra_args(false);  // one value per --env: `--env ID GRID` leaves GRID alone
   sweep->add_option("--alg", options->only_algorithms, "run only this algorithm of the grid (repeatable)")
       ->allow_extra_args(false);
   sweep->add_flag("--dry-run", options->dry_run, "list the runs and their cost in env steps; run nothing");
-  sweep->callback([options, &run] { run = [options] { return run_sweep(*options); }; });
+  auto* slurm = sweep->add_flag("--slurm", options->slurm,
+                                "submit the runs as one Slurm job array (sbatch) instead of running them here");
+  std::vector<CLI::Option*> slurm_only = {
+      sweep->add_option("--partition", options->slurm_job.partition, "Slurm partition (--slurm)"),
+      sweep->add_option("--time", options->slurm_job.time_limit,
+                        "Slurm time limit per run, e.g. 12:00:00 (--slurm)"),
+      sweep->add_option("--max-running", options->slurm_job.max_running,
+                        "at most this many array tasks at once: the %M throttle (--slurm)")
+          ->check(CLI::PositiveNumber),
+      sweep->add_option("--sbatch-arg", options->slurm_job.sbatch_args,
+                        "one more sbatch option, e.g. --sbatch-arg=--account=abc (--slurm, repeatable)")
+          ->allow_extra_args(false)};
+  for (CLI::Option* option : slurm_only) option->needs(slurm);
+  jobs->excludes(slurm);  // Slurm decides; --max-running throttles
+  auto* status = sweep->add_option("--status", options->status_dir,
+                                   "report the sweep in this directory (local or Slurm) and exit");
+  status->excludes(slurm);
+  sweep->callback([options, &run] {
+    if (!options->status_dir.empty()) {
+      if (!options->grid_file.empty()) throw CLI::ValidationError("--status", "takes a sweep directory, not GRID");
+      run = [options] {
+        std::cout << sweep_status_text(read_sweep_status(options->status_dir));
+        return 0;
+      };
+      return;
+    }
+    if (options->grid_file.empty()) throw CLI::RequiredError("GRID (or --status SWEEP_DIR)");
+    run = [options] { return run_sweep(*options); };
+  });
 }
 
 }  // namespace bsg::cli

@@ -4,6 +4,8 @@
 // table1.tex and configurations.csv into the sweep directory (or --output).
 // Several sweeps (e.g. sweeps/report and sweeps/pid) make one table of all
 // their configurations; their files then go to --output, which is required.
+// --compare report also prints each cell beside the report's Table 1
+// (configs/report_table1.csv) and writes table1_compare.md and .csv.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -12,6 +14,9 @@
 #include <vector>
 
 #include "commands.h"
+#include "common/atomic_file.h"
+#include "configs_search.h"
+#include "experiments/report_comparison.h"
 #include "experiments/sweep_results.h"
 #include "experiments/table1.h"
 #include "experiments/table1_render.h"
@@ -24,6 +29,8 @@ struct TableOptions {
   std::vector<std::string> sweep_dirs;
   std::string score = "mean";
   std::string output_dir;
+  std::string compare;
+  std::string configs_dir;
 };
 
 int run_table(const TableOptions& options) {
@@ -49,6 +56,15 @@ int run_table(const TableOptions& options) {
   std::cout << table1_markdown(table);
   std::cerr << "bsg table: wrote table1.md, table1.csv, table1.tex and configurations.csv to "
             << out.string() << "\n";
+  if (options.compare == "report") {
+    const std::filesystem::path configs = find_configs(options.configs_dir, {}, "").dir;
+    const ReportTable1 report = load_report_table1(configs / kReportTable1File);
+    const std::string markdown = comparison_markdown(table, report);
+    write_file_atomically(out / "table1_compare.md", markdown);
+    write_file_atomically(out / "table1_compare.csv", comparison_csv(table, report));
+    std::cout << "\nBeside the report's Table 1 (" << (configs / kReportTable1File).string() << "):\n" << markdown;
+    std::cerr << "bsg table: wrote table1_compare.md and table1_compare.csv to " << out.string() << "\n";
+  }
   return 0;
 }
 
@@ -68,6 +84,12 @@ void add_table_command(CLI::App& app, Action& run) {
       ->check(CLI::IsMember({"mean", "mean_minus_std"}));
   table->add_option("--output", options->output_dir,
                     "where to write the files (default: SWEEP_DIR; required with several)");
+  table->add_option("--compare", options->compare,
+                    "report: each cell beside the report's Table 1 value and the difference "
+                    "(table1_compare.md, .csv)")
+      ->check(CLI::IsMember({"report"}));
+  table->add_option("--configs", options->configs_dir,
+                    "configs directory holding report_table1.csv (default: searched as bsg train does)");
   table->callback([options, &run] { run = [options] { return run_table(*options); }; });
 }
 

@@ -4,12 +4,17 @@
 //   bsg train --resume DIR
 // Under `mpirun -np N` the batch is split over the N ranks (the same code runs
 // with one process and no MPI).
+// SIGTERM, SIGINT or SIGUSR1 (scancel, a preemption, Ctrl-C) stops the run at
+// the end of the current epoch with a checkpoint and exit code 75
+// (stop_signals.h); under mpirun a signal reaching any rank stops all of them
+// at the same epoch (send mpirun SIGUSR1: it forwards that one at once).
 #include <CLI/CLI.hpp>
 
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "algos/run_directory.h"
@@ -20,8 +25,10 @@
 #include "common/run_config_checks.h"
 #include "common/run_config_resolve.h"
 #include "common/run_config_yaml.h"
+#include "configs_search.h"
 #include "envs/env.h"
 #include "mpi_abort_on_error.h"
+#include "stop_signals.h"
 
 namespace bsg::cli {
 namespace {
@@ -37,42 +44,49 @@ struct TrainArguments {
   bool quiet = false;
 };
 
-RunConfig resolve_config(const TrainArguments& args) {
+struct ResolvedTrainConfig {
+  RunConfig config;
+  LocatedConfigs configs;  // the folder the run file was resolved against
+};
+
+ResolvedTrainConfig resolve_config(const TrainArguments& args) {
+  if (!args.config_file.empty() && !std::filesystem::is_regular_file(args.config_file)) {
+    throw ConfigError("run file " + args.config_file + " does not exist");
+  }
+  ResolvedTrainConfig resolved;
+  resolved.configs = find_configs(args.configs_dir, args.config_file, "run file");
   RunConfigRequest request;
+  request.configs_dir = resolved.configs.dir;
   request.run_file = args.config_file;
   request.set_arguments = args.set_arguments;
   request.valid_env_ids = envs::registered_ids();
-  if (!args.configs_dir.empty()) {
-    request.configs_dir = args.configs_dir;
-  } else {
-    if (!args.config_file.empty() && !std::filesystem::is_regular_file(args.config_file)) {
-      throw ConfigError("run file " + args.config_file + " does not exist");
-    }
-    const std::filesystem::path start =
-        args.config_file.empty() ? std::filesystem::current_path()
-                                 : std::filesystem::absolute(args.config_file).parent_path();
-    request.configs_dir = locate_configs_dir(start);
-  }
-  return resolve_run_config(request).config;
+  resolved.config = resolve_run_config(request).config;
+  return resolved;
 }
 
 int train(const TrainArguments& args) {
   if (args.print_config) {
-    std::cout << to_yaml(resolve_config(args));
+    const ResolvedTrainConfig resolved = resolve_config(args);
+    // A YAML comment, so that the output stays a valid run file.
+    std::cout << "# " << describe_configs(resolved.configs) << "\n" << to_yaml(resolved.config);
     return 0;
   }
+  const StopSignals stop_signals;  // before MPI starts its threads: they inherit the mask
   MpiSession session;
   const MpiContext mpi = session.context();
   return run_or_abort_job(mpi, [&]() {
     const bool resume = !args.resume_dir.empty();
     RunConfig config;
+    std::optional<LocatedConfigs> configs;
     std::optional<RunDirectory> directory;
     if (resume) {
       directory.emplace(args.resume_dir);
       check_is_run_directory(*directory);
       config = load_resolved_run_config(directory->config(), envs::registered_ids());
     } else {
-      config = resolve_config(args);
+      ResolvedTrainConfig resolved = resolve_config(args);
+      config = std::move(resolved.config);
+      configs = std::move(resolved.configs);
       directory.emplace(args.out_dir.empty() ? default_run_directory(config) : std::filesystem::path(args.out_dir));
     }
     check_run_config_for_ranks(config, mpi.size());
@@ -81,19 +95,26 @@ int train(const TrainArguments& args) {
     options.resume = resume;
     options.stop_after_epochs = args.stop_after_epochs;
     options.log = args.quiet ? nullptr : &std::cout;
+    // Collective: a signal that reached one rank stops every rank.
+    options.stop_requested = [&stop_signals, &mpi] {
+      return mpi.max(stop_signals.stop_pending() != 0 ? 1.0 : 0.0) > 0.0;
+    };
     if (mpi.is_root() && !args.quiet) {
       std::cout << "bsg train: " << config.env_id << " " << to_string(config.alg) << " seed " << config.seed << ", "
                 << config.epochs << " epochs of " << config.steps_per_epoch << " steps on " << mpi.size()
                 << (mpi.size() == 1 ? " rank" : " ranks") << (resume ? ", resuming " : " -> ")
                 << directory->root.string() << std::endl;
+      if (configs) std::cout << describe_configs(*configs) << std::endl;
     }
     OnPolicyTrainer trainer(config, *directory, mpi, options);
     const TrainingOutcome outcome = trainer.run();
-    if (mpi.is_root() && !args.quiet && !outcome.finished) {
-      std::cout << "stopped after " << outcome.epochs_completed << " of " << config.epochs
-                << " epochs; continue with: bsg train --resume " << directory->root.string() << std::endl;
+    if (mpi.is_root() && !outcome.finished) {
+      (outcome.stop_requested ? std::cerr : std::cout)
+          << (outcome.stop_requested ? "bsg train: stop signal received: " : "") << "stopped after "
+          << outcome.epochs_completed << " of " << config.epochs
+          << " epochs; continue with: bsg train --resume " << directory->root.string() << std::endl;
     }
-    return 0;
+    return outcome.stop_requested ? kExitStoppedBySignal : 0;
   });
 }
 
@@ -101,6 +122,10 @@ int train(const TrainArguments& args) {
 
 void add_train_command(CLI::App& app, Action& run) {
   CLI::App* command = app.add_subcommand("train", "Train a policy: bsg train CONFIG [--set key=value]... [--out DIR]");
+  command->footer(
+      "SIGTERM, SIGINT or SIGUSR1 stops training at the end of the current epoch, after a checkpoint, with "
+      "exit code 75 (all ranks if any rank gets it; under mpirun send SIGUSR1, which mpirun forwards at once); "
+      "continue with --resume DIR.");
   auto args = std::make_shared<TrainArguments>();
   command->add_option("CONFIG", args->config_file, "run file (YAML) naming env_id and alg; see configs/README.md");
   command->add_option("--set", args->set_arguments, "override one key: --set key=value (repeatable)")
@@ -109,7 +134,8 @@ void add_train_command(CLI::App& app, Action& run) {
   auto* out = command->add_option("--out", args->out_dir,
                                   "run directory (default: <log_dir>/<env_id>/<alg>/seed_<seed>)");
   command->add_option("--configs", args->configs_dir,
-                      "configs directory (default: the first configs/ at or above the run file)");
+                      "configs folder (default: the first found at or above the run file's folder, at or above the "
+                      "current folder, in $BSG_CONFIGS, installed, in the source tree)");
   auto* print = command->add_flag("--print-config", args->print_config,
                                   "print the fully resolved configuration and exit");
   auto* resume = command->add_option("--resume", args->resume_dir, "continue the run in this directory");

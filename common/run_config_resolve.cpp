@@ -72,20 +72,6 @@ std::string join(const std::vector<std::string>& items) {
 
 }  // namespace
 
-std::filesystem::path locate_configs_dir(const std::filesystem::path& start) {
-  std::error_code error;
-  std::filesystem::path dir = std::filesystem::absolute(start, error);
-  if (error) dir = start;
-  while (true) {
-    const std::filesystem::path candidate = dir / "configs";
-    if (std::filesystem::is_directory(candidate / "algorithms", error)) return candidate;
-    if (!dir.has_parent_path() || dir.parent_path() == dir) break;
-    dir = dir.parent_path();
-  }
-  throw ConfigError("no configs directory (with an algorithms/ folder) found at or above " +
-                    start.string());
-}
-
 std::filesystem::path algorithm_config_path(const std::filesystem::path& configs_dir,
                                             Algorithm alg) {
   return configs_dir / "algorithms" / (std::string(to_string(alg)) + ".yaml");

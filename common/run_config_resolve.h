@@ -19,7 +19,7 @@
 namespace bsg {
 
 struct RunConfigRequest {
-  std::filesystem::path configs_dir;       // holds algorithms/ and envs/
+  std::filesystem::path configs_dir;       // holds algorithms/ and envs/ (common/configs_location.h finds it)
   std::filesystem::path run_file;          // empty: no run file (--set names env_id, alg)
   std::vector<std::string> set_arguments;  // "key=value", applied last, in order
   // Valid environment ids (e.g. from the environment registry). Empty: the
@@ -33,11 +33,6 @@ struct ResolvedRunConfig {
   RunConfig config;
   ConfigOrigins origins;  // where each key's value came from
 };
-
-// The `configs` directory at or above `start`: start/configs, then
-// start/../configs, ... up to the filesystem root; a candidate must hold an
-// `algorithms` folder. Throws ConfigError naming `start` if none is found.
-std::filesystem::path locate_configs_dir(const std::filesystem::path& start);
 
 std::filesystem::path algorithm_config_path(const std::filesystem::path& configs_dir,
                                             Algorithm alg);

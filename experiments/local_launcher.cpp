@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <iostream>
@@ -12,9 +13,7 @@
 
 #include "algos/progress_line.h"
 #include "algos/run_directory.h"
-#include "common/atomic_file.h"
 #include "common/csv_text.h"
-#include "common/run_config_yaml.h"
 #include "experiments/child_process.h"
 #include "experiments/run_lock.h"
 #include "experiments/sweep_manifest.h"
@@ -64,6 +63,13 @@ ChildCommand train_command(const PlannedRun& run, const std::filesystem::path& b
     if (::geteuid() == 0) {
       command.argv.push_back("--oversubscribe");
       command.environment = {{"OMPI_ALLOW_RUN_AS_ROOT", "1"}, {"OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"}};
+    }
+    // Ctrl-C reaches the ranks (they share our process group) and mpirun;
+    // mpirun would SIGKILL them after 2 x odls_base_sigkill_timeout (1 s by
+    // default), before they finish their epoch and checkpoint (cli/
+    // stop_signals.h). The Slurm script raises it to 60 s as well.
+    if (std::getenv("OMPI_MCA_odls_base_sigkill_timeout") == nullptr) {
+      command.environment.emplace_back("OMPI_MCA_odls_base_sigkill_timeout", "60");
     }
   }
   command.argv.push_back(bsg_program.string());
@@ -156,8 +162,7 @@ void SweepRunner::start(std::size_t index) {
     return;
   }
   if (run.state == RunState::fresh) clear_unstarted_run(directory);
-  // The resolved run file, so that the run can be reproduced by hand.
-  write_file_atomically(run.dir / kSweepRunFileName, to_yaml(run.config));
+  prepare_run_directory(run);
   ChildCommand command = train_command(run, bsg_program_, configs_dir_, options_.ranks_per_run);
   command.inherited_fd = lock->fd();  // the child holds the lock until it ends
   {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "algos/run_directory.h"
+#include "common/atomic_file.h"
 #include "common/config_error.h"
 #include "common/run_config_checks.h"
 #include "common/run_config_yaml.h"
@@ -120,6 +121,11 @@ void prepare_sweep_directory(const SweepPlanRequest& request, const SweepPlan& p
   std::filesystem::copy_file(request.grid_file, request.out_dir / kSweepGridCopyName,
                              std::filesystem::copy_options::overwrite_existing);
   write_sweep_manifest(request.out_dir, plan.all_runs);
+}
+
+void prepare_run_directory(const PlannedRun& run) {
+  std::filesystem::create_directories(run.dir);
+  write_file_atomically(run.dir / kSweepRunFileName, to_yaml(run.config));
 }
 
 std::string dry_run_listing(const SweepPlan& plan) {

@@ -53,6 +53,11 @@ SweepPlan make_sweep_plan(const SweepPlanRequest& request);
 // made when they start.
 void prepare_sweep_directory(const SweepPlanRequest& request, const SweepPlan& plan);
 
+// Creates a run's directory and writes its resolved run.yaml (atomically), so
+// that the run can be started - or reproduced by hand - from it; both
+// launchers (local, Slurm) call it before a run starts.
+void prepare_run_directory(const PlannedRun& run);
+
 // The listing of --dry-run: one line per run, then the cost in env steps.
 std::string dry_run_listing(const SweepPlan& plan);
 

@@ -13,8 +13,9 @@ packages=(
   libgtest-dev                  # tests
   libcli11-dev                  # the bsg command line
   nlohmann-json3-dev            # JSON output of bsg, golden trajectories in the tests
-  python3 python3-matplotlib    # scripts/plot_curves.py: learning curves of a sweep (Figure 2)
-  python3-pytest                # tests/docs: the documentation check (run by ctest)
+  python3 python3-matplotlib    # scripts/plot_curves.py: learning curves of a run or a sweep (Figure 2)
+  python3-pytest                # Python tests run by ctest: docs check, install, scripts
+  slurm-wlm munge               # bsg sweep --slurm; scripts/slurm_local.sh (a one-node cluster for the tests)
 )
 
 missing=()

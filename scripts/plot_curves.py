@@ -1,28 +1,38 @@
 #!/usr/bin/python3
-"""Learning curves of a sweep in the style of the report's Figure 2.
+"""Learning curves of a run or of a sweep, in the style of the report's Figure 2.
 
+    scripts/plot_curves.py RUN_DIR [--out DIR] [--smooth N]
     scripts/plot_curves.py SWEEP_DIR [--out DIR] [--smooth N] [--all-configs]
 
-For each environment of the sweep, one PNG with two panels, the mean episode
-return and the mean episode cost per epoch (training episodes, as logged in
-progress.csv), one line per algorithm: the configuration `bsg table` selected
-(read from SWEEP_DIR/table1.csv, so run `bsg table SWEEP_DIR` first), the mean
-over its seeds with a band of +-1 standard deviation. The cost limit d is a
-black dashed line. An algorithm whose final deterministic policy violates the
-limit (mean evaluation cost H > d) is drawn dotted, as in Figure 2.
+A run directory (it holds progress.csv, as `bsg train` leaves it): one PNG,
+RUN_DIR/learning_curve.png, with the run's mean episode return and mean
+episode cost per epoch (training episodes), the raw values faint and a Hann
+window of --smooth epochs (default 9) drawn over them, and the cost limit d;
+then one summary line: return and cost at the start and at the end of training
+(means over the first and last tenth of the epochs), and the final
+deterministic policy's J and H from evaluation.json.
 
+A sweep directory: for each environment, one PNG with two panels, the mean
+episode return and the mean episode cost per epoch (training episodes, as
+logged in progress.csv), one line per algorithm: the configuration `bsg table`
+selected (read from SWEEP_DIR/table1.csv, so run `bsg table SWEEP_DIR` first),
+the mean over its seeds with a band of +-1 standard deviation. The cost limit d
+is a black dashed line. An algorithm whose final deterministic policy violates
+the limit (mean evaluation cost H > d) is drawn dotted, as in Figure 2.
 --smooth N applies a Hann window of N epochs to each seed's curve before
-averaging (the original plot.py always used 13); the default 1 draws the raw
-values. --all-configs draws every configuration instead of the selected ones
-(one PNG per environment and algorithm), as the report's Appendix figures do.
+averaging (the original plot.py always used 13); the sweep default 1 draws the
+raw values. --all-configs draws every configuration instead of the selected
+ones (one PNG per environment and algorithm), as the report's Appendix figures
+do. Writes SWEEP_DIR/plots/<env_id>.png by default.
 
 Runs with Debian's Python 3 and Matplotlib (/usr/bin/python3 with
-python3-matplotlib; see scripts/install_deps.sh). Writes SWEEP_DIR/plots/<env_id>.png by default.
+python3-matplotlib; see scripts/install_deps.sh).
 """
 
 import argparse
 import csv
 import glob
+import json
 import math
 import os
 import sys
@@ -232,24 +242,100 @@ def plot_all_configurations(sweep_dir, out_dir, window):
     return written
 
 
+def read_run_config_value(run_dir, key):
+    """A scalar `key: value` of RUN_DIR/config.yaml (as bsg writes it), or None."""
+    path = os.path.join(run_dir, "config.yaml")
+    if not os.path.exists(path):
+        return None
+    with open(path) as file:
+        for line in file:
+            name, _, rest = line.partition(":")
+            if name.strip() == key and not line.startswith((" ", "#")):
+                return rest.split("#", 1)[0].strip().strip("'\"")
+    return None
+
+
+def last_logged_value(path, column):
+    """The last row's value of `column` in a CSV file, or None."""
+    with open(path, newline="") as file:
+        rows = list(csv.DictReader(file))
+    value = rows[-1].get(column) if rows else None
+    return to_number(value) if value not in (None, "") else None
+
+
+def start_and_end_means(values):
+    """Means of the first and the last tenth of `values` (at least one value each)."""
+    count = max(1, len(values) // 10)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", category=RuntimeWarning)
+        return float(np.nanmean(values[:count])), float(np.nanmean(values[-count:])), count
+
+
+def plot_run(run_dir, out_dir, window):
+    """RUN_DIR's learning curve as one PNG; returns (path, summary line)."""
+    progress = os.path.join(run_dir, "progress.csv")
+    epochs, returns, costs = read_progress(progress)
+    if not len(epochs):
+        raise PlotError(f"{progress}: no epoch logged yet")
+    env_id = read_run_config_value(run_dir, "env_id") or "run"
+    alg = read_run_config_value(run_dir, "alg") or ""
+    label = ALGORITHM_LABELS.get(alg, alg)
+    cost_limit_text = read_run_config_value(run_dir, "cost_limit")
+    cost_limit = float(cost_limit_text) if cost_limit_text else None
+    color = ALGORITHM_COLORS.get(alg, "tab:blue")
+
+    figure, axes_pair = new_figure(f"{env_label(env_id)}, {label}: {os.path.basename(os.path.normpath(run_dir))}",
+                                   cost_limit)
+    for axes, values in zip(axes_pair, (returns, costs)):
+        axes.plot(epochs, values, color=color, alpha=0.3, linewidth=1.0)
+    smoothed = f"{label} (Hann window of {window} epochs)" if window > 1 else label
+    draw_line(axes_pair, epochs, np.array([smooth(returns, window)]), np.array([smooth(costs, window)]),
+              smoothed, color, False)
+    path = os.path.join(out_dir, "learning_curve.png")
+    finish_figure(figure, axes_pair, path)
+
+    return_start, return_end, count = start_and_end_means(returns)
+    cost_start, cost_end, _ = start_and_end_means(costs)
+    limit = f" (limit {cost_limit:g})" if cost_limit is not None else ""
+    seconds = last_logged_value(progress, "time_s")
+    took = f" in {seconds:.0f} s" if seconds is not None and math.isfinite(seconds) else ""
+    summary = (f"{env_id} {label}, {len(epochs)} epochs{took}: return {return_start:.1f} -> {return_end:.1f}, "
+               f"cost {cost_start:.1f} -> {cost_end:.1f}{limit} (means of the first and last {count} epochs)")
+    evaluation_path = os.path.join(run_dir, "evaluation.json")
+    if os.path.exists(evaluation_path):
+        with open(evaluation_path) as file:
+            evaluation = json.load(file)
+        summary += (f"; final policy J {evaluation['mean_return']:.1f}, H {evaluation['mean_cost']:.1f} "
+                    f"over {evaluation['episodes']} episodes")
+    return path, summary
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("sweep_dir", help="the --out directory of bsg sweep (after bsg table)")
-    parser.add_argument("--out", help="directory for the PNG files (default: SWEEP_DIR/plots)")
-    parser.add_argument("--smooth", type=int, default=1, help="Hann window in epochs (default 1: none)")
+    parser.add_argument("directory", help="a run directory (bsg train) or a sweep directory (bsg sweep, then bsg table)")
+    parser.add_argument("--out", help="directory for the PNG files (default: RUN_DIR, or SWEEP_DIR/plots)")
+    parser.add_argument("--smooth", type=int, help="Hann window in epochs (default: 9 for a run, 1 for a sweep)")
     parser.add_argument("--all-configs", action="store_true",
-                        help="one PNG per environment and algorithm with every configuration")
+                        help="sweep: one PNG per environment and algorithm with every configuration")
     args = parser.parse_args(argv)
-    if args.smooth < 1:
+    if args.smooth is not None and args.smooth < 1:
         parser.error("--smooth must be at least 1")
-    out_dir = args.out or os.path.join(args.sweep_dir, "plots")
+    is_run = os.path.exists(os.path.join(args.directory, "progress.csv"))
+    if is_run and args.all_configs:
+        parser.error("--all-configs applies to a sweep directory, not to a run directory")
+    window = args.smooth if args.smooth is not None else (9 if is_run else 1)
+    out_dir = args.out or (args.directory if is_run else os.path.join(args.directory, "plots"))
     try:
-        if not os.path.isdir(args.sweep_dir):
-            raise PlotError(f"sweep directory {args.sweep_dir} does not exist")
+        if not os.path.isdir(args.directory):
+            raise PlotError(f"directory {args.directory} does not exist")
         os.makedirs(out_dir, exist_ok=True)
+        if is_run:
+            path, summary = plot_run(args.directory, out_dir, window)
+            print(f"summary: {summary}; curves: {path}")
+            return 0
         plot = plot_all_configurations if args.all_configs else plot_selected
-        written = plot(args.sweep_dir, out_dir, args.smooth)
-    except (PlotError, OSError) as error:
+        written = plot(args.directory, out_dir, window)
+    except (PlotError, OSError, KeyError, ValueError) as error:
         print(f"plot_curves: error: {error}", file=sys.stderr)
         return 1
     for path, drawn in written:

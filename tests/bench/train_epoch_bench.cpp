@@ -16,6 +16,7 @@
 
 #include "algos/progress_csv.h"
 #include "algos/trainer.h"
+#include "common/configs_location.h"
 #include "common/mpi_context.h"
 #include "common/run_config_resolve.h"
 
@@ -37,11 +38,14 @@ int main(int argc, char** argv) {
   const std::string env_id = argc > 4 ? argv[4] : "SafetyBallCircle-v0";
 
   bsg::RunConfigRequest request;
-  // configs/ at or above the program (build directories live in the source tree), or $BSG_CONFIGS_DIR.
-  const char* configs_override = std::getenv("BSG_CONFIGS_DIR");
-  request.configs_dir = configs_override != nullptr
-                            ? std::filesystem::path(configs_override)
-                            : bsg::locate_configs_dir(std::filesystem::canonical("/proc/self/exe").parent_path());
+  // $BSG_CONFIGS, else configs/ at or above the program (build directories live in the source tree).
+  const char* configs_override = std::getenv("BSG_CONFIGS");
+  request.configs_dir =
+      configs_override != nullptr
+          ? std::filesystem::path(configs_override)
+          : bsg::locate_configs_dir({bsg::configs_at_or_above(std::filesystem::canonical("/proc/self/exe").parent_path(),
+                                                              "at or above the benchmark program")})
+                .dir;
   request.set_arguments = {"env_id=" + env_id, "alg=" + alg, "steps_per_epoch=" + steps, "epochs=" + epochs,
                            "eval_episodes=0", "save_freq=1000"};
   const bsg::RunConfig config = bsg::resolve_run_config(request).config;

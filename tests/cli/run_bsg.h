@@ -15,8 +15,9 @@ struct ProgramResult {
   std::string output;  // stdout and stderr together
 };
 
-inline ProgramResult run_bsg(const std::string& arguments) {
-  const std::string command = std::string(BSG_BINARY) + " " + arguments + " 2>&1";
+// Runs a shell command line, capturing stdout and stderr together.
+inline ProgramResult run_command(const std::string& command_line) {
+  const std::string command = command_line + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) throw std::runtime_error("cannot start: " + command);
   ProgramResult result;
@@ -26,6 +27,17 @@ inline ProgramResult run_bsg(const std::string& arguments) {
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+inline ProgramResult run_bsg(const std::string& arguments) {
+  return run_command(std::string(BSG_BINARY) + " " + arguments);
+}
+
+// Runs bsg from the folder `cwd` with an environment changed by env(1)'s
+// words in `environment` (e.g. "-u BSG_CONFIGS" or "BSG_CONFIGS=/x").
+inline ProgramResult run_bsg_in(const std::string& cwd, const std::string& environment,
+                                const std::string& arguments) {
+  return run_command("cd '" + cwd + "' && env " + environment + " " + BSG_BINARY + " " + arguments);
 }
 
 }  // namespace bsg::testing

@@ -358,19 +358,6 @@ TEST_F(ScratchConfigs, EpisodeLongerThanEpochIsAnErrorNamingBothKeys) {
   EXPECT_TRUE(contains(m, "steps_per_epoch = 200 (" + run.string() + ":3:1)"));
 }
 
-TEST_F(ScratchConfigs, LocateConfigsDirWalksUpFromTheGivenRoot) {
-  const fs::path nested = root_ / "a" / "b";
-  fs::create_directories(nested);
-  EXPECT_EQ(fs::weakly_canonical(locate_configs_dir(nested)), fs::weakly_canonical(configs_));
-  EXPECT_EQ(fs::weakly_canonical(locate_configs_dir(root_)), fs::weakly_canonical(configs_));
-  try {
-    locate_configs_dir(fs::temp_directory_path());
-    // Only fails if some ancestor of the temp dir has a configs/algorithms.
-  } catch (const ConfigError& e) {
-    EXPECT_TRUE(contains(std::string(e.what()), fs::temp_directory_path().string()));
-  }
-}
-
 TEST(CheckRunConfigForRanks, AppliesTheSpecsSetupChecks) {
   RunConfig c;
   c.steps_per_epoch = 1000;
