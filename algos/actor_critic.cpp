@@ -3,7 +3,7 @@
 namespace bsg {
 namespace {
 
-MlpInitOptions init_options(const RunConfig& config) { return MlpInitOptions{config.zero_bias_init}; }
+MlpOptions init_options(const RunConfig& config) { return MlpOptions{config.zero_bias_init, config.dtype}; }
 
 AdamOptions value_adam_options(const RunConfig& config) {
   AdamOptions options;

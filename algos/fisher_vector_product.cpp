@@ -27,7 +27,6 @@ FisherVectorProduct::FisherVectorProduct(const GaussianPolicy& policy,
   subsampled_observations_.resize(rows, observations.cols());
   for (Eigen::Index i = 0; i < rows; ++i) subsampled_observations_.row(i) = observations.row(i * stride);
   mean_net_.forward_batch(subsampled_observations_, workspace_);
-  scaled_tangents_.resize(rows, policy.action_size());
 }
 
 void FisherVectorProduct::apply(const Eigen::Ref<const Eigen::VectorXd>& direction,
@@ -45,9 +44,9 @@ void FisherVectorProduct::apply(const Eigen::Ref<const Eigen::VectorXd>& directi
   }
   ++call_count_;
   // 1/(N_f d_a sigma^2) sum_i J_i^T (J_i v)
-  const double scale = 1.0 / (static_cast<double>(scaled_tangents_.size()) * std_ * std_);
-  scaled_tangents_.noalias() = scale * mean_net_.jvp_batch(direction, workspace_);
-  mean_net_.backward_batch(scaled_tangents_, workspace_, product);
+  const double scale =
+      1.0 / (static_cast<double>(num_samples() * mean_net_.output_size()) * std_ * std_);
+  mean_net_.gauss_newton_product(direction, scale, workspace_, product);
   mpi_.average_in_place(product);             // avg over ranks, then
   product += options_.damping_coeff * direction;  // + damping v
 }

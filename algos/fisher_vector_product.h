@@ -5,8 +5,9 @@
 //
 // The operator is linearised at construction: it copies the mean net
 // (theta_old) and sigma, so later changes of the policy (line search) do not
-// affect it. apply() makes one JVP, one VJP and one allreduce of length P;
-// it allocates nothing.
+// affect it. apply() makes one JVP and one VJP per chunk of rows on the kept
+// forward pass (in the net's dtype) and one allreduce of length P; it
+// allocates nothing.
 //
 // Parameters:
 //   damping_coeff      0.1 (cg_damping), added after the rank average
@@ -46,8 +47,7 @@ class FisherVectorProduct {
   MpiContext mpi_;
   FisherVectorProductOptions options_;
   Eigen::MatrixXd subsampled_observations_;
-  MlpBatchWorkspace workspace_;
-  Eigen::MatrixXd scaled_tangents_;
+  MlpBatchWorkspace workspace_;  // the forward pass at theta_old over the N_f rows, kept
   long long call_count_ = 0;
 };
 

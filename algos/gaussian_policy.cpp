@@ -24,7 +24,7 @@ const double kHalfLog2Pi = 0.5 * std::log(2.0 * std::numbers::pi);
 }  // namespace
 
 GaussianPolicy::GaussianPolicy(int observation_size, int action_size, const std::vector<int>& hidden_sizes,
-                               Rng& rng, MlpInitOptions init)
+                               Rng& rng, MlpOptions init)
     : mean_net_(layer_sizes_of(observation_size, action_size, hidden_sizes), rng, init) {}
 
 double GaussianPolicy::log_std() const { return std::log(std_); }

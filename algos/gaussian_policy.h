@@ -6,7 +6,7 @@
 // Parameters:
 //   observation_size, action_size   d_o, d_a
 //   hidden_sizes                    {64, 64}
-//   init                            MlpInitOptions (zero_bias_init = false, Q1)
+//   init                            MlpOptions (zero_bias_init = false, Q1)
 //   std                             0.5 at construction (kInitialStd); epoch 0 of
 //                                   the annealing schedule sets 0.509 (Q2)
 #pragma once
@@ -24,7 +24,7 @@ class GaussianPolicy {
   static constexpr double kInitialStd = 0.5;
 
   GaussianPolicy(int observation_size, int action_size, const std::vector<int>& hidden_sizes, Rng& rng,
-                 MlpInitOptions init = {});
+                 MlpOptions init = {});
 
   int observation_size() const { return mean_net_.input_size(); }
   int action_size() const { return mean_net_.output_size(); }

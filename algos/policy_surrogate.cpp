@@ -24,9 +24,9 @@ PolicySurrogate::PolicySurrogate(const Eigen::Ref<const Eigen::MatrixXd>& observ
                                 std::to_string(advantages.size()) + ", cost_advantages " +
                                 std::to_string(cost_advantages.size()));
   }
+  means_.resize(n, actions.cols());
   log_probs_.resize(n);
   ratios_.resize(n);
-  output_gradients_.resize(n, actions.cols());
 }
 
 void PolicySurrogate::check_policy(const GaussianPolicy& policy, const char* where) const {
@@ -40,13 +40,14 @@ void PolicySurrogate::check_policy(const GaussianPolicy& policy, const char* whe
 
 void PolicySurrogate::set_reference_means(const GaussianPolicy& policy) {
   check_policy(policy, "PolicySurrogate::set_reference_means");
-  reference_means_ = policy.mean_net().forward_batch(observations_, workspace_);
+  reference_means_.resize(num_samples(), policy.action_size());
+  policy.mean_net().evaluate_batch(observations_, reference_means_, workspace_);
   has_reference_means_ = true;
 }
 
 void PolicySurrogate::compute_ratios(const GaussianPolicy& policy) {
-  const Eigen::MatrixXd& means = policy.mean_net().forward_batch(observations_, workspace_);
-  policy.log_prob_batch(means, actions_, log_probs_);
+  policy.mean_net().evaluate_batch(observations_, means_, workspace_);
+  policy.log_prob_batch(means_, actions_, log_probs_);
   ratios_ = (log_probs_ - old_log_probs_).array().exp().matrix();  // rho_i
 }
 
@@ -59,7 +60,7 @@ SurrogateValues PolicySurrogate::evaluate(const GaussianPolicy& policy) {
   values.cost_surrogate = ratios_.dot(cost_advantages_) / n;  // L_C = mean(rho A^C)
   values.mean_ratio = ratios_.mean();
   if (has_reference_means_) {
-    values.kl = policy.mean_kl(reference_means_, workspace_.layer_outputs.back());
+    values.kl = policy.mean_kl(reference_means_, means_);
   }
   return values;
 }
@@ -71,16 +72,23 @@ void PolicySurrogate::gradient(const GaussianPolicy& policy, double reward_weigh
     throw std::invalid_argument("PolicySurrogate::gradient: gradient has " + std::to_string(gradient.size()) +
                                 " entries, the policy has " + std::to_string(policy.mean_net().num_parameters()));
   }
-  compute_ratios(policy);
   const double sigma_squared = policy.std() * policy.std();
   const double n = static_cast<double>(num_samples());
-  const Eigen::MatrixXd& means = workspace_.layer_outputs.back();
-  // dL/dmu_ij = 1/N rho_i (w_R A_i + w_C A^C_i) (a_ij - mu_ij) / sigma^2
-  output_gradients_ = actions_ - means;
-  output_gradients_.array().colwise() *=
-      (ratios_.array() * (reward_weight * advantages_.array() + cost_weight * cost_advantages_.array())) /
-      (n * sigma_squared);
-  policy.mean_net().backward_batch(output_gradients_, workspace_, gradient);
+  // One streamed pass: each chunk's means give its ratios and dL/dmu, then its backward pass.
+  const auto output_gradient = [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& means,
+                                   Eigen::Ref<Eigen::MatrixXd> output_gradients) {
+    const Eigen::Index rows = means.rows();
+    auto log_probs = log_probs_.segment(first, rows);
+    policy.log_prob_batch(means, actions_.middleRows(first, rows), log_probs);
+    auto ratios = ratios_.segment(first, rows);
+    ratios = (log_probs - old_log_probs_.segment(first, rows)).array().exp().matrix();  // rho_i
+    // dL/dmu_ij = 1/N rho_i (w_R A_i + w_C A^C_i) (a_ij - mu_ij) / sigma^2
+    output_gradients = actions_.middleRows(first, rows) - means;
+    output_gradients.array().colwise() *= (ratios.array() * (reward_weight * advantages_.segment(first, rows).array() +
+                                                             cost_weight * cost_advantages_.segment(first, rows).array())) /
+                                          (n * sigma_squared);
+  };
+  policy.mean_net().gradient_batch(observations_, output_gradient, workspace_, gradient);
 }
 
 }  // namespace bsg

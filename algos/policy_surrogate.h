@@ -7,8 +7,9 @@
 // Everything here is LOCAL: callers average gradients and line-search values
 // over ranks with the MpiContext (g = avg grad L_R, b = avg grad L_C).
 //
-// The batch is copied once at construction; evaluation and gradients reuse
-// preallocated buffers.
+// The batch is copied once at construction; evaluation and gradients stream
+// it through the policy net chunk by chunk (memory O(N d_a) beyond the copy)
+// in the net's dtype, reusing preallocated buffers.
 #pragma once
 
 #include <Eigen/Core>
@@ -51,7 +52,7 @@ class PolicySurrogate {
 
  private:
   void check_policy(const GaussianPolicy& policy, const char* where) const;
-  // Forward pass and ratios at the current parameters into means_ / ratios_.
+  // Means and ratios at the current parameters into means_ / ratios_.
   void compute_ratios(const GaussianPolicy& policy);
 
   Eigen::MatrixXd observations_;
@@ -62,9 +63,9 @@ class PolicySurrogate {
   Eigen::MatrixXd reference_means_;
   bool has_reference_means_ = false;
   MlpBatchWorkspace workspace_;
+  Eigen::MatrixXd means_;  // mu_theta(s_i) at the last evaluation
   Eigen::VectorXd log_probs_;
   Eigen::VectorXd ratios_;
-  Eigen::MatrixXd output_gradients_;
 };
 
 }  // namespace bsg

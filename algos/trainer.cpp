@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <iostream>
 #include <ostream>
 
@@ -22,6 +23,8 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
+
+double process_cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 std::uint64_t stream_seed(const RunConfig& config, SeedStream stream, int rank, int index) {
   return derive_seed(static_cast<std::uint64_t>(config.seed), stream, static_cast<std::uint64_t>(rank),
@@ -149,6 +152,7 @@ void OnPolicyTrainer::standardize_advantages() {
 
 void OnPolicyTrainer::run_epoch(int epoch) {
   const auto epoch_start = Clock::now();
+  const double epoch_cpu_start = process_cpu_seconds();
   ActorCritic& ac = *actor_critic_;
   const int rank = mpi_.rank();
 
@@ -163,6 +167,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   check_rollout_finite(epoch);
   const double collect_seconds = seconds_since(epoch_start);
   const auto update_start = Clock::now();
+  const double update_cpu_start = process_cpu_seconds();
 
   // 3. Policy update with the pooled J_C and L.
   const EpisodeStatistics episodes = pool_episode_statistics(buffer_, mpi_);
@@ -170,6 +175,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   advantages_ = buffer_.advantages();
   cost_advantages_ = buffer_.cost_advantages();
   if (config_.use_standardized_advantages) standardize_advantages();
+  const auto policy_start = Clock::now();
   PolicySurrogate surrogate(normalized_observations_, buffer_.actions(), buffer_.log_probs(), advantages_,
                             cost_advantages_);
   const PolicyUpdateResult update = algorithm_->update(
@@ -177,19 +183,26 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   if (const auto loss = find_diagnostic(update, "Loss/Pi")) check_finite(epoch, "policy loss", *loss);
   check_parameters_finite(epoch);
 
-  // 4. Value fits (docs/algorithms.md#value-fits).
+  const double policy_update_seconds = seconds_since(policy_start);
+
+  // 4. Value fits (docs/algorithms.md#value-fits): V, and V_C if the algorithm uses it, on shared minibatches.
+  const auto value_fit_start = Clock::now();
   const ValueFitOptions fit_options{config_.train_v_iterations, config_.num_mini_batches, 16};
-  const ValueFitStats value_fit =
-      ac.value.fit(normalized_observations_, buffer_.value_targets(), shuffle_rng_, mpi_, fit_options);
+  std::vector<ValueFitJob> fit_jobs{{ac.value, buffer_.value_targets()}};
+  if (algorithm_->uses_cost_value_function()) fit_jobs.push_back({ac.cost_value, buffer_.cost_value_targets()});
+  const std::vector<ValueFitStats> fits =
+      fit_value_functions(fit_jobs, normalized_observations_, shuffle_rng_, mpi_, fit_options);
+  const ValueFitStats& value_fit = fits.front();
   check_finite(epoch, "value loss", value_fit.loss_before);
   check_finite(epoch, "value minibatch loss", value_fit.mean_minibatch_loss);
   std::optional<ValueFitStats> cost_value_fit;
   if (algorithm_->uses_cost_value_function()) {
-    cost_value_fit =
-        ac.cost_value.fit(normalized_observations_, buffer_.cost_value_targets(), shuffle_rng_, mpi_, fit_options);
+    cost_value_fit = fits.back();
     check_finite(epoch, "cost value loss", cost_value_fit->loss_before);
     check_finite(epoch, "cost value minibatch loss", cost_value_fit->mean_minibatch_loss);
   }
+
+  const double value_fit_seconds = seconds_since(value_fit_start);
 
   // 5. Normalisers last (docs/algorithms.md#each-epoch, step 5).
   if (ac.standardize_observations) ac.observation_normalizer.update(buffer_.observations(), mpi_);
@@ -200,9 +213,15 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   check_parameters_finite(epoch);
   if (epoch % config_.check_freq == 0) check_ranks_agree(epoch);
   const double update_seconds = seconds_since(update_start);
+  const double update_cpu_seconds = process_cpu_seconds() - update_cpu_start;
 
   // 6. Log and save.
   const double epoch_seconds = seconds_since(epoch_start);
+  if (options_.on_epoch_timed) {
+    options_.on_epoch_timed(EpochTimings{epoch, collect_seconds, policy_update_seconds, value_fit_seconds,
+                                         update_seconds, epoch_seconds, update_cpu_seconds,
+                                         process_cpu_seconds() - epoch_cpu_start});
+  }
   progress_.epochs_completed = epoch + 1;
   progress_.elapsed_seconds += epoch_seconds;
   seconds_this_process_ += epoch_seconds;

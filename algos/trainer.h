@@ -61,6 +61,20 @@ class NonFiniteError : public std::runtime_error {
   explicit NonFiniteError(const std::string& message) : std::runtime_error(message) {}
 };
 
+// Wall-clock seconds of one epoch's phases on this rank (bsg bench --train).
+struct EpochTimings {
+  int epoch = 0;
+  double collect_seconds = 0.0;        // rollout with GAE
+  double policy_update_seconds = 0.0;  // algorithm.update(): gradients, CG with Fisher products, line search
+  double value_fit_seconds = 0.0;      // V and V_C fits
+  double update_seconds = 0.0;         // everything after the rollout (policy, value fits, normalisers, checks)
+  double total_seconds = 0.0;          // the whole epoch before logging and saving
+  // Processor time of the process over the same spans: on a machine shared
+  // with other jobs, wall time includes waiting for a core, this does not.
+  double update_cpu_seconds = 0.0;
+  double total_cpu_seconds = 0.0;
+};
+
 struct TrainerOptions {
   bool resume = false;          // continue from the directory's checkpoint
   int stop_after_epochs = 0;    // > 0: stop (with a checkpoint) once this many epochs are done
@@ -69,6 +83,7 @@ struct TrainerOptions {
   // every rank the same answer); true: save a checkpoint and stop there, as
   // stop_after_epochs does. `bsg train` stops on SIGTERM / SIGINT this way.
   std::function<bool()> stop_requested;
+  std::function<void(const EpochTimings&)> on_epoch_timed;  // called on every rank after each epoch; may be empty
 };
 
 struct TrainingOutcome {

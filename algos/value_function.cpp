@@ -19,10 +19,8 @@ std::vector<int> value_layer_sizes(int observation_size, const std::vector<int>&
 }  // namespace
 
 ValueFunction::ValueFunction(int observation_size, const std::vector<int>& hidden_sizes, Rng& rng,
-                             MlpInitOptions init, AdamOptions adam)
-    : net_(value_layer_sizes(observation_size, hidden_sizes), rng, init),
-      optimizer_(net_.num_parameters(), adam),
-      gradient_(net_.num_parameters()) {}
+                             MlpOptions init, AdamOptions adam)
+    : net_(value_layer_sizes(observation_size, hidden_sizes), rng, init), optimizer_(net_.num_parameters(), adam) {}
 
 double ValueFunction::predict(const Eigen::Ref<const Eigen::VectorXd>& observation,
                               MlpSampleWorkspace& workspace) const {
@@ -37,7 +35,7 @@ void ValueFunction::predict_batch(const Eigen::Ref<const Eigen::MatrixXd>& obser
     throw std::invalid_argument("ValueFunction::predict_batch: values has " + std::to_string(values.size()) +
                                 " entries for " + std::to_string(observations.rows()) + " observations");
   }
-  values = net_.forward_batch(observations, workspace_).col(0);
+  net_.evaluate_batch(observations, Eigen::Map<Eigen::MatrixXd>(values.data(), values.size(), 1), workspace_);
 }
 
 double ValueFunction::loss(const Eigen::Ref<const Eigen::MatrixXd>& observations,
@@ -46,17 +44,50 @@ double ValueFunction::loss(const Eigen::Ref<const Eigen::MatrixXd>& observations
     throw std::invalid_argument("ValueFunction::loss: targets has " + std::to_string(targets.size()) +
                                 " entries for " + std::to_string(observations.rows()) + " observations");
   }
-  const Eigen::MatrixXd& predictions = net_.forward_batch(observations, workspace_);
-  return (predictions.col(0) - targets).squaredNorm() / static_cast<double>(targets.size());
+  if (predictions_.size() != targets.size()) predictions_.resize(targets.size());
+  predict_batch(observations, predictions_);
+  return (predictions_ - targets).squaredNorm() / static_cast<double>(targets.size());
+}
+
+double ValueFunction::loss_and_gradient(const Eigen::Ref<const Eigen::MatrixXd>& observations,
+                                        const Eigen::Ref<const Eigen::VectorXd>& targets,
+                                        Eigen::Ref<Eigen::VectorXd> gradient) {
+  const Eigen::Index rows = observations.rows();
+  if (targets.size() != rows || rows == 0) {
+    throw std::invalid_argument("ValueFunction::loss_and_gradient: targets has " + std::to_string(targets.size()) +
+                                " entries for " + std::to_string(rows) + " observations");
+  }
+  double squared_error = 0.0;
+  const auto output_gradient = [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& values,
+                                   Eigen::Ref<Eigen::MatrixXd> output_gradients) {
+    output_gradients.col(0) = values.col(0) - targets.segment(first, values.rows());  // V(s) - R
+    squared_error += output_gradients.squaredNorm();
+    output_gradients *= 2.0 / static_cast<double>(rows);  // d/dV of mean (V - R)^2
+  };
+  net_.gradient_batch(observations, output_gradient, workspace_, gradient);
+  return squared_error / static_cast<double>(rows);
 }
 
 ValueFitStats ValueFunction::fit(const Eigen::Ref<const Eigen::MatrixXd>& observations,
                                  const Eigen::Ref<const Eigen::VectorXd>& targets, Rng& rng, const MpiContext& mpi,
                                  const ValueFitOptions& options) {
+  const ValueFitJob job{*this, targets};
+  return fit_value_functions(std::span<const ValueFitJob>(&job, 1), observations, rng, mpi, options).front();
+}
+
+std::vector<ValueFitStats> fit_value_functions(std::span<const ValueFitJob> jobs,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& observations, Rng& rng,
+                                               const MpiContext& mpi, const ValueFitOptions& options) {
   const Eigen::Index n = observations.rows();
-  if (targets.size() != n) {
-    throw std::invalid_argument("ValueFunction::fit: targets has " + std::to_string(targets.size()) + " entries for " +
-                                std::to_string(n) + " observations");
+  for (const ValueFitJob& job : jobs) {
+    if (job.targets.size() != n) {
+      throw std::invalid_argument("ValueFunction::fit: targets has " + std::to_string(job.targets.size()) +
+                                  " entries for " + std::to_string(n) + " observations");
+    }
+    if (job.value.net().input_size() != observations.cols()) {
+      throw std::invalid_argument("ValueFunction::fit: observations have " + std::to_string(observations.cols()) +
+                                  " columns, the value net expects " + std::to_string(job.value.net().input_size()));
+    }
   }
   if (options.iterations <= 0 || options.num_mini_batches <= 0) {
     throw std::invalid_argument("ValueFunction::fit: iterations (" + std::to_string(options.iterations) +
@@ -70,40 +101,55 @@ ValueFitStats ValueFunction::fit(const Eigen::Ref<const Eigen::MatrixXd>& observ
                                 " is below min_mini_batch_size " + std::to_string(options.min_mini_batch_size) +
                                 " (more local steps or fewer minibatches needed)");
   }
-  ValueFitStats stats;
-  stats.loss_before = loss(observations, targets);
-  permutation_.resize(static_cast<std::size_t>(n));
-  double loss_sum = 0.0;
+  std::vector<ValueFitStats> stats(jobs.size());
+  std::vector<Eigen::Index> offsets;  // of each job's gradient in the fused allreduce buffer
+  Eigen::Index total_parameters = 0;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    stats[j].loss_before = jobs[j].value.loss(observations, jobs[j].targets);
+    offsets.push_back(total_parameters);
+    total_parameters += jobs[j].value.net().num_parameters();
+  }
+  Eigen::VectorXd gradients(total_parameters);
+  Eigen::MatrixXd minibatch_observations(mini_batch_size, observations.cols());
+  Eigen::MatrixXd minibatch_targets(mini_batch_size, static_cast<Eigen::Index>(jobs.size()));
+  std::vector<double> loss_sums(jobs.size(), 0.0);
+  std::vector<Eigen::Index> permutation(static_cast<std::size_t>(n));
+  int adam_steps = 0;
   for (int pass = 0; pass < options.iterations; ++pass) {
     // Fisher–Yates shuffle with the rank's RNG (not NumPy's permutation stream).
-    std::iota(permutation_.begin(), permutation_.end(), Eigen::Index{0});
+    std::iota(permutation.begin(), permutation.end(), Eigen::Index{0});
     for (Eigen::Index i = n - 1; i > 0; --i) {
       const auto j = static_cast<Eigen::Index>(uniform_index(rng, static_cast<std::uint64_t>(i + 1)));
-      std::swap(permutation_[static_cast<std::size_t>(i)], permutation_[static_cast<std::size_t>(j)]);
+      std::swap(permutation[static_cast<std::size_t>(i)], permutation[static_cast<std::size_t>(j)]);
     }
     for (Eigen::Index start = 0; start < n; start += mini_batch_size) {
       const Eigen::Index rows = std::min(mini_batch_size, n - start);
-      if (minibatch_observations_.rows() != rows || minibatch_observations_.cols() != observations.cols()) {
-        minibatch_observations_.resize(rows, observations.cols());
-        minibatch_targets_.resize(rows);
-        output_gradients_.resize(rows, 1);
-      }
       for (Eigen::Index i = 0; i < rows; ++i) {
-        const Eigen::Index index = permutation_[static_cast<std::size_t>(start + i)];
-        minibatch_observations_.row(i) = observations.row(index);
-        minibatch_targets_[i] = targets[index];
+        const Eigen::Index index = permutation[static_cast<std::size_t>(start + i)];
+        minibatch_observations.row(i) = observations.row(index);
+        for (std::size_t j = 0; j < jobs.size(); ++j) {
+          minibatch_targets(i, static_cast<Eigen::Index>(j)) = jobs[j].targets[index];
+        }
       }
-      const Eigen::MatrixXd& predictions = net_.forward_batch(minibatch_observations_, workspace_);
-      output_gradients_.col(0) = predictions.col(0) - minibatch_targets_;  // V(s) - R
-      loss_sum += output_gradients_.squaredNorm() / static_cast<double>(rows);  // mean (V - R)^2
-      output_gradients_ *= 2.0 / static_cast<double>(rows);                    // d loss / dV
-      net_.backward_batch(output_gradients_, workspace_, gradient_);
-      mpi.average_in_place(gradient_);
-      optimizer_.step(net_.mutable_parameters(), gradient_);
-      ++stats.adam_steps;
+      for (std::size_t j = 0; j < jobs.size(); ++j) {
+        ValueFunction& value = jobs[j].value;
+        loss_sums[j] += value.loss_and_gradient(  // mean (V - R)^2 and its gradient
+            minibatch_observations.topRows(rows), minibatch_targets.col(static_cast<Eigen::Index>(j)).head(rows),
+            gradients.segment(offsets[j], value.net().num_parameters()));
+      }
+      mpi.average_in_place(gradients);  // one allreduce for all the networks
+      for (std::size_t j = 0; j < jobs.size(); ++j) {
+        ValueFunction& value = jobs[j].value;
+        value.optimizer().step(value.net().mutable_parameters(),
+                               gradients.segment(offsets[j], value.net().num_parameters()));
+      }
+      ++adam_steps;
     }
   }
-  stats.mean_minibatch_loss = loss_sum / stats.adam_steps;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    stats[j].adam_steps = adam_steps;
+    stats[j].mean_minibatch_loss = loss_sums[j] / adam_steps;
+  }
   return stats;
 }
 

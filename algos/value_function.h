@@ -4,6 +4,10 @@
 // m = floor(N / num_mini_batches) (the last may be shorter), with the loss
 // mean (V(s) - R)^2, the gradient averaged over ranks, then one Adam step.
 // That is iterations * ceil(N / m) Adam steps (80 when 16 divides N).
+// fit_value_functions fits V and V_C together: one shuffle per pass and one
+// gathered minibatch serve both networks, and their two gradients share one
+// allreduce (the original fits V, then V_C, each on its own shuffles: the
+// same schedule in distribution, half the gathering and messages).
 //
 // Parameters:
 //   hidden_sizes          {64, 64}
@@ -14,6 +18,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <span>
 #include <vector>
 
 #include "common/adam.h"
@@ -37,7 +42,7 @@ struct ValueFitStats {
 
 class ValueFunction {
  public:
-  ValueFunction(int observation_size, const std::vector<int>& hidden_sizes, Rng& rng, MlpInitOptions init = {},
+  ValueFunction(int observation_size, const std::vector<int>& hidden_sizes, Rng& rng, MlpOptions init = {},
                 AdamOptions adam = {});
 
   Mlp& net() { return net_; }
@@ -47,10 +52,13 @@ class ValueFunction {
 
   // V(s) for one normalised observation; no allocation once `workspace` is sized.
   double predict(const Eigen::Ref<const Eigen::VectorXd>& observation, MlpSampleWorkspace& workspace) const;
-  // V(s_i) for a batch (one observation per row) into `values`.
+  // V(s_i) for a batch (one observation per row) into `values` (streamed, net's dtype).
   void predict_batch(const Eigen::Ref<const Eigen::MatrixXd>& observations, Eigen::Ref<Eigen::VectorXd> values);
   // Local mean squared error against `targets`.
   double loss(const Eigen::Ref<const Eigen::MatrixXd>& observations, const Eigen::Ref<const Eigen::VectorXd>& targets);
+  // The same loss and its parameter gradient into `gradient`, in one streamed pass.
+  double loss_and_gradient(const Eigen::Ref<const Eigen::MatrixXd>& observations,
+                           const Eigen::Ref<const Eigen::VectorXd>& targets, Eigen::Ref<Eigen::VectorXd> gradient);
 
   // The docs/algorithms.md#value-fits schedule. Collective (one gradient allreduce per minibatch); `rng`
   // is the rank's RNG (shuffles).
@@ -62,11 +70,20 @@ class ValueFunction {
   Mlp net_;
   Adam optimizer_;
   MlpBatchWorkspace workspace_;
-  Eigen::MatrixXd minibatch_observations_;
-  Eigen::VectorXd minibatch_targets_;
-  Eigen::MatrixXd output_gradients_;
-  Eigen::VectorXd gradient_;
-  std::vector<Eigen::Index> permutation_;
+  Eigen::VectorXd predictions_;
 };
+
+// One network of fit_value_functions and the targets it learns.
+struct ValueFitJob {
+  ValueFunction& value;
+  Eigen::Ref<const Eigen::VectorXd> targets;
+};
+
+// The schedule above (docs/algorithms.md#value-fits) for every job on the same shuffles of `observations` (see
+// above); returns one ValueFitStats per job. Collective (one allreduce per
+// minibatch); `rng` is the rank's RNG.
+std::vector<ValueFitStats> fit_value_functions(std::span<const ValueFitJob> jobs,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& observations, Rng& rng,
+                                               const MpiContext& mpi, const ValueFitOptions& options = {});
 
 }  // namespace bsg

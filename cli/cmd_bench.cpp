@@ -1,6 +1,8 @@
 // `bsg bench [--env ID] [--steps N] [--json]`: environment steps per second on
 // one core with random actions, beside the raw physics rate of the same world
 // (actions and engine steps only, no task, sensor or observation work).
+// `bsg bench --train --env ID --alg A [--epochs N] [--set key=value]... [--json]`:
+// seconds per training epoch instead (train_benchmark.h).
 #include <CLI/CLI.hpp>
 
 #include <iomanip>
@@ -13,6 +15,7 @@
 #include "commands.h"
 #include "envs/env.h"
 #include "envs/env_benchmark.h"
+#include "train_benchmark.h"
 
 namespace bsg::cli {
 namespace {
@@ -21,6 +24,7 @@ struct BenchArguments {
   std::string env_id;  // empty: every registered environment
   long steps = 20000;
   bool json = false;
+  bool train = false;  // --train: time training epochs (train_benchmark.h)
 };
 
 int bench(const BenchArguments& args) {
@@ -63,10 +67,31 @@ void add_bench_command(CLI::App& app, Action& run) {
       "bench", "Env steps per second on one core, beside the raw physics rate of the same world");
   auto args = std::make_shared<BenchArguments>();
   command->add_option("--env", args->env_id, "one environment id (default: all registered)");
-  command->add_option("--steps", args->steps, "steps per measurement (>= 1)")
-      ->check(CLI::Range(1L, 100000000L));
+  auto* steps = command->add_option("--steps", args->steps, "steps per measurement (>= 1)")
+                    ->check(CLI::Range(1L, 100000000L));
   command->add_flag("--json", args->json, "print a JSON array");
-  command->callback([&run, args]() { run = [args]() { return bench(*args); }; });
+  // --train: seconds per training epoch (collection, policy update, value fits).
+  auto train = std::make_shared<TrainBenchArguments>();
+  auto* train_flag = command->add_flag("--train", args->train, "time training epochs instead of environment steps");
+  auto* alg = command->add_option("--alg", train->alg, "--train: algorithm (default lag-trpo)");
+  auto* epochs = command->add_option("--epochs", train->epochs, "--train: epochs to time (default 5)")
+                     ->check(CLI::Range(1, 1000000));
+  auto* set = command->add_option("--set", train->set_arguments, "--train: override one config key (repeatable)")
+                  ->expected(1)
+                  ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  steps->excludes(train_flag);
+  alg->needs(train_flag);
+  epochs->needs(train_flag);
+  set->needs(train_flag);
+  command->callback([&run, args, train]() {
+    if (args->train) {
+      if (!args->env_id.empty()) train->env_id = args->env_id;
+      train->json = args->json;
+      run = [train]() { return run_train_benchmark(*train); };
+      return;
+    }
+    run = [args]() { return bench(*args); };
+  });
 }
 
 }  // namespace bsg::cli

@@ -16,6 +16,8 @@
 #include <string_view>
 #include <vector>
 
+#include "common/dtype.h"
+
 namespace bsg {
 
 // The five algorithms, spelled in configs as the original code spells them
@@ -65,6 +67,7 @@ struct RunConfig {
   std::vector<int> hidden_sizes = {64, 64};
   Activation activation = Activation::tanh;
   bool zero_bias_init = false;     // Q1
+  Dtype dtype = Dtype::float32;    // arithmetic of the learner's batch passes (common/dtype.h)
 
   // --- returns and advantages (docs/algorithms.md#normalisers, #rollout-and-gae) ---
   double gamma = 0.99;

@@ -117,6 +117,10 @@ const std::vector<SchemaRow>& schema_rows() {
            "hidden-layer activation of all nets"),
     boolean("zero_bias_init", &R::zero_bias_init, L::algorithm, all,
             "Q1: zero initial biases (report) instead of uniform +-1/sqrt(fan_in) (original)"),
+    choice("dtype", enum_access<&R::dtype>(), kDtypeNames, L::algorithm, all,
+           "arithmetic of the networks' batch passes (surrogate, gradients, Fisher products, line search, "
+           "value fits): float32 (the original's PyTorch default; faster, learning within seed spread) or "
+           "float64; parameters, optimiser moments and CG vectors stay float64"),
     // --- returns, advantages, normalisation (docs/algorithms.md#normalisers, #rollout-and-gae) ---
     real("gamma", &R::gamma, L::algorithm, open_closed(0, 1), all,
          "discount factor for rewards and costs"),

@@ -30,6 +30,12 @@ RunConfig from_document(const YAML::Node& document, const std::string& source_na
   }
   if (!valid_env_ids.empty()) check_env_id(config.env_id, origins["env_id"], valid_env_ids);
   apply_config_entries(config, entries, origins);
+  // Run directories written before the `dtype` key existed were trained in
+  // float64 throughout: they resume in float64.
+  if (origins.count("dtype") == 0) {
+    config.dtype = Dtype::float64;
+    origins["dtype"] = source_name + " (no dtype: written before the key existed, float64)";
+  }
   for (const ConfigKey& key : run_config_schema()) {
     if (key.applies_to(config.alg) && origins.count(std::string(key.key)) == 0) {
       throw ConfigError(source_name + ": resolved config lacks key '" + std::string(key.key) +

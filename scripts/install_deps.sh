@@ -14,7 +14,9 @@ packages=(
   libcli11-dev                  # the bsg command line
   nlohmann-json3-dev            # JSON output of bsg, golden trajectories in the tests
   python3 python3-matplotlib    # scripts/plot_curves.py: learning curves of a run or a sweep (Figure 2)
-  python3-pytest                # Python tests run by ctest: docs check, install, scripts
+  python3-pytest                # Python tests run by ctest: docs check, install, scripts, tests/python
+  pybind11-dev python3-dev      # the bsg Python module (python/)
+  python3-numpy                 # its arrays
   slurm-wlm munge               # bsg sweep --slurm; scripts/slurm_local.sh (a one-node cluster for the tests)
 )
 

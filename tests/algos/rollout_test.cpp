@@ -130,8 +130,11 @@ TEST(Rollout, LogProbabilitiesMatchThePolicyAtTheStoredActions) {
   f.collector.collect(env, 5, f.actor_critic, f.noise, f.buffer);
   Eigen::MatrixXd normalized(300, 3);
   f.actor_critic.normalize_observations(f.buffer.observations(), normalized);
+  // The rollout's one-sample passes are double whatever the dtype; so is the oracle.
+  bsg::Mlp mean_net = f.actor_critic.policy.mean_net();
+  mean_net.set_dtype(bsg::Dtype::float64);
   bsg::MlpBatchWorkspace workspace;
-  const Eigen::MatrixXd means = f.actor_critic.policy.mean_net().forward_batch(normalized, workspace);
+  const Eigen::MatrixXd means = mean_net.forward_batch(normalized, workspace);
   Eigen::VectorXd log_probs(300);
   f.actor_critic.policy.log_prob_batch(means, f.buffer.actions(), log_probs);
   EXPECT_LT((log_probs - f.buffer.log_probs()).cwiseAbs().maxCoeff(), 1e-10);

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include "../test_support.h"
 #include "algos/make_algorithm.h"
@@ -79,30 +80,79 @@ TEST(Trainer, ANonFiniteRewardStopsTheRunAndKeepsTheLastCheckpoint) {
   EXPECT_TRUE(loaded.policy.mean_net().parameters().allFinite());
 }
 
-TEST(Trainer, ResumingInProcessContinuesWithTheSameNumbers) {
+TEST(Trainer, ResumingInProcessContinuesWithTheSameNumbersInBothDtypes) {
+  for (const bsg::Dtype dtype : {bsg::Dtype::float32, bsg::Dtype::float64}) {
+    SCOPED_TRACE(std::string(bsg::to_string(dtype)));
+    TemporaryDirectory dir;
+    bsg::RunConfig config = scripted_config();
+    config.dtype = dtype;
+    config.save_freq = 10;  // only the stop and the end save
+    bsg::OnPolicyTrainer whole(config, bsg::RunDirectory(dir.path() / "whole"), bsg::MpiContext::single_process(),
+                               {}, std::make_unique<ScriptedEnv>(100));
+    whole.run();
+
+    bsg::TrainerOptions stop;
+    stop.stop_after_epochs = 3;
+    {
+      bsg::OnPolicyTrainer first(config, bsg::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
+                                 stop, std::make_unique<ScriptedEnv>(100));
+      const bsg::TrainingOutcome outcome = first.run();
+      EXPECT_FALSE(outcome.finished);
+      EXPECT_EQ(outcome.epochs_completed, 3);
+    }
+    bsg::TrainerOptions resume;
+    resume.resume = true;
+    bsg::OnPolicyTrainer second(config, bsg::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
+                                resume, std::make_unique<ScriptedEnv>(100));
+    EXPECT_EQ(second.epochs_completed(), 3);
+    second.run();
+    EXPECT_EQ(second.actor_critic().policy.mean_net().parameters(),
+              whole.actor_critic().policy.mean_net().parameters());
+    EXPECT_EQ(second.actor_critic().value.net().parameters(), whole.actor_critic().value.net().parameters());
+    EXPECT_EQ(second.actor_critic().cost_value.net().parameters(), whole.actor_critic().cost_value.net().parameters());
+    EXPECT_EQ(second.algorithm().state(), whole.algorithm().state());
+  }
+}
+
+TEST(Trainer, AFloat32EpochMovesTheParametersAsTheFloat64EpochDoes) {
+  // Same seeds, different batch arithmetic: the first epoch's rollout is
+  // identical (the rollout's one-sample passes are double in both), so after
+  // one epoch the parameters differ only by single-precision rounding in the
+  // update, a tiny fraction of how far the epoch moved them; a bug in the
+  // float32 path would show as a gap of the order of the move itself.
   TemporaryDirectory dir;
   bsg::RunConfig config = scripted_config();
-  config.save_freq = 10;  // only the stop and the end save
-  bsg::OnPolicyTrainer whole(config, bsg::RunDirectory(dir.path() / "whole"), bsg::MpiContext::single_process(), {},
-                             std::make_unique<ScriptedEnv>(100));
-  whole.run();
-
-  bsg::TrainerOptions stop;
-  stop.stop_after_epochs = 3;
-  {
-    bsg::OnPolicyTrainer first(config, bsg::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
-                               stop, std::make_unique<ScriptedEnv>(100));
-    const bsg::TrainingOutcome outcome = first.run();
-    EXPECT_FALSE(outcome.finished);
-    EXPECT_EQ(outcome.epochs_completed, 3);
-  }
-  bsg::TrainerOptions resume;
-  resume.resume = true;
-  bsg::OnPolicyTrainer second(config, bsg::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
-                              resume, std::make_unique<ScriptedEnv>(100));
-  EXPECT_EQ(second.epochs_completed(), 3);
-  second.run();
-  EXPECT_EQ(second.actor_critic().policy.mean_net().parameters(), whole.actor_critic().policy.mean_net().parameters());
-  EXPECT_EQ(second.actor_critic().value.net().parameters(), whole.actor_critic().value.net().parameters());
-  EXPECT_EQ(second.algorithm().state(), whole.algorithm().state());
+  config.epochs = 1;
+  config.eval_episodes = 0;
+  config.dtype = bsg::Dtype::float64;
+  const bsg::OnPolicyTrainer initial(config, bsg::RunDirectory(dir.path() / "initial"),
+                                     bsg::MpiContext::single_process(), {}, std::make_unique<ScriptedEnv>(100));
+  bsg::OnPolicyTrainer reference(config, bsg::RunDirectory(dir.path() / "f64"), bsg::MpiContext::single_process(), {},
+                                 std::make_unique<ScriptedEnv>(100));
+  reference.run();
+  config.dtype = bsg::Dtype::float32;
+  bsg::OnPolicyTrainer single(config, bsg::RunDirectory(dir.path() / "f32"), bsg::MpiContext::single_process(), {},
+                              std::make_unique<ScriptedEnv>(100));
+  single.run();
+  // The policy step (gradient, CG on Fisher products, line search) agrees to
+  // 1e-3 of its length. The value nets get a looser bound: the scripted
+  // observations are not normalised in epoch 0 (t/10 up to 10), which
+  // saturates some tanh units; float32 rounds their derivative to exactly 0
+  // where float64 keeps ~1e-9, and Adam, dividing by sqrt(v), turns such tiny
+  // gradients into steps of size lr. value_function_test checks the value
+  // fit itself at 1e-3 on unsaturated data.
+  const auto check = [](const char* net, const Eigen::VectorXd& start, const Eigen::VectorXd& f64,
+                        const Eigen::VectorXd& f32, double tolerance) {
+    const double moved = (f64 - start).norm();
+    EXPECT_GT(moved, 1e-3) << net;
+    EXPECT_LT((f32 - f64).norm(), tolerance * moved) << net << " moved " << moved;
+  };
+  const auto& a0 = initial.actor_critic();
+  const auto& a64 = reference.actor_critic();
+  const auto& a32 = single.actor_critic();
+  check("policy", a0.policy.mean_net().parameters(), a64.policy.mean_net().parameters(),
+        a32.policy.mean_net().parameters(), 1e-3);
+  check("V", a0.value.net().parameters(), a64.value.net().parameters(), a32.value.net().parameters(), 0.1);
+  check("V_C", a0.cost_value.net().parameters(), a64.cost_value.net().parameters(),
+        a32.cost_value.net().parameters(), 0.1);
 }

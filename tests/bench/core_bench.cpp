@@ -1,10 +1,12 @@
 // Speed of the learning core's hot paths (printed, never asserted):
 // one-observation policy forward, batch forward of 1000, backward over 32000
 // samples, and one Fisher-vector product over 8000 sub-sampled rows (a local
-// batch of 32000, every 4th row), for a small and a large problem size.
+// batch of 32000, every 4th row), for a small and a large problem size, in
+// both dtypes of the batch passes (the one-observation passes are always double).
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "algos/fisher_vector_product.h"
@@ -39,9 +41,9 @@ Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, bsg::Rng& rn
 
 volatile double sink = 0.0;  // keeps results alive
 
-void run_case(int observation_size, int action_size) {
+void run_case(int observation_size, int action_size, bsg::Dtype dtype) {
   bsg::Rng rng(0);
-  bsg::GaussianPolicy policy(observation_size, action_size, {64, 64}, rng);
+  bsg::GaussianPolicy policy(observation_size, action_size, {64, 64}, rng, bsg::MlpOptions{false, dtype});
   const bsg::Mlp& net = policy.mean_net();
 
   const Eigen::VectorXd observation = random_matrix(observation_size, 1, rng);
@@ -79,19 +81,21 @@ void run_case(int observation_size, int action_size) {
     sink = sink + product[0];
   });
 
-  std::printf("| %3d | %3d | %6ld | %9.2f | %8.2f | %8.0f | %9.0f | %9.0f | %8.0f |\n", observation_size, action_size,
-              static_cast<long>(net.num_parameters()), forward_one, sample_one, forward_1000, forward_32000,
+  std::printf("| %7s | %3d | %3d | %6ld | %9.2f | %8.2f | %8.0f | %9.0f | %9.0f | %8.0f |\n", std::string(bsg::to_string(dtype)).c_str(),
+              observation_size, action_size, static_cast<long>(net.num_parameters()), forward_one, sample_one, forward_1000, forward_32000,
               backward_32000, fvp_8000);
 }
 
 }  // namespace
 
 int main() {
-  std::printf("bsg core benchmark (64-64 tanh policy, double precision, one thread); times in microseconds\n\n");
-  std::printf("| d_o | d_a | params | fwd 1 obs | sample 1 | fwd 1000 | fwd 32000 | bwd 32000 | FVP 8000 |\n");
-  std::printf("|----:|----:|-------:|----------:|---------:|---------:|----------:|----------:|---------:|\n");
-  run_case(8, 2);
-  run_case(83, 8);
+  std::printf("bsg core benchmark (64-64 tanh policy, one thread); times in microseconds\n\n");
+  std::printf("| dtype   | d_o | d_a | params | fwd 1 obs | sample 1 | fwd 1000 | fwd 32000 | bwd 32000 | FVP 8000 |\n");
+  std::printf("|---------|----:|----:|-------:|----------:|---------:|---------:|----------:|----------:|---------:|\n");
+  for (const bsg::Dtype dtype : {bsg::Dtype::float64, bsg::Dtype::float32}) {
+    run_case(8, 2, dtype);
+    run_case(83, 8, dtype);
+  }
   std::printf("\nFVP 8000 = one Fisher-vector product over the 8000 rows sub-sampled from a 32000-row batch\n"
               "(JVP + VJP + damping; no MPI). bwd 32000 = parameter gradient after a cached forward pass.\n");
   return sink == 12345.678 ? 1 : 0;

@@ -105,4 +105,36 @@ TEST(BenchCommand, UnknownEnvAndBadStepsAreErrors) {
   EXPECT_EQ(run_bsg("bench --steps 0").exit_code, 2);
 }
 
+TEST(BenchCommand, TrainTimesEveryEpochAndPrintsTheMedians) {
+  const nlohmann::json result = parse_json(run_bsg(
+      "bench --train --env SafetyBallCircle-v0 --alg trpo --epochs 2 --set steps_per_epoch=1000 --set dtype=float64 "
+      "--json").output);
+  EXPECT_EQ(result.at("alg"), "trpo");
+  EXPECT_EQ(result.at("dtype"), "float64");
+  EXPECT_EQ(result.at("steps_per_epoch"), 1000);
+  ASSERT_EQ(result.at("epochs").size(), 2u);
+  for (const nlohmann::json& epoch : result.at("epochs")) {
+    const double collect = epoch.at("collect_s"), policy = epoch.at("policy_update_s"),
+                 value = epoch.at("value_fit_s"), update = epoch.at("update_s"), total = epoch.at("total_s");
+    EXPECT_GT(collect, 0);
+    EXPECT_GT(policy, 0);
+    EXPECT_GT(value, 0);
+    EXPECT_GE(update, policy + value);  // the update also holds the normalisers and checks
+    EXPECT_GE(total, collect + update);
+  }
+  EXPECT_GT(result.at("median").at("total_s").get<double>(), 0);
+  const auto table = run_bsg("bench --train --env SafetyBallCircle-v0 --alg trpo --epochs 1 --set steps_per_epoch=1000");
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  EXPECT_NE(table.output.find("median"), std::string::npos) << table.output;
+  EXPECT_NE(table.output.find("dtype float32"), std::string::npos) << table.output;  // the shipped default
+}
+
+TEST(BenchCommand, TrainOptionsAreCheckedAndConfigErrorsNameTheKey) {
+  EXPECT_EQ(run_bsg("bench --train --steps 100").exit_code, 2);  // --steps times env steps only
+  EXPECT_EQ(run_bsg("bench --alg trpo").exit_code, 2);           // --alg needs --train
+  const auto bad = run_bsg("bench --train --env SafetyBallCircle-v0 --epochs 1 --set dtype=float16");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("dtype"), std::string::npos) << bad.output;
+}
+
 }  // namespace

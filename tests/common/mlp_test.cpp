@@ -74,7 +74,7 @@ TEST(Mlp, InitialWeightVarianceIsOneThirdOverFanIn) {
 
 TEST(Mlp, ZeroBiasInitGivesZeroBiases) {
   Rng rng(4);
-  const Mlp net({5, 64, 64, 2}, rng, MlpInitOptions{.zero_bias_init = true});
+  const Mlp net({5, 64, 64, 2}, rng, MlpOptions{.zero_bias_init = true});
   for (int layer = 0; layer < net.num_layers(); ++layer) EXPECT_EQ(net.bias(layer).norm(), 0.0);
   EXPECT_GT(net.weights(0).norm(), 0.0);
 }
@@ -244,4 +244,132 @@ TEST(Mlp, WrongSizesGiveExceptionsNamingTheInput) {
 }
 
 }  // namespace
+// --- streamed passes and the Gauss-Newton product (float64) -----------------
+
+TEST(Mlp, StreamedPassesEqualTheCachedOnesOverSeveralChunks) {
+  // 300 rows = 2 full chunks of kBatchChunkRows and a partial one.
+  Rng rng(21);
+  const Mlp net({5, 16, 16, 3}, rng);
+  const Eigen::MatrixXd inputs = random_matrix(300, 5, rng);
+  const Eigen::MatrixXd weights = random_matrix(300, 3, rng);
+  MlpBatchWorkspace cached;
+  const Eigen::MatrixXd expected_outputs = net.forward_batch(inputs, cached);
+  Eigen::VectorXd expected_gradient(net.num_parameters());
+  net.backward_batch(weights, cached, expected_gradient);
+
+  MlpBatchWorkspace streamed;
+  Eigen::MatrixXd outputs(300, 3);
+  net.evaluate_batch(inputs, outputs, streamed);
+  EXPECT_LT(relative_error(outputs, expected_outputs), 1e-15);
+  Eigen::VectorXd gradient(net.num_parameters());
+  Eigen::Index rows_seen = 0;
+  net.gradient_batch(
+      inputs,
+      [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& chunk_outputs,
+          Eigen::Ref<Eigen::MatrixXd> output_gradients) {
+        EXPECT_EQ(first, rows_seen);
+        EXPECT_LT(relative_error(chunk_outputs, expected_outputs.middleRows(first, chunk_outputs.rows())), 1e-15);
+        output_gradients = weights.middleRows(first, chunk_outputs.rows());
+        rows_seen += chunk_outputs.rows();
+      },
+      streamed, gradient);
+  EXPECT_EQ(rows_seen, 300);
+  EXPECT_LT(relative_error(gradient, expected_gradient), 1e-14);
+  // A streamed pass leaves no cached forward pass behind.
+  EXPECT_THROW(net.backward_batch(weights, streamed, gradient), std::logic_error);
+}
+
+TEST(Mlp, GaussNewtonProductIsJacobianTransposeTimesScaledJacobianProduct) {
+  // sum_i J_i^T (s J_i v), with J_i v by finite differences and J_i^T u by
+  // finite differences of the scalar <y(theta), u>.
+  Rng rng(22);
+  Mlp net({4, 6, 5, 2}, rng);
+  const Eigen::MatrixXd inputs = random_matrix(150, 4, rng);
+  const Eigen::VectorXd theta = net.parameters();
+  const Eigen::VectorXd v = random_vector(net.num_parameters(), rng);
+  MlpBatchWorkspace workspace;
+  net.forward_batch(inputs, workspace);
+  Eigen::VectorXd product(net.num_parameters());
+  net.gauss_newton_product(v, 0.3, workspace, product);
+
+  Mlp probe = net;
+  const auto outputs = [&](const Eigen::VectorXd& t) -> Eigen::MatrixXd {
+    probe.set_parameters(t);
+    MlpBatchWorkspace w;
+    return probe.forward_batch(inputs, w);
+  };
+  const Eigen::MatrixXd u = 0.3 * finite_difference_directional(outputs, theta, v, 1e-5);
+  const auto weighted = [&](const Eigen::VectorXd& t) { return outputs(t).cwiseProduct(u).sum(); };
+  EXPECT_LT(relative_error(product, finite_difference_gradient(weighted, theta, 1e-5)), 1e-6);
+}
+
+// --- float32 against the float64 oracle -------------------------------------
+// The same parameters and inputs in both dtypes; float32 rounds parameters,
+// inputs and every intermediate to 24 bits (relative 6e-8), and sums of a few
+// hundred terms of both signs lose a few more digits: 1e-5 relative to the
+// result's norm is what single precision can promise here, and an error in
+// the float32 code (a wrong index, a missing term) is of order 1.
+
+TEST(MlpFloat32, EveryBatchPassMatchesFloat64WithinSinglePrecision) {
+  Rng rng(23);
+  Mlp net64({8, 64, 64, 2}, rng);
+  Mlp net32 = net64;
+  net32.set_dtype(Dtype::float32);
+  const Eigen::MatrixXd inputs = random_matrix(300, 8, rng);
+  const Eigen::MatrixXd weights = random_matrix(300, 2, rng);
+  const Eigen::VectorXd v = random_vector(net64.num_parameters(), rng);
+  MlpBatchWorkspace w64, w32;
+
+  const Eigen::MatrixXd out64 = net64.forward_batch(inputs, w64);
+  const Eigen::MatrixXd out32 = net32.forward_batch(inputs, w32);
+  EXPECT_LT(relative_error(out32, out64), 1e-5);
+  EXPECT_GT(relative_error(out32, out64), 0.0);  // it does compute in single precision
+
+  Eigen::VectorXd g64(net64.num_parameters()), g32(net64.num_parameters());
+  net64.backward_batch(weights, w64, g64);
+  net32.backward_batch(weights, w32, g32);
+  EXPECT_LT(relative_error(g32, g64), 1e-5);
+
+  EXPECT_LT(relative_error(net32.jvp_batch(v, w32), net64.jvp_batch(v, w64)), 1e-5);
+
+  Eigen::VectorXd p64(net64.num_parameters()), p32(net64.num_parameters());
+  net64.gauss_newton_product(v, 0.5, w64, p64);
+  net32.gauss_newton_product(v, 0.5, w32, p32);
+  EXPECT_LT(relative_error(p32, p64), 1e-5);
+
+  Eigen::MatrixXd streamed32(300, 2);
+  net32.evaluate_batch(inputs, streamed32, w32);
+  EXPECT_EQ(streamed32, out32);  // same chunks, same arithmetic
+  net32.gradient_batch(
+      inputs,
+      [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& chunk,
+          Eigen::Ref<Eigen::MatrixXd> output_gradients) { output_gradients = weights.middleRows(first, chunk.rows()); },
+      w32, g32);
+  EXPECT_LT(relative_error(g32, g64), 1e-5);
+}
+
+TEST(MlpFloat32, TanhSaturatesAndKeepsRelativeAccuracyNearZero) {
+  Rng rng(24);
+  Mlp net({1, 1, 1}, rng, MlpOptions{.zero_bias_init = false, .dtype = Dtype::float32});
+  net.set_parameters(Eigen::Vector4d(1.0, 0.0, 1.0, 0.0));  // y = tanh(x)
+  Eigen::MatrixXd inputs(10, 1);
+  inputs << -800.0, -20.0, -1.5, -1e-3, 0.0, 1e-6, 0.3, 2.0, 20.0, 800.0;
+  MlpBatchWorkspace workspace;
+  const Eigen::MatrixXd outputs = net.forward_batch(inputs, workspace);
+  for (Eigen::Index i = 0; i < inputs.rows(); ++i) {
+    const double expected = std::tanh(inputs(i, 0));
+    EXPECT_NEAR(outputs(i, 0), expected, 5e-7 * std::abs(expected) + 1e-37) << "x = " << inputs(i, 0);
+  }
+}
+
+TEST(MlpFloat32, ACachedPassOfTheOtherDtypeIsNotReused) {
+  Rng rng(25);
+  Mlp net({3, 4, 2}, rng);
+  MlpBatchWorkspace workspace;
+  net.forward_batch(Eigen::MatrixXd::Zero(5, 3), workspace);
+  net.set_dtype(Dtype::float32);
+  Eigen::VectorXd gradient(net.num_parameters());
+  EXPECT_THROW(net.backward_batch(Eigen::MatrixXd::Zero(5, 2), workspace, gradient), std::logic_error);
+}
+
 }  // namespace bsg

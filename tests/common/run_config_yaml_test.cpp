@@ -104,6 +104,16 @@ TEST(RunConfigYaml, LoadRequiresEveryKeyOfTheAlgorithm) {
   EXPECT_TRUE(contains(error_of_text(replace_line(text, "alg", "")), "lacks key 'alg'"));
 }
 
+TEST(RunConfigYaml, ARunWrittenBeforeTheDtypeKeyResumesInFloat64) {
+  RunConfig config = shipped("lag-trpo", "SafetyBallCircle-v0");
+  config.dtype = Dtype::float32;
+  const std::string without = replace_line(to_yaml(config), "dtype", "# written before dtype existed");
+  const RunConfig loaded = run_config_from_yaml(without, "resolved.yaml");
+  EXPECT_EQ(loaded.dtype, Dtype::float64);  // such runs were trained in float64
+  config.dtype = Dtype::float64;
+  EXPECT_EQ(loaded, config);
+}
+
 TEST(RunConfigYaml, LoadValidatesLikeTheConfigFiles) {
   const std::string text = to_yaml(shipped("cpo", "SafetyBallCircle-v0"));
   std::string m = error_of_text(replace_line(text, "gamma", "gamma: 2.0"));

@@ -1,0 +1,233 @@
+#include "envs/vector_env.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+namespace bsg::envs {
+
+// A fixed pool of threads that runs job(i) for i in [0, count) with the caller
+// taking part. Indices are claimed one at a time from an atomic word holding
+// (round, next index), and the caller waits for `count` completed jobs, not for
+// every worker to check in: a worker the OS keeps off the CPU (the machine is
+// shared) merely takes fewer environments, or none, and never holds up the
+// round. Waiting is a short spin (a round is tens to hundreds of microseconds,
+// a futex wake-up several) and then a blocking atomic wait.
+class VectorEnvWorkers {
+ public:
+  explicit VectorEnvWorkers(int num_threads) {
+    for (int t = 1; t < num_threads; ++t) threads_.emplace_back([this] { worker_loop(); });
+  }
+
+  ~VectorEnvWorkers() {
+    stopping_.store(true, std::memory_order_relaxed);
+    round_.fetch_add(1, std::memory_order_release);
+    round_.notify_all();
+    for (std::thread& thread : threads_) thread.join();
+  }
+
+  VectorEnvWorkers(const VectorEnvWorkers&) = delete;
+  VectorEnvWorkers& operator=(const VectorEnvWorkers&) = delete;
+
+  // Returns when every job has run; rethrows the first exception a job threw.
+  void run(int count, const std::function<void(int)>& job) {
+    const std::uint32_t round = round_.load(std::memory_order_relaxed) + 1;
+    job_.store(&job, std::memory_order_relaxed);
+    count_.store(count, std::memory_order_relaxed);
+    completed_.store(0, std::memory_order_relaxed);
+    error_ = nullptr;
+    claims_.store(std::uint64_t{round} << 32, std::memory_order_release);
+    round_.store(round, std::memory_order_release);
+    if (!threads_.empty()) round_.notify_all();
+    work(round);
+    for (;;) {
+      spin_until([&] { return completed_.load(std::memory_order_acquire) == count; });
+      const int completed = completed_.load(std::memory_order_acquire);
+      if (completed == count) break;
+      completed_.wait(completed, std::memory_order_acquire);
+    }
+    if (error_) std::rethrow_exception(error_);
+  }
+
+ private:
+  // Spins a microsecond or so, or until done() holds.
+  template <typename Predicate>
+  static void spin_until(Predicate done) {
+    constexpr int kSpinIterations = 200;  // short: on a shared machine spinning steals the core
+    for (int i = 0; i < kSpinIterations && !done(); ++i) {
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();
+#endif
+    }
+  }
+
+  void worker_loop() {
+    std::uint32_t seen = 0;
+    for (;;) {
+      for (;;) {
+        spin_until([&] { return round_.load(std::memory_order_acquire) != seen; });
+        const std::uint32_t now = round_.load(std::memory_order_acquire);
+        if (now != seen) {
+          seen = now;
+          break;
+        }
+        round_.wait(seen, std::memory_order_acquire);
+      }
+      if (stopping_.load(std::memory_order_relaxed)) return;
+      work(seen);
+    }
+  }
+
+  // Claims and runs jobs of `round` until none is left. A claim succeeds only
+  // while `round` is current, so a late worker never runs a stale job, and the
+  // round cannot end (completed_ == count) before a claimed job has run.
+  void work(std::uint32_t round) {
+    std::uint64_t claims = claims_.load(std::memory_order_acquire);
+    for (;;) {
+      const auto claim_round = static_cast<std::uint32_t>(claims >> 32);
+      const auto index = static_cast<int>(claims & 0xffffffffu);
+      const int count = count_.load(std::memory_order_relaxed);
+      if (claim_round != round || index >= count) return;
+      if (!claims_.compare_exchange_weak(claims, claims + 1, std::memory_order_acquire)) continue;
+      try {
+        (*job_.load(std::memory_order_relaxed))(index);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex_);
+        if (!error_) error_ = std::current_exception();
+      }
+      if (completed_.fetch_add(1, std::memory_order_acq_rel) + 1 == count) {
+        completed_.notify_one();
+      }
+      claims = claims_.load(std::memory_order_acquire);
+    }
+  }
+
+  std::vector<std::thread> threads_;
+  std::atomic<std::uint32_t> round_{0};
+  std::atomic<bool> stopping_{false};
+  std::atomic<std::uint64_t> claims_{0};  // (round << 32) | next index
+  std::atomic<const std::function<void(int)>*> job_{nullptr};
+  std::atomic<int> count_{0};
+  std::atomic<int> completed_{0};
+  std::mutex error_mutex_;
+  std::exception_ptr error_;
+};
+
+namespace {
+
+int resolve_num_threads(int num_threads, int num_envs) {
+  if (num_threads < 0) {
+    throw std::invalid_argument("VectorEnv: num_threads must be >= 0 (0: one per hardware "
+                                "thread), got " + std::to_string(num_threads));
+  }
+  if (num_threads == 0) {
+    num_threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  }
+  return std::min(num_threads, num_envs);
+}
+
+}  // namespace
+
+VectorEnv::VectorEnv(const std::string& id, int num_envs, int num_threads,
+                     const EnvOptions& options)
+    : num_envs_(num_envs) {
+  if (num_envs < 1) {
+    throw std::invalid_argument("VectorEnv: num_envs must be >= 1, got " +
+                                std::to_string(num_envs));
+  }
+  num_threads_ = resolve_num_threads(num_threads, num_envs);
+  envs_.reserve(static_cast<size_t>(num_envs));
+  for (int i = 0; i < num_envs; ++i) envs_.push_back(make(id, options));
+  spec_ = envs_.front()->spec();
+  const auto n = static_cast<size_t>(num_envs);
+  observations_.assign(n * static_cast<size_t>(spec_.observation_dim), 0.0);
+  final_observations_.assign(observations_.size(), 0.0);
+  rewards_.assign(n, 0.0);
+  costs_.assign(n, 0.0);
+  terminated_.assign(n, 0);
+  truncated_.assign(n, 0);
+  env_cost_terms_.resize(n);
+  workers_ = std::make_unique<VectorEnvWorkers>(num_threads_);
+}
+
+VectorEnv::~VectorEnv() = default;
+
+void VectorEnv::reset_one(int index, const std::uint64_t* seed) {
+  Env& env = *envs_[static_cast<size_t>(index)];
+  const std::span<const double> observation =
+      seed ? env.reset(*seed + static_cast<std::uint64_t>(index)) : env.reset();
+  std::copy(observation.begin(), observation.end(),
+            observations_.begin() + index * spec_.observation_dim);
+}
+
+void VectorEnv::reset(std::uint64_t seed) {
+  workers_->run(num_envs_, [this, seed](int i) { reset_one(i, &seed); });
+  has_reset_ = true;
+}
+
+void VectorEnv::reset() {
+  workers_->run(num_envs_, [this](int i) { reset_one(i, nullptr); });
+  has_reset_ = true;
+}
+
+void VectorEnv::check_actions(std::span<const double> actions) const {
+  if (!has_reset_) throw std::logic_error(spec_.id + ": VectorEnv step() called before reset()");
+  const auto expected = static_cast<size_t>(num_envs_) * static_cast<size_t>(spec_.action_dim);
+  if (actions.size() != expected) {
+    throw std::invalid_argument(spec_.id + ": VectorEnv actions have " +
+                                std::to_string(actions.size()) + " entries, expected " +
+                                std::to_string(num_envs_) + " x " +
+                                std::to_string(spec_.action_dim));
+  }
+  for (size_t k = 0; k < actions.size(); ++k) {
+    if (!std::isfinite(actions[k])) {
+      throw std::invalid_argument(
+          spec_.id + ": VectorEnv action [" + std::to_string(k / spec_.action_dim) + ", " +
+          std::to_string(k % spec_.action_dim) + "] is not finite (" +
+          std::to_string(actions[k]) + ")");
+    }
+  }
+}
+
+void VectorEnv::step_one(int index, std::span<const double> actions) {
+  const auto i = static_cast<size_t>(index);
+  const auto act_dim = static_cast<size_t>(spec_.action_dim);
+  const auto obs_dim = static_cast<size_t>(spec_.observation_dim);
+  Env& env = *envs_[i];
+  const StepResult result = env.step(actions.subspan(i * act_dim, act_dim));
+  rewards_[i] = result.reward;
+  costs_[i] = result.cost;
+  terminated_[i] = result.terminated;
+  truncated_[i] = result.truncated;
+  // Copied before an auto-reset, which may reuse the task's buffers.
+  std::vector<double>& terms = env_cost_terms_[i];
+  terms.resize(result.cost_terms.size());  // allocates on the first step only
+  for (size_t k = 0; k < terms.size(); ++k) terms[k] = result.cost_terms[k].value;
+  if (index == 0 && cost_term_names_.empty()) {
+    for (const CostTerm& term : result.cost_terms) cost_term_names_.emplace_back(term.name);
+  }
+  std::copy(result.observation.begin(), result.observation.end(),
+            final_observations_.begin() + static_cast<std::ptrdiff_t>(i * obs_dim));
+  const std::span<const double> observation =
+      result.terminated || result.truncated ? env.reset() : result.observation;
+  std::copy(observation.begin(), observation.end(),
+            observations_.begin() + static_cast<std::ptrdiff_t>(i * obs_dim));
+}
+
+void VectorEnv::step(std::span<const double> actions) {
+  check_actions(actions);
+  workers_->run(num_envs_, [this, actions](int i) { step_one(i, actions); });
+  const size_t terms = cost_term_names_.size();
+  cost_terms_.resize(static_cast<size_t>(num_envs_) * terms);  // sized at the first step
+  for (size_t i = 0; i < env_cost_terms_.size(); ++i) {
+    std::copy(env_cost_terms_[i].begin(), env_cost_terms_[i].end(),
+              cost_terms_.begin() + static_cast<std::ptrdiff_t>(i * terms));
+  }
+}
+
+}  // namespace bsg::envs

@@ -1,0 +1,37 @@
+#include "arguments.h"
+
+#include <limits>
+
+namespace py = pybind11;
+
+namespace bsg::python {
+
+envs::EnvOptions env_options(const std::string& box_clock) {
+  envs::EnvOptions options;
+  if (box_clock == "episode_phase") {
+    options.box_clock = envs::BoxClock::kEpisodePhase;
+  } else if (box_clock == "simulated") {
+    options.box_clock = envs::BoxClock::kSimulated;
+  } else {
+    throw py::value_error("box_clock must be 'episode_phase' or 'simulated', got '" + box_clock +
+                          "'");
+  }
+  return options;
+}
+
+std::uint64_t seed_value(py::handle seed) {
+  // Any integer (numpy's too, through __index__), but not a bool.
+  PyObject* index = PyBool_Check(seed.ptr()) ? nullptr : PyNumber_Index(seed.ptr());
+  if (index == nullptr) {
+    PyErr_Clear();
+    throw py::type_error("seed must be an int or None, got " +
+                         std::string(py::str(seed.get_type())));
+  }
+  const auto value = py::reinterpret_steal<py::int_>(index);
+  if (value < py::int_(0) || value > py::int_(std::numeric_limits<std::uint64_t>::max())) {
+    throw py::value_error("seed must be in [0, 2**64), got " + std::string(py::str(seed)));
+  }
+  return value.cast<std::uint64_t>();
+}
+
+}  // namespace bsg::python

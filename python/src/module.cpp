@@ -1,0 +1,18 @@
+// The compiled part of the `bsg` Python package (bsg._core): the 16
+// environments, one at a time or many on a thread pool. The package's
+// __init__.py adds the spaces, make() and the gymnasium wrapper.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bench_helpers.h"
+#include "envs/env.h"
+#include "python_env.h"
+#include "python_vector_env.h"
+
+PYBIND11_MODULE(_core, module) {
+  module.doc() = "bsg environments (C++ core of the bsg package)";
+  module.def("env_ids", &bsg::envs::registered_ids, "Every registered environment id, sorted.");
+  bsg::python::bind_env(module);
+  bsg::python::bind_vector_env(module);
+  bsg::python::bind_bench_helpers(module);
+}

@@ -1,0 +1,25 @@
+"""Shared fixtures: the programs ctest points at (tests/CMakeLists.txt)."""
+
+import os
+import shutil
+
+import pytest
+
+
+def _program(variable):
+    path = os.environ.get(variable)
+    if not path or not shutil.which(path):
+        pytest.skip(f"{variable} is not set to a program (run through ctest)")
+    return path
+
+
+@pytest.fixture(scope="session")
+def bsg_binary():
+    """The `bsg` program of the same build."""
+    return _program("BSG_BINARY")
+
+
+@pytest.fixture(scope="session")
+def trajectory_recorder():
+    """tests/python/trajectory_recorder.cpp: C++ rollouts through envs/env.h."""
+    return _program("BSG_TRAJECTORY_RECORDER")
