@@ -61,7 +61,8 @@ struct PolicyUpdateInputs {
 // Misc/gradient_norm, Misc/xHx, Misc/H_inv_g, then per algorithm
 // LagrangeMultiplier (TRPO-L); Misc/cost_gradient_norm, Misc/A, Misc/B, Misc/q,
 // Misc/r, Misc/s, Misc/Lambda_star, Misc/Nu_star, Misc/OptimCase (CPO, PCPO);
-// Misc/cost_gradient_norm, LagrangeMultiplier (PDO).
+// Misc/cost_gradient_norm, LagrangeMultiplier (PDO); TRPO-L and PDO with
+// lambda_optimizer PID add PID/P, PID/I, PID/D after LagrangeMultiplier.
 struct PolicyUpdateResult {
   std::vector<NamedScalar> diagnostics;
   // The value of the named diagnostic; throws std::out_of_range if absent.

@@ -22,7 +22,10 @@
 //   policy_ratio, line_search_acceptance_step, step_alpha, final_step_norm,
 //   gradient_norm, xFx, cg_solution_norm, and per algorithm
 //   lagrange_multiplier, cost_gradient_norm, cpo_A, cpo_B, cpo_q, cpo_r,
-//   cpo_s, cpo_lambda_star, cpo_nu_star, cpo_optim_case
+//   cpo_s, cpo_lambda_star, cpo_nu_star, cpo_optim_case; with
+//   lambda_optimizer PID (TRPO-L, PDO) also pid_p_term = K_P Delta_ema,
+//   pid_i_term = I and pid_d_term = K_D max(0, J_ema - J_ema[k - delay])
+//   after this epoch's update (lambda = max(0, their sum), pid_lagrangian.h)
 //   time_collect_s, time_update_s   this epoch's seconds on rank 0
 //   time_s                  seconds of training since the run started (resumes continue it)
 //   fps                     B / seconds of this epoch

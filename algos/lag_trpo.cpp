@@ -20,18 +20,18 @@ SurrogateWeights lagrangian_surrogate_weights(double lagrange_multiplier) {
 
 LagTrpo::LagTrpo(const RunConfig& config)
     : TrustRegionAlgorithm(config),
-      multiplier_(config.lagrangian_multiplier_init, config.lambda_optimizer, config.lambda_lr) {}
+      multiplier_(config) {}
 
 std::vector<std::string> LagTrpo::diagnostic_names() const {
   std::vector<std::string> names = common_diagnostic_names();
   for (std::string& name : trpo_diagnostic_names()) names.push_back(std::move(name));
-  names.push_back("LagrangeMultiplier");
+  for (std::string& name : multiplier_.diagnostic_names()) names.push_back(std::move(name));
   return names;
 }
 
 PolicyUpdateResult LagTrpo::update(const PolicyUpdateInputs& inputs) {
   check_mean_episode_cost(inputs, "lag-trpo");
-  // 1. lambda <- max(0, lambda + alpha_lambda (J_C - d)), before the policy step.
+  // 1. lambda update (SGD by default: lambda <- max(0, lambda + alpha_lambda (J_C - d))), before the policy step.
   const double lambda = multiplier_.update(inputs.mean_episode_cost, config().cost_limit);
   const SurrogateWeights weights = lagrangian_surrogate_weights(lambda);
 
@@ -59,7 +59,7 @@ PolicyUpdateResult LagTrpo::update(const PolicyUpdateInputs& inputs) {
   result.diagnostics = common_diagnostics(inputs, start.before, weights.reward, weights.cost);
   append_trpo_diagnostics(result.diagnostics, search, step.step_size, lagrangian_gradient.norm(),
                           step.x_fisher_x, step.direction.norm());
-  result.diagnostics.insert(result.diagnostics.end(), {{"LagrangeMultiplier", lambda}});
+  for (NamedScalar& entry : multiplier_.diagnostics()) result.diagnostics.push_back(std::move(entry));
   return result;
 }
 

@@ -7,7 +7,8 @@
 // losses and the interplay with CG's 1e-6. The reward itself is not modified.
 //
 // Parameters (RunConfig): those of TRPO plus cost_limit 25,
-// lagrangian_multiplier_init 0.001, lambda_optimizer SGD, lambda_lr 0.05.
+// lagrangian_multiplier_init 0.001, lambda_optimizer SGD, lambda_lr 0.05 (or
+// lambda_optimizer PID and the pid_* keys: algos/pid_lagrangian.h).
 #pragma once
 
 #include "algos/algorithm.h"

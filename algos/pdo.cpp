@@ -20,19 +20,19 @@ Eigen::VectorXd pdo_search_direction(const Eigen::Ref<const Eigen::VectorXd>& re
 
 Pdo::Pdo(const RunConfig& config)
     : TrustRegionAlgorithm(config),
-      multiplier_(config.lagrangian_multiplier_init, config.lambda_optimizer, config.lambda_lr) {}
+      multiplier_(config) {}
 
 std::vector<std::string> Pdo::diagnostic_names() const {
   std::vector<std::string> names = common_diagnostic_names();
   for (std::string& name : trpo_diagnostic_names()) names.push_back(std::move(name));
   names.push_back("Misc/cost_gradient_norm");
-  names.push_back("LagrangeMultiplier");
+  for (std::string& name : multiplier_.diagnostic_names()) names.push_back(std::move(name));
   return names;
 }
 
 PolicyUpdateResult Pdo::update(const PolicyUpdateInputs& inputs) {
   check_mean_episode_cost(inputs, "pdo");
-  // 1. Adam (or SGD) step on -lambda (J_C - d), then lambda >= 0; before the policy step.
+  // 1. Adam (or SGD, or PID) update of lambda on J_C - d, lambda >= 0; before the policy step.
   const double lambda = multiplier_.update(inputs.mean_episode_cost, config().cost_limit);
 
   const PolicyUpdateStart start = begin_policy_update(inputs);
@@ -62,9 +62,8 @@ PolicyUpdateResult Pdo::update(const PolicyUpdateInputs& inputs) {
   result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
   append_trpo_diagnostics(result.diagnostics, search, step.step_size, gradients.reward.norm(),
                           step.x_fisher_x, step.direction.norm());
-  result.diagnostics.insert(
-      result.diagnostics.end(),
-      {{"Misc/cost_gradient_norm", gradients.cost.norm()}, {"LagrangeMultiplier", lambda}});
+  result.diagnostics.push_back({"Misc/cost_gradient_norm", gradients.cost.norm()});
+  for (NamedScalar& entry : multiplier_.diagnostics()) result.diagnostics.push_back(std::move(entry));
   return result;
 }
 

@@ -10,7 +10,7 @@
 // Parameters (RunConfig): target_kl 1e-3, cg_iters 10, cg_damping 0.1,
 // backtrack_budget 15, backtrack_decay 0.8, kl_accept_factor 1.5, cost_limit 25,
 // lagrangian_multiplier_init 0.001, lambda_optimizer Adam, lambda_lr 0.001,
-// pdo_line_search true.
+// pdo_line_search true (lambda_optimizer PID: the pid_* keys, algos/pid_lagrangian.h).
 #pragma once
 
 #include <Eigen/Core>

@@ -1,12 +1,17 @@
-// `bsg table SWEEP_DIR`: applies the report's selection rule (experiments/
+// `bsg table SWEEP_DIR...`: applies the report's selection rule (experiments/
 // selection.h) per environment and algorithm of a sweep and prints Table 1
 // (experiments/table1_render.h) as Markdown; writes table1.md, table1.csv,
 // table1.tex and configurations.csv into the sweep directory (or --output).
+// Several sweeps (e.g. sweeps/report and sweeps/pid) make one table of all
+// their configurations; their files then go to --output, which is required.
 // --compare report also prints each cell beside the report's Table 1
 // (configs/report_table1.csv) and writes table1_compare.md and .csv.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "common/atomic_file.h"
@@ -21,7 +26,7 @@ namespace bsg::cli {
 namespace {
 
 struct TableOptions {
-  std::string sweep_dir;
+  std::vector<std::string> sweep_dirs;
   std::string score = "mean";
   std::string output_dir;
   std::string compare;
@@ -30,13 +35,23 @@ struct TableOptions {
 
 int run_table(const TableOptions& options) {
   const SelectionScore score = parse_selection_score(options.score);
-  const std::filesystem::path sweep_dir(options.sweep_dir);
-  const std::vector<ConfigurationResults> results =
-      load_sweep_results(sweep_dir, score == SelectionScore::mean_minus_std);
+  if (options.sweep_dirs.size() > 1 && options.output_dir.empty()) {
+    throw std::runtime_error("bsg table: a table of " + std::to_string(options.sweep_dirs.size()) +
+                             " sweeps needs --output DIR (it belongs to none of them)");
+  }
+  std::vector<ConfigurationResults> results;
+  for (const std::string& dir : options.sweep_dirs) {
+    std::vector<ConfigurationResults> sweep =
+        load_sweep_results(std::filesystem::path(dir), score == SelectionScore::mean_minus_std);
+    for (ConfigurationResults& config : sweep) {
+      if (options.sweep_dirs.size() > 1) config.config_dir = (std::filesystem::path(dir) / config.config_dir).generic_string();
+      results.push_back(std::move(config));
+    }
+  }
   const Table1 table = build_table1(results, score);
 
-  const std::filesystem::path out =
-      options.output_dir.empty() ? sweep_dir : std::filesystem::path(options.output_dir);
+  const std::filesystem::path out = options.output_dir.empty() ? std::filesystem::path(options.sweep_dirs.front())
+                                                               : std::filesystem::path(options.output_dir);
   write_table1_files(table, out);
   std::cout << table1_markdown(table);
   std::cerr << "bsg table: wrote table1.md, table1.csv, table1.tex and configurations.csv to "
@@ -59,12 +74,16 @@ void add_table_command(CLI::App& app, Action& run) {
   auto options = std::make_shared<TableOptions>();
   CLI::App* table = app.add_subcommand(
       "table", "Select the best configuration per environment and algorithm of a sweep; print Table 1");
-  table->add_option("SWEEP_DIR", options->sweep_dir, "the --out directory of bsg sweep")->required();
+  table->add_option("SWEEP_DIR", options->sweep_dirs,
+                    "the --out directory of bsg sweep; several: one table of all their configurations "
+                    "(needs --output)")
+      ->required();
   table->add_option("--score", options->score,
                     "selection score: mean (the report's rule) or mean_minus_std (the original plot "
                     "script's --best, quirk Q17)")
       ->check(CLI::IsMember({"mean", "mean_minus_std"}));
-  table->add_option("--output", options->output_dir, "where to write the files (default: SWEEP_DIR)");
+  table->add_option("--output", options->output_dir,
+                    "where to write the files (default: SWEEP_DIR; required with several)");
   table->add_option("--compare", options->compare,
                     "report: each cell beside the report's Table 1 value and the difference "
                     "(table1_compare.md, .csv)")

@@ -26,9 +26,11 @@ enum class Algorithm { trpo, lag_trpo, cpo, pdo, pcpo };
 inline constexpr std::array<std::string_view, 5> kAlgorithmNames = {"trpo", "lag-trpo", "cpo",
                                                                     "pdo", "pcpo"};
 
-// Optimiser of the Lagrange multiplier (docs/algorithms.md#trpo-l SGD for TRPO-L, docs/algorithms.md#pdo Adam for PDO).
-enum class LambdaOptimizer { sgd, adam };
-inline constexpr std::array<std::string_view, 2> kLambdaOptimizerNames = {"SGD", "Adam"};
+// Update rule of the Lagrange multiplier (docs/algorithms.md#trpo-l SGD for
+// TRPO-L, docs/algorithms.md#pdo Adam for PDO; PID: the PID Lagrangian of Stooke, Achiam and Abbeel 2020, with
+// the pid_* keys, algos/pid_lagrangian.h).
+enum class LambdaOptimizer { sgd, adam, pid };
+inline constexpr std::array<std::string_view, 3> kLambdaOptimizerNames = {"SGD", "Adam", "PID"};
 
 // Sign of r in CPO's dual solution (docs/algorithms.md#cpo, quirk Q10).
 enum class CpoRSign { original, corrected };
@@ -98,6 +100,14 @@ struct RunConfig {
   double lagrangian_multiplier_init = 0.001;
   double lambda_lr = 0.05;
   LambdaOptimizer lambda_optimizer = LambdaOptimizer::sgd;
+  // PID multiplier (lambda_optimizer PID only; algos/pid_lagrangian.h)
+  double pid_kp = 0.1;                  // K_P
+  double pid_ki = 0.05;                 // K_I (replaces lambda_lr)
+  double pid_kd = 0.0;                  // K_D
+  int pid_d_delay = 10;                 // epochs between the J_ema compared by D
+  double pid_delta_p_ema_alpha = 0.0;   // EMA factor of the P input; 0 = none
+  double pid_delta_d_ema_alpha = 0.0;   // EMA factor of the D input; 0 = none
+  double pid_lambda_max = 0.0;          // upper bound on lambda; 0 = none
 
   // --- algorithm-specific switches ---
   CpoRSign cpo_r_sign = CpoRSign::original;  // Q10

@@ -37,6 +37,33 @@ const ConfigEntry& choosing_entry(const std::vector<ConfigEntry>& run_entries,
                     "with --set " + key + "=...; valid values: " + valid_values);
 }
 
+// The pid_* keys change nothing unless lambda_optimizer is PID, and lambda_lr
+// nothing when it is. A value of one of them that differs from the algorithm
+// file's while it has no effect is a mistake to report, not a setting to
+// ignore (equal values are fine: a resolved config lists every key).
+void reject_ineffective_multiplier_keys(const RunConfig& config, const RunConfig& algorithm_defaults,
+                                        const ConfigOrigins& origins) {
+  const bool pid = config.lambda_optimizer == LambdaOptimizer::pid;
+  for (const ConfigKey& key : run_config_schema()) {
+    const bool pid_key = key.key.starts_with("pid_");
+    const bool ineffective = pid ? key.key == "lambda_lr" : pid_key;
+    if (!ineffective || !key.applies_to(config.alg) ||
+        config_value_to_yaml(config, key) == config_value_to_yaml(algorithm_defaults, key)) {
+      continue;
+    }
+    const std::string name(key.key);
+    const auto origin = origins.find(name);
+    const std::string where = origin == origins.end() ? std::string("default") : origin->second;
+    if (pid_key) {
+      throw ConfigError(where + ": key '" + name + "' applies only with lambda_optimizer: PID, but " +
+                        "lambda_optimizer is " + std::string(to_string(config.lambda_optimizer)) +
+                        "; set lambda_optimizer: PID as well");
+    }
+    throw ConfigError(where + ": key 'lambda_lr' has no effect with lambda_optimizer: PID; the PID " +
+                      "rule's integral gain is pid_ki");
+  }
+}
+
 std::string join(const std::vector<std::string>& items) {
   std::string joined;
   for (const std::string& item : items) joined += (joined.empty() ? "" : ", ") + item;
@@ -107,7 +134,9 @@ ResolvedRunConfig resolve_run_config(const RunConfigRequest& request) {
       has_env_file ? read_config_file(env_file) : std::vector<ConfigEntry>{};
   reject_run_keys(env_entries, "an environment");
 
-  for (const auto* layer : {&alg_entries, &env_entries, &run_entries, &set_entries}) {
+  apply_config_entries(config, alg_entries, resolved.origins);
+  const RunConfig algorithm_defaults = config;
+  for (const auto* layer : {&env_entries, &run_entries, &set_entries}) {
     apply_config_entries(config, *layer, resolved.origins);
   }
 
@@ -133,6 +162,7 @@ ResolvedRunConfig resolve_run_config(const RunConfigRequest& request) {
     }
   }
 
+  reject_ineffective_multiplier_keys(config, algorithm_defaults, resolved.origins);
   check_run_config_relations(config, resolved.origins);
   return resolved;
 }

@@ -51,6 +51,7 @@ struct SchemaRow {
 NumericRange closed(double min, double max) { return {min, max, true, true}; }
 NumericRange open_closed(double min, double max) { return {min, max, false, true}; }
 NumericRange open(double min, double max) { return {min, max, false, false}; }
+NumericRange closed_open(double min, double max) { return {min, max, true, false}; }
 NumericRange at_least(double min) { return {min, kInf, true, false}; }
 NumericRange above(double min) { return {min, kInf, false, false}; }
 
@@ -158,11 +159,28 @@ const std::vector<SchemaRow>& schema_rows() {
          "Q13: the line search accepts a step with KL <= kl_accept_factor * target_kl"),
     // --- Lagrange multiplier (docs/algorithms.md#trpo-l, #pdo) ---
     real("lagrangian_multiplier_init", &R::lagrangian_multiplier_init, L::algorithm,
-         at_least(0), kLagrangian, "initial Lagrange multiplier lambda"),
+         at_least(0), kLagrangian, "initial Lagrange multiplier lambda (PID: the initial integral I)"),
     real("lambda_lr", &R::lambda_lr, L::algorithm, above(0), kLagrangian,
-         "alpha_lambda: learning rate of the Lagrange multiplier"),
+         "alpha_lambda: learning rate of the Lagrange multiplier (SGD, Adam; PID uses pid_ki)"),
     choice("lambda_optimizer", enum_access<&R::lambda_optimizer>(), kLambdaOptimizerNames,
-           L::algorithm, kLagrangian, "optimiser of the Lagrange multiplier"),
+           L::algorithm, kLagrangian,
+           "update rule of the Lagrange multiplier: SGD or Adam step of lambda_lr on "
+           "-lambda (J_C - d), or PID (Stooke et al. 2020) with the pid_* keys"),
+    // --- PID Lagrange multiplier (lambda_optimizer PID; algos/pid_lagrangian.h) ---
+    real("pid_kp", &R::pid_kp, L::algorithm, at_least(0), kLagrangian,
+         "PID only: K_P, proportional gain on the (smoothed) violation J_C - d"),
+    real("pid_ki", &R::pid_ki, L::algorithm, at_least(0), kLagrangian,
+         "PID only: K_I, integral gain, I <- max(0, I + K_I (J_C - d)) (the SGD rule's lambda_lr)"),
+    real("pid_kd", &R::pid_kd, L::algorithm, at_least(0), kLagrangian,
+         "PID only: K_D, derivative gain on the cost rise max(0, J_ema - J_ema[k - pid_d_delay])"),
+    integer("pid_d_delay", &R::pid_d_delay, L::algorithm, closed(1, 1000), kLagrangian,
+            "PID only: epochs between the two smoothed costs the derivative compares"),
+    real("pid_delta_p_ema_alpha", &R::pid_delta_p_ema_alpha, L::algorithm, closed_open(0, 1),
+         kLagrangian, "PID only: EMA factor a of the P input, x <- a x + (1 - a) (J_C - d); 0 = none"),
+    real("pid_delta_d_ema_alpha", &R::pid_delta_d_ema_alpha, L::algorithm, closed_open(0, 1),
+         kLagrangian, "PID only: EMA factor a of the D input, J_ema <- a J_ema + (1 - a) J_C; 0 = none"),
+    real("pid_lambda_max", &R::pid_lambda_max, L::algorithm, at_least(0), kLagrangian,
+         "PID only: upper bound on lambda; 0 = no bound"),
     // --- algorithm switches (docs/algorithms.md#pdo, #cpo, #pcpo) ---
     choice("cpo_r_sign", enum_access<&R::cpo_r_sign>(), kCpoRSignNames, L::algorithm,
            algorithm_bit(Algorithm::cpo),

@@ -58,8 +58,15 @@ std::string signed_number(double value) {
   return text;
 }
 
-const ReportCell* find(const ReportTable1& report, const std::string& env_id, Algorithm alg) {
-  const auto found = report.find({env_id, std::string(to_string(alg))});
+// The CSV's alg field: the config spelling, or the column label for a PID
+// column (which the report does not have).
+std::string comparison_alg_name(const Table1Column& column) {
+  return column.pid_multiplier ? table1_column_label(column) : std::string(to_string(column.alg));
+}
+
+const ReportCell* find(const ReportTable1& report, const std::string& env_id, const Table1Column& column) {
+  if (column.pid_multiplier) return nullptr;  // the report has no PID column
+  const auto found = report.find({env_id, std::string(to_string(column.alg))});
   return found == report.end() ? nullptr : &found->second;
 }
 
@@ -104,9 +111,9 @@ ReportTable1 load_report_table1(const std::filesystem::path& path) {
 std::string comparison_markdown(const Table1& table, const ReportTable1& report) {
   std::string text = "Each cell: ours / the report's (ours - report's).\n\n| Env | quantity |";
   std::string rule = "|---|---|";
-  for (const Algorithm alg : table.algorithms) {
+  for (const Table1Column& column : table.columns) {
     text += ' ';
-    text += table1_column_label(alg);
+    text += table1_column_label(column);
     text += " |";
     rule += "---|";
   }
@@ -118,9 +125,9 @@ std::string comparison_markdown(const Table1& table, const ReportTable1& report)
       text += "| ";
       if (j) text += table1_row_label(row.env_id);
       text += j ? " | J/J_TRPO |" : " | H/d |";
-      for (std::size_t c = 0; c < table.algorithms.size(); ++c) {
+      for (std::size_t c = 0; c < table.columns.size(); ++c) {
         const OurCell ours = our_cell(row, row.cells[c]);
-        const ReportCell* theirs = find(report, row.env_id, table.algorithms[c]);
+        const ReportCell* theirs = find(report, row.env_id, table.columns[c]);
         text += ' ';
         text += j ? side_by_side(ours.j_ratio, theirs, &ReportCell::j_ratio)
                   : side_by_side(ours.h_ratio, theirs, &ReportCell::h_ratio);
@@ -136,15 +143,15 @@ std::string comparison_csv(const Table1& table, const ReportTable1& report) {
   std::string text =
       "env_id,alg,ours_j_ratio,report_j_ratio,j_ratio_diff,ours_h_ratio,report_h_ratio,h_ratio_diff\n";
   for (const Table1Row& row : table.rows) {
-    for (std::size_t c = 0; c < table.algorithms.size(); ++c) {
+    for (std::size_t c = 0; c < table.columns.size(); ++c) {
       const OurCell ours = our_cell(row, row.cells[c]);
-      const ReportCell* theirs = find(report, row.env_id, table.algorithms[c]);
+      const ReportCell* theirs = find(report, row.env_id, table.columns[c]);
       const auto report_j = theirs ? std::optional<double>(theirs->j_ratio) : std::nullopt;
       const auto report_h = theirs ? std::optional<double>(theirs->h_ratio) : std::nullopt;
       const auto diff = [](std::optional<double> a, std::optional<double> b) {
         return a && b ? std::optional<double>(*a - *b) : std::nullopt;
       };
-      text += csv_field(row.env_id) + "," + std::string(to_string(table.algorithms[c])) + "," + number(ours.j_ratio) +
+      text += csv_field(row.env_id) + "," + comparison_alg_name(table.columns[c]) + "," + number(ours.j_ratio) +
               "," + number(report_j) + "," + number(diff(ours.j_ratio, report_j)) + "," + number(ours.h_ratio) + "," +
               number(report_h) + "," + number(diff(ours.h_ratio, report_h)) + "\n";
     }

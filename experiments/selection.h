@@ -45,6 +45,12 @@ struct ConfigurationResults {
   double cost_limit = 0.0;          // d
   std::size_t seeds_expected = 0;   // runs the grid asks for
   std::vector<SeedResult> seeds;    // the finished ones
+  // TRPO-L or PDO with lambda_optimizer PID: a Table 1 column of its own
+  // ("TRPO-PID", "PDO-PID"), selected apart from the SGD / Adam configurations.
+  bool pid_multiplier = false;
+  // "<env_id>/<alg>/<config>" relative to the sweep (or, for a table of
+  // several sweeps, prefixed with its sweep); empty: built from the fields.
+  std::string config_dir;
 };
 
 struct ConfigurationScore {

@@ -8,6 +8,7 @@
 
 #include "algos/run_directory.h"
 #include "common/run_config_yaml.h"
+#include "experiments/grid_file.h"
 #include "experiments/run_results.h"
 #include "experiments/sweep_manifest.h"
 
@@ -33,6 +34,30 @@ std::optional<RunConfig> read_run_directory_config(const std::filesystem::path& 
     if (std::filesystem::is_regular_file(file, error)) return load_resolved_run_config(file);
   }
   return std::nullopt;
+}
+
+// Whether a run uses the PID multiplier (a Table 1 column of its own).
+bool uses_pid_multiplier(const RunConfig& config) {
+  return (config.alg == Algorithm::lag_trpo || config.alg == Algorithm::pdo) &&
+         config.lambda_optimizer == LambdaOptimizer::pid;
+}
+
+// For configurations none of whose runs has a configuration file yet (not
+// started): whether the sweep's grid copy sets lambda_optimizer PID for it,
+// by configuration directory. Empty without a grid copy.
+std::map<std::string, bool> pid_configurations_of_grid_copy(const std::filesystem::path& sweep_dir) {
+  std::map<std::string, bool> pid;
+  std::error_code error;
+  const std::filesystem::path grid_copy = sweep_dir / kSweepGridCopyName;
+  if (!std::filesystem::is_regular_file(grid_copy, error)) return pid;
+  for (const GridRun& run : expand_grid(load_grid_file(grid_copy))) {
+    bool is_pid = false;  // the last lambda_optimizer setting wins, as with --set
+    for (const std::string& setting : run.set_arguments) {
+      if (setting.starts_with("lambda_optimizer=")) is_pid = setting == "lambda_optimizer=PID";
+    }
+    pid[run.relative_dir().parent_path().generic_string()] = is_pid;
+  }
+  return pid;
 }
 
 bool is_run_directory(const std::filesystem::path& dir) {
@@ -94,6 +119,7 @@ std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path
     ConfigurationSlots& slots = slots_for(relative.parent_path().generic_string());
     slots.results.env_id = config->env_id;
     slots.results.alg = config->alg;
+    slots.results.pid_multiplier = uses_pid_multiplier(*config);
     slots.results.config_name = run_dir.parent_path().filename().string();
     slots.runs.push_back({config->seed, run_dir});
   }
@@ -102,17 +128,22 @@ std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path
                              " and no run directory below it)");
   }
 
-  // 3. The finished runs' evaluations.
+  // 3. The finished runs' evaluations; d and the multiplier rule from the
+  // first run with a configuration file, else (not started) from the grid copy.
+  const std::map<std::string, bool> grid_pid = pid_configurations_of_grid_copy(sweep_dir);
   std::vector<ConfigurationResults> results;
   for (const std::string& name : order) {
     ConfigurationSlots& slots = configurations[name];
     ConfigurationResults& config = slots.results;
     config.seeds_expected = slots.runs.size();
+    config.config_dir = name;
+    if (const auto found = grid_pid.find(name); found != grid_pid.end()) config.pid_multiplier = found->second;
     for (const RunSlot& run : slots.runs) {
       const RunDirectory directory(run.run_dir);
       if (std::isnan(config.cost_limit) && is_run_directory(run.run_dir)) {
         if (const std::optional<RunConfig> run_config = read_run_directory_config(run.run_dir)) {
           config.cost_limit = run_config->cost_limit;
+          config.pid_multiplier = uses_pid_multiplier(*run_config);
         }
       }
       const std::optional<RunEvaluation> evaluation = read_run_evaluation(directory);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 
 namespace bsg {
 
@@ -48,6 +49,14 @@ std::string table1_row_label(const std::string& env_id) {
   return label;
 }
 
+std::string table1_column_label(Table1Column column) {
+  if (column.pid_multiplier) {
+    if (column.alg == Algorithm::lag_trpo) return "TRPO-PID";
+    return table1_column_label(column.alg) + "-PID";  // PDO-PID
+  }
+  return table1_column_label(column.alg);
+}
+
 std::string table1_column_label(Algorithm alg) {
   switch (alg) {
     case Algorithm::trpo: return "TRPO";
@@ -63,16 +72,15 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
   Table1 table;
   table.score = score;
 
-  // Group configurations by environment and algorithm, keeping grid order.
-  std::map<std::string, std::map<Algorithm, std::vector<ConfigurationResults>>> groups;
-  std::array<bool, kAlgorithmNames.size()> present{};
+  // Group configurations by environment and column, keeping grid order.
+  std::map<std::string, std::map<Table1Column, std::vector<ConfigurationResults>>> groups;
+  std::set<Table1Column> present;  // ordered by algorithm, then SGD/Adam before PID
   for (const ConfigurationResults& config : results) {
-    groups[config.env_id][config.alg].push_back(config);
-    present[static_cast<std::size_t>(config.alg)] = true;
+    const Table1Column column{config.alg, config.pid_multiplier};
+    groups[config.env_id][column].push_back(config);
+    present.insert(column);
   }
-  for (std::size_t a = 0; a < present.size(); ++a) {
-    if (present[a]) table.algorithms.push_back(static_cast<Algorithm>(a));
-  }
+  table.columns.assign(present.begin(), present.end());
 
   std::vector<std::string> env_ids;
   for (const auto& [env_id, unused] : groups) env_ids.push_back(env_id);
@@ -84,10 +92,12 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
     Table1Row row;
     row.env_id = env_id;
     row.cost_limit = std::numeric_limits<double>::quiet_NaN();
-    for (const Algorithm alg : table.algorithms) {
+    for (const Table1Column& column : table.columns) {
+      const Algorithm alg = column.alg;
       Table1Cell cell;
       cell.alg = alg;
-      const auto found = groups[env_id].find(alg);
+      cell.pid_multiplier = column.pid_multiplier;
+      const auto found = groups[env_id].find(column);
       if (found != groups[env_id].end()) {
         const std::vector<ConfigurationResults>& candidates = found->second;
         const std::optional<Selection> selection = select_configuration(candidates, score);
@@ -98,7 +108,7 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
           }
           ConfigurationSummary summary{config.env_id, alg, config.config_name, config.cost_limit,
                                        config.seeds.size(), config.seeds_expected, std::nullopt,
-                                       selection && selection->index == i};
+                                       selection && selection->index == i, column.pid_multiplier};
           if (!config.seeds.empty()) summary.score = score_configuration(config, score);
           table.configurations.push_back(std::move(summary));
         }
@@ -106,7 +116,9 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
           const ConfigurationResults& chosen = candidates[selection->index];
           cell.selected = true;
           cell.config_name = chosen.config_name;
-          cell.config_dir = env_id + "/" + std::string(to_string(alg)) + "/" + chosen.config_name;
+          cell.config_dir = !chosen.config_dir.empty()
+                                ? chosen.config_dir
+                                : env_id + "/" + std::string(to_string(alg)) + "/" + chosen.config_name;
           cell.seeds_finished = chosen.seeds.size();
           cell.seeds_expected = chosen.seeds_expected;
           cell.score = selection->score;

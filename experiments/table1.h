@@ -1,5 +1,6 @@
 // Table 1 of the report from a sweep's results: per environment (row) and
-// algorithm (column), the configuration chosen by the selection rule
+// algorithm (column; TRPO-L and PDO with the PID Lagrange multiplier are
+// columns of their own, "TRPO-PID" and "PDO-PID"), the configuration chosen by the selection rule
 // (selection.h), its J normalised by TRPO's selected J, and H / d. The best
 // constrained algorithm of each row is marked: one that meets the cost limit
 // beats one that does not; then the higher J (or, if none meets it, the lower
@@ -16,8 +17,17 @@
 
 namespace bsg {
 
+// A column: an algorithm, with TRPO-L and PDO split by their multiplier rule
+// (SGD or Adam: the report's columns; PID: one more column each).
+struct Table1Column {
+  Algorithm alg = Algorithm::trpo;
+  bool pid_multiplier = false;
+  auto operator<=>(const Table1Column&) const = default;
+};
+
 struct Table1Cell {
   Algorithm alg = Algorithm::trpo;
+  bool pid_multiplier = false;  // the PID column of TRPO-L or PDO
   bool selected = false;  // false: no finished run of any configuration (missing)
   std::string config_name;
   std::string config_dir;  // <env_id>/<alg>/<config>, relative to the sweep
@@ -31,7 +41,7 @@ struct Table1Cell {
 struct Table1Row {
   std::string env_id;
   double cost_limit = 0.0;  // d; NaN if no run of the row has a configuration
-  std::vector<Table1Cell> cells;  // one per Table1::algorithms entry
+  std::vector<Table1Cell> cells;  // one per Table1::columns entry
   // J_TRPO, the mean return of TRPO's selected configuration, if it has one.
   std::optional<double> trpo_return() const;
 };
@@ -46,11 +56,13 @@ struct ConfigurationSummary {
   std::size_t seeds_expected = 0;
   std::optional<ConfigurationScore> score;  // nullopt: no finished run
   bool selected = false;
+  bool pid_multiplier = false;
 };
 
 struct Table1 {
   SelectionScore score = SelectionScore::mean_return;
-  std::vector<Algorithm> algorithms;  // columns: those in the sweep, in kAlgorithmNames order
+  // Those in the sweep, in kAlgorithmNames order, each PID column after its algorithm's.
+  std::vector<Table1Column> columns;
   std::vector<Table1Row> rows;        // the report's row order, then other ids sorted
   std::vector<ConfigurationSummary> configurations;
 };
@@ -59,7 +71,8 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
 
 // "BallCircle" for "SafetyBallCircle-v0" (the report's row labels).
 std::string table1_row_label(const std::string& env_id);
-// "TRPO", "TRPO-L", "CPO", "PDO", "PCPO".
+// "TRPO", "TRPO-L", "CPO", "PDO", "PCPO"; "TRPO-PID", "PDO-PID".
+std::string table1_column_label(Table1Column column);
 std::string table1_column_label(Algorithm alg);
 
 }  // namespace bsg

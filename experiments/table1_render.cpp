@@ -66,8 +66,8 @@ std::string legend(const Table1& table) {
 std::string table1_markdown(const Table1& table) {
   std::string text = "| Env |";
   std::string rule = "|---|";
-  for (const Algorithm alg : table.algorithms) {
-    text.append(" ").append(table1_column_label(alg)).append(" |");
+  for (const Table1Column& column : table.columns) {
+    text.append(" ").append(table1_column_label(column)).append(" |");
     rule += "---|";
   }
   text += "\n" + rule + "\n";
@@ -85,9 +85,9 @@ std::string table1_latex(const Table1& table) {
   std::string columns = "l";
   std::string header = "Env";
   std::string units;
-  for (const Algorithm alg : table.algorithms) {
+  for (const Table1Column& column : table.columns) {
     columns += "c";
-    header += " & " + table1_column_label(alg);
+    header += " & " + table1_column_label(column);
     units += " & $J/J_{\\mathrm{TRPO}}$ ($H/d$)";
   }
   std::string text = "% Table 1: " + legend(table) + "\n";
@@ -104,7 +104,7 @@ std::string table1_latex(const Table1& table) {
 std::string table1_csv(const Table1& table) {
   std::string text =
       "env_id,alg,status,config,config_dir,seeds_finished,seeds_expected,mean_return,mean_cost,"
-      "cost_limit,return_over_trpo,cost_over_limit,feasible,best_constrained\n";
+      "cost_limit,return_over_trpo,cost_over_limit,feasible,best_constrained,column\n";
   for (const Table1Row& row : table.rows) {
     for (const Table1Cell& cell : row.cells) {
       const std::string status = !cell.selected                ? "missing"
@@ -123,7 +123,8 @@ std::string table1_csv(const Table1& table) {
       text += std::string(",") + csv_number(row.cost_limit) + "," + csv_number(normalised_return(row, cell)) + "," +
               csv_number(normalised_cost(row, cell)) + "," +
               (cell.selected ? (cell.score.feasible ? "true" : "false") : "") + "," +
-              (cell.best_constrained ? "true" : "false") + "\n";
+              (cell.best_constrained ? "true" : "false") + "," +
+              table1_column_label(Table1Column{cell.alg, cell.pid_multiplier}) + "\n";
     }
   }
   return text;
@@ -132,7 +133,7 @@ std::string table1_csv(const Table1& table) {
 std::string configurations_csv(const Table1& table) {
   std::string text =
       "env_id,alg,config,seeds_finished,seeds_expected,mean_return,mean_cost,cost_limit,feasible,"
-      "score,selected\n";
+      "score,selected,column\n";
   for (const ConfigurationSummary& config : table.configurations) {
     text += config.env_id + "," + std::string(to_string(config.alg)) + "," +
             csv_field(config.config_name) + "," +
@@ -145,7 +146,8 @@ std::string configurations_csv(const Table1& table) {
     text += csv_number(config.cost_limit) + "," +
             (config.score ? (config.score->feasible ? "true" : "false") : "") + "," +
             (config.score ? csv_number(config.score->score) : "") + "," +
-            (config.selected ? "true" : "false") + "\n";
+            (config.selected ? "true" : "false") + "," +
+            table1_column_label(Table1Column{config.alg, config.pid_multiplier}) + "\n";
   }
   return text;
 }

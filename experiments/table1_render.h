@@ -19,7 +19,8 @@ std::string table1_markdown(const Table1& table);
 std::string table1_latex(const Table1& table);
 // One line per (environment, algorithm): env_id, alg, status (feasible |
 // infeasible | unconstrained (TRPO) | missing), config, its directory, seeds,
-// J, H, d, J/J_TRPO, H/d, whether H <= d, best constrained.
+// J, H, d, J/J_TRPO, H/d, whether H <= d, best constrained, the column label
+// (e.g. "TRPO-L", "TRPO-PID"). configurations.csv ends with the label too.
 std::string table1_csv(const Table1& table);
 std::string configurations_csv(const Table1& table);
 

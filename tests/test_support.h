@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -63,6 +64,18 @@ inline std::vector<std::vector<std::string>> read_csv_rows(const std::filesystem
   std::string line;
   while (std::getline(file, line)) rows.push_back(split_csv_line(line));
   return rows;
+}
+
+// The numeric columns of a CSV file with a header (such as progress.csv), by name.
+inline std::map<std::string, std::vector<double>> read_csv_columns(const std::filesystem::path& path) {
+  const std::vector<std::vector<std::string>> rows = read_csv_rows(path);
+  std::map<std::string, std::vector<double>> columns;
+  for (std::size_t row = 1; row < rows.size(); ++row) {
+    for (std::size_t i = 0; i < rows.front().size() && i < rows[row].size(); ++i) {
+      columns[rows.front()[i]].push_back(std::stod(rows[row][i]));
+    }
+  }
+  return columns;
 }
 
 // gmock's HasSubstr without gmock: says what was missing from which text.

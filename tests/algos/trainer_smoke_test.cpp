@@ -25,7 +25,6 @@
 #include "common/run_config_resolve.h"
 
 namespace fs = std::filesystem;
-using bsg::testing::read_csv_rows;
 using bsg::testing::TemporaryDirectory;
 
 namespace {
@@ -33,18 +32,6 @@ namespace {
 constexpr double kCostLimit = 2.0;
 
 using Columns = std::map<std::string, std::vector<double>>;
-
-Columns read_progress(const fs::path& path) {
-  const std::vector<std::vector<std::string>> rows = read_csv_rows(path);
-  Columns columns;
-  for (std::size_t row = 1; row < rows.size(); ++row) {
-    const std::vector<std::string>& names = rows.front();
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      columns[names[i]].push_back(std::stod(rows[row].at(i)));
-    }
-  }
-  return columns;
-}
 
 double mean(const std::vector<double>& values, std::size_t begin, std::size_t end) {
   return std::accumulate(values.begin() + begin, values.begin() + end, 0.0) / static_cast<double>(end - begin);
@@ -68,7 +55,7 @@ SmokeRun train(const std::string& alg, const std::vector<std::string>& overrides
                                bsg::MpiContext::single_process(), {});
   const bsg::TrainingOutcome outcome = trainer.run();
   EXPECT_TRUE(outcome.finished);
-  run.progress = read_progress(directory.path() / "run" / "progress.csv");
+  run.progress = bsg::testing::read_csv_columns(directory.path() / "run" / "progress.csv");
   return run;
 }
 

@@ -72,9 +72,25 @@ std::string error_of(const std::function<void()>& action) {
 
 }  // namespace
 
-TEST(TrainingCheckpoint, SaveThenLoadRestoresEverythingExactly) {
+// TRPO-L with the PID multiplier: its integral, EMAs and delay queue are saved.
+bsg::RunConfig pid_config() {
+  bsg::RunConfig config = lag_trpo_config();
+  config.lambda_optimizer = bsg::LambdaOptimizer::pid;
+  config.pid_kd = 0.2;
+  config.pid_d_delay = 3;
+  config.pid_delta_p_ema_alpha = 0.5;
+  config.pid_delta_d_ema_alpha = 0.5;
+  return config;
+}
+
+class TrainingCheckpointOfEveryMultiplier : public ::testing::TestWithParam<bsg::RunConfig> {};
+
+INSTANTIATE_TEST_SUITE_P(SgdAndPid, TrainingCheckpointOfEveryMultiplier,
+                         ::testing::Values(lag_trpo_config(), pid_config()));
+
+TEST_P(TrainingCheckpointOfEveryMultiplier, SaveThenLoadRestoresEverythingExactly) {
   TemporaryDirectory dir;
-  const bsg::RunConfig config = lag_trpo_config();
+  const bsg::RunConfig config = GetParam();
   bsg::Rng rng_a(1);
   bsg::ActorCritic saved(5, 2, config, rng_a);
   auto algorithm = bsg::make_algorithm(config);
@@ -94,6 +110,7 @@ TEST(TrainingCheckpoint, SaveThenLoadRestoresEverythingExactly) {
   EXPECT_EQ(loaded_progress.num_ranks, 2);
   expect_same(saved, loaded);
   EXPECT_EQ(algorithm->state(), loaded_algorithm->state());
+  EXPECT_EQ(algorithm->state().size(), config.lambda_optimizer == bsg::LambdaOptimizer::pid ? 1u + 3u + 3u : 1u);
   // Saving the loaded state reproduces the file byte for byte.
   EXPECT_EQ(bsg::encode_training_checkpoint(config, progress, saved, *algorithm),
             bsg::encode_training_checkpoint(config, loaded_progress, loaded, *loaded_algorithm));

@@ -35,18 +35,13 @@ const char* const kGrid =
     "  cpo: {axes: {lam_c: [0.5, 0.9]}}\n"
     "  pdo: {axes: {lambda_lr: [0.01, 0.1]}}\n";
 
-class HandMadeSweep : public ::testing::Test {
- protected:
-  void SetUp() override {
-    runs_ = bsg::expand_grid(bsg::parse_grid(kGrid, "hand-made grid"));
-    bsg::write_sweep_manifest(dir_.path(), runs_);
-  }
-
-  // Writes a finished run: config.yaml, evaluation.json, returns.csv, costs.csv.
-  void finish(const std::string& relative_dir, std::vector<double> returns, double mean_cost) {
-    for (const bsg::GridRun& run : runs_) {
+// Writes a finished run of `runs` below `sweep_dir`: config.yaml,
+// evaluation.json, returns.csv.
+void finish_run(const fs::path& sweep_dir, const std::vector<bsg::GridRun>& runs, const std::string& relative_dir,
+                std::vector<double> returns, double mean_cost) {
+    for (const bsg::GridRun& run : runs) {
       if (run.relative_dir().generic_string() != relative_dir) continue;
-      const bsg::RunDirectory directory(dir_.path() / run.relative_dir());
+      const bsg::RunDirectory directory(sweep_dir / run.relative_dir());
       fs::create_directories(directory.root);
       bsg::write_run_config(bsg::resolve_grid_run(run, kConfigs, "hand-made grid"), directory.config());
       double sum = 0;
@@ -62,6 +57,17 @@ class HandMadeSweep : public ::testing::Test {
       return;
     }
     FAIL() << "no run " << relative_dir;
+}
+
+class HandMadeSweep : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    runs_ = bsg::expand_grid(bsg::parse_grid(kGrid, "hand-made grid"));
+    bsg::write_sweep_manifest(dir_.path(), runs_);
+  }
+
+  void finish(const std::string& relative_dir, std::vector<double> returns, double mean_cost) {
+    finish_run(dir_.path(), runs_, relative_dir, std::move(returns), mean_cost);
   }
 
   TemporaryDirectory dir_;
@@ -158,6 +164,65 @@ TEST_F(HandMadeSweep, MalformedEvaluationIsAnErrorNamingTheFile) {
   const auto result = run_bsg("table " + dir_.path().string());
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_NE(result.output.find(evaluation.string() + ": missing \"mean_cost\""), std::string::npos) << result.output;
+}
+
+// A sweep of TRPO-L with the PID multiplier (configs/grids/pid.yaml's shape)
+// as `bsg sweep` leaves it: the grid copy, the manifest, some runs.
+TEST(Table, PidRunsFormTheirOwnColumnEvenBeforeAnyHasStarted) {
+  const TemporaryDirectory sweep;
+  const std::string grid =
+      "envs: [SafetyBallCircle-v0]\nseeds: [0]\nalgorithms:\n"
+      "  lag-trpo: {fixed: {lambda_optimizer: PID}, axes: {pid_kp: [0.1, 0.5]}}\n";
+  const std::vector<bsg::GridRun> runs = bsg::expand_grid(bsg::parse_grid(grid, "pid grid"));
+  bsg::write_sweep_manifest(sweep.path(), runs);
+  bsg::testing::write_text_file(sweep.path() / bsg::kSweepGridCopyName, grid);
+
+  auto result = run_bsg("table " + sweep.path().string());  // nothing has run yet
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("| Env | TRPO-PID |\n|---|---|\n| BallCircle | missing |"), std::string::npos)
+      << result.output;
+
+  finish_run(sweep.path(), runs, "SafetyBallCircle-v0/lag-trpo/pid_kp=0.5/seed=0", {80}, 20);
+  result = run_bsg("table " + sweep.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("| BallCircle | **J=80.0 (0.80)** |"), std::string::npos) << result.output;
+  EXPECT_NE(read_text_file(sweep.path() / "table1.csv").find(",TRPO-PID\n"), std::string::npos);
+}
+
+// `bsg table sweeps/report sweeps/pid --output DIR`: one table of both, each
+// cell naming its configuration's directory under its own sweep.
+TEST(Table, SeveralSweepsMakeOneTableWrittenToOutput) {
+  const TemporaryDirectory root;
+  const fs::path report = root.path() / "report";
+  const fs::path pid = root.path() / "pid";
+  const std::vector<bsg::GridRun> report_runs = bsg::expand_grid(bsg::parse_grid(
+      "envs: [SafetyBallCircle-v0]\nseeds: [0]\nalgorithms:\n  trpo:\n  lag-trpo:\n", "report grid"));
+  const std::vector<bsg::GridRun> pid_runs = bsg::expand_grid(bsg::parse_grid(
+      "envs: [SafetyBallCircle-v0]\nseeds: [0]\nalgorithms:\n  lag-trpo: {fixed: {lambda_optimizer: PID}}\n",
+      "pid grid"));
+  fs::create_directories(report);
+  fs::create_directories(pid);
+  bsg::write_sweep_manifest(report, report_runs);
+  bsg::write_sweep_manifest(pid, pid_runs);
+  finish_run(report, report_runs, "SafetyBallCircle-v0/trpo/default/seed=0", {100}, 50);
+  finish_run(report, report_runs, "SafetyBallCircle-v0/lag-trpo/default/seed=0", {60}, 30);
+  finish_run(pid, pid_runs, "SafetyBallCircle-v0/lag-trpo/default/seed=0", {70}, 24);
+
+  const auto refused = run_bsg("table " + report.string() + " " + pid.string());
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.output.find("needs --output"), std::string::npos) << refused.output;
+
+  const fs::path out = root.path() / "both";
+  const auto result = run_bsg("table " + report.string() + " " + pid.string() + " --output " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("| Env | TRPO | TRPO-L | TRPO-PID |"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("| BallCircle | 1.00 (2.00) | 0.60 (1.20)\u2020 | **0.70 (0.96)** |"),
+            std::string::npos)
+      << result.output;
+  const std::string csv = read_text_file(out / "table1.csv");
+  EXPECT_NE(csv.find("," + (pid / "SafetyBallCircle-v0/lag-trpo/default").generic_string() + ","), std::string::npos)
+      << csv;
+  EXPECT_FALSE(fs::exists(report / "table1.md"));  // neither sweep's own table is overwritten
 }
 
 TEST(Table, AMissingSweepDirectoryIsNamed) {

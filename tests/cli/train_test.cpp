@@ -3,6 +3,7 @@
 // non-zero exit for bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -22,15 +23,22 @@ namespace {
 
 const std::string kConfigs = std::string(" --configs ") + BSG_SOURCE_DIR + "/configs";
 
-// A small TRPO-L run on SafetyBallCircle-v0: 4 episodes per epoch.
-std::string tiny_run_file(const TemporaryDirectory& dir, int epochs) {
+// A small TRPO-L run on SafetyBallCircle-v0: 4 episodes per epoch; `extra`
+// adds lines to the run file.
+std::string tiny_run_file(const TemporaryDirectory& dir, int epochs, const std::string& extra = "") {
   const fs::path path = dir.path() / "run.yaml";
   write_text_file(
       path,
       "env_id: SafetyBallCircle-v0\nalg: lag-trpo\nseed: 3\nepochs: " + std::to_string(epochs) +
-          "\nsteps_per_epoch: 1000\nsave_freq: 4\neval_episodes: 2\ncost_limit: 1\n");
+          "\nsteps_per_epoch: 1000\nsave_freq: 4\neval_episodes: 2\ncost_limit: 1\n" + extra);
   return path.string();
 }
+
+// The PID multiplier with every part of its state in use: integral,
+// both EMAs and a two-epoch delay queue.
+const std::string kPidSettings =
+    "lambda_optimizer: PID\npid_kp: 0.2\npid_ki: 0.05\npid_kd: 0.3\npid_d_delay: 2\n"
+    "pid_delta_p_ema_alpha: 0.5\npid_delta_d_ema_alpha: 0.5\n";
 
 // progress.csv without the wall-clock columns (time_*, fps).
 std::vector<std::vector<std::string>> progress_without_timings(const fs::path& path) {
@@ -69,9 +77,11 @@ TEST(Train, WritesTheRunDirectory) {
   EXPECT_NE(evaluation.find("\"mean_length\": 250"), std::string::npos) << evaluation;
 }
 
-TEST(Train, AResumedRunReproducesAnUninterruptedOne) {
-  TemporaryDirectory dir;
-  const std::string run_file = tiny_run_file(dir, 6);
+namespace {
+
+// Trains `run_file` for 6 epochs whole and split after 3 (with a stale row of
+// a killed process), and checks that both give the same files.
+void expect_resume_reproduces_whole_run(const TemporaryDirectory& dir, const std::string& run_file) {
   const auto whole = run_bsg("train " + run_file + kConfigs + " --quiet --out " + dir.str("whole"));
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
 
@@ -96,6 +106,33 @@ TEST(Train, AResumedRunReproducesAnUninterruptedOne) {
             read_text_file(dir.path() / "whole" / "returns.csv"));
   EXPECT_EQ(read_text_file(dir.path() / "split" / "costs.csv"),
             read_text_file(dir.path() / "whole" / "costs.csv"));
+}
+
+}  // namespace
+
+TEST(Train, AResumedRunReproducesAnUninterruptedOne) {
+  TemporaryDirectory dir;
+  expect_resume_reproduces_whole_run(dir, tiny_run_file(dir, 6));
+}
+
+TEST(Train, AResumedPidRunReproducesAnUninterruptedOne) {
+  TemporaryDirectory dir;
+  expect_resume_reproduces_whole_run(dir, tiny_run_file(dir, 6, kPidSettings));
+  // The P, I and D terms are logged, and all three were in play.
+  auto columns = bsg::testing::read_csv_columns(dir.path() / "whole" / "progress.csv");
+  const std::vector<double>& lambda = columns["lagrange_multiplier"];
+  const std::vector<double>& p = columns["pid_p_term"];
+  const std::vector<double>& i = columns["pid_i_term"];
+  const std::vector<double>& d = columns["pid_d_term"];
+  ASSERT_EQ(lambda.size(), 6u);
+  ASSERT_EQ(p.size(), 6u);
+  ASSERT_EQ(i.size(), 6u);
+  ASSERT_EQ(d.size(), 6u);
+  for (std::size_t k = 0; k < lambda.size(); ++k) {
+    EXPECT_EQ(lambda[k], std::max(0.0, p[k] + i[k] + d[k])) << "epoch " << k;
+  }
+  EXPECT_GT(*std::max_element(d.begin() + 3, d.end()) + *std::max_element(p.begin() + 3, p.end()), 0.0);
+  EXPECT_GT(i.back(), 0.0);
 }
 
 TEST(Train, PrintConfigShowsTheResolvedConfiguration) {

@@ -116,6 +116,27 @@ TEST(GridExpansion, TheReportGridHasTheAppendixConfigurationsOverSixteenEnvironm
   }
 }
 
+TEST(GridExpansion, ThePidGridRunsTheReportProtocolWithThePidMultiplier) {
+  const GridSpec report = load_grid_file(kConfigs / "grids" / "report.yaml");
+  const GridSpec grid = load_grid_file(kConfigs / "grids" / "pid.yaml");
+  EXPECT_EQ(grid.env_ids, report.env_ids);
+  EXPECT_EQ(grid.seeds, report.seeds);
+  ASSERT_EQ(grid.algorithms.size(), 2u);
+  EXPECT_EQ(grid.algorithms[0].alg, Algorithm::lag_trpo);
+  EXPECT_EQ(grid.algorithms[1].alg, Algorithm::pdo);
+  const std::vector<GridRun> runs = expand_grid(grid);
+  EXPECT_EQ(runs.size(), 18u * 16u * 4u);
+  for (const GridRun& run : runs) {
+    if (run.seed != 0) continue;
+    const RunConfig config = resolve_grid_run(run, kConfigs, "pid.yaml");
+    EXPECT_EQ(config.lambda_optimizer, LambdaOptimizer::pid) << run.relative_dir();
+    if (run.relative_dir().generic_string() == "SafetyCarRun-v0/pdo/target_kl=0.01,pid_ki=0.001/seed=0") {
+      EXPECT_DOUBLE_EQ(config.target_kl, 0.01);
+      EXPECT_DOUBLE_EQ(config.pid_ki, 0.001);
+    }
+  }
+}
+
 TEST(GridExpansion, TheQuickGridIsTwoConfigurationsTimesTwoSeeds) {
   const std::vector<GridRun> runs = expand_grid(load_grid_file(kConfigs / "grids" / "quick.yaml"));
   ASSERT_EQ(runs.size(), 4u);

@@ -42,7 +42,7 @@ TEST(ReportTable1, TheShippedTranscriptionHasEveryCellAndTheReportsValues) {
 
 TEST(ReportTable1, EachCellBesideTheReportsAndTheDifference) {
   bsg::Table1 table;
-  table.algorithms = {bsg::Algorithm::trpo, bsg::Algorithm::lag_trpo};
+  table.columns = {{bsg::Algorithm::trpo, false}, {bsg::Algorithm::lag_trpo, false}};
   bsg::Table1Row row;
   row.env_id = "SafetyBallCircle-v0";
   row.cost_limit = 25.0;

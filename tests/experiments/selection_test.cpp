@@ -19,7 +19,14 @@ SeedResult seed(std::int64_t s, double j, double h, std::vector<double> returns 
 
 ConfigurationResults config(const std::string& name, Algorithm alg, std::vector<SeedResult> seeds,
                             double cost_limit = 25.0) {
-  return ConfigurationResults{"SafetyBallCircle-v0", alg, name, cost_limit, 2, std::move(seeds)};
+  ConfigurationResults results;
+  results.env_id = "SafetyBallCircle-v0";
+  results.alg = alg;
+  results.config_name = name;
+  results.cost_limit = cost_limit;
+  results.seeds_expected = 2;
+  results.seeds = std::move(seeds);
+  return results;
 }
 
 TEST(Selection, ScoreAveragesOverSeeds) {

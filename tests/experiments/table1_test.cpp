@@ -17,7 +17,14 @@ using testing::contains;
 
 ConfigurationResults config(const std::string& env, Algorithm alg, const std::string& name,
                             std::vector<SeedResult> seeds, std::size_t expected = 2, double d = 25.0) {
-  return ConfigurationResults{env, alg, name, d, expected, std::move(seeds)};
+  ConfigurationResults results;
+  results.env_id = env;
+  results.alg = alg;
+  results.config_name = name;
+  results.cost_limit = d;
+  results.seeds_expected = expected;
+  results.seeds = std::move(seeds);
+  return results;
 }
 
 // BallRun (listed first here, last in the report) and BallCircle.
@@ -37,8 +44,10 @@ std::vector<ConfigurationResults> results() {
 
 TEST(Table1, SelectsNormalisesAndOrdersRowsLikeTheReport) {
   const Table1 table = build_table1(results(), SelectionScore::mean_return);
-  EXPECT_EQ(table.algorithms,
-            (std::vector<Algorithm>{Algorithm::trpo, Algorithm::lag_trpo, Algorithm::cpo, Algorithm::pdo}));
+  EXPECT_EQ(table.columns, (std::vector<Table1Column>{{Algorithm::trpo, false},
+                                                      {Algorithm::lag_trpo, false},
+                                                      {Algorithm::cpo, false},
+                                                      {Algorithm::pdo, false}}));
   ASSERT_EQ(table.rows.size(), 2u);
   EXPECT_EQ(table.rows[0].env_id, "SafetyBallCircle-v0");
   EXPECT_EQ(table.rows[1].env_id, "SafetyBallRun-v0");
@@ -81,10 +90,10 @@ TEST(Table1, CsvHasOneLinePerCellWithMissingFieldsEmpty) {
   const Table1 table = build_table1(results(), SelectionScore::mean_return);
   const std::string csv = table1_csv(table);
   EXPECT_TRUE(contains(csv, "env_id,alg,status,config,config_dir,seeds_finished,seeds_expected,mean_return,"));
-  EXPECT_TRUE(contains(csv, "SafetyBallCircle-v0,pdo,infeasible,b,SafetyBallCircle-v0/pdo/b,2,2,250.0,27.0,25.0,1.25,1.08,false,false\n"));
-  EXPECT_TRUE(contains(csv, "SafetyBallRun-v0,cpo,missing,,,0,0,,,25.0,,,,false\n"));
+  EXPECT_TRUE(contains(csv, "SafetyBallCircle-v0,pdo,infeasible,b,SafetyBallCircle-v0/pdo/b,2,2,250.0,27.0,25.0,1.25,1.08,false,false,PDO\n"));
+  EXPECT_TRUE(contains(csv, "SafetyBallRun-v0,cpo,missing,,,0,0,,,25.0,,,,false,CPO\n"));
   const std::string all = configurations_csv(table);
-  EXPECT_TRUE(contains(all, "SafetyBallCircle-v0,trpo,target_kl=0.001,2,2,100.0,80.0,25.0,false,100.0,false\n"));
+  EXPECT_TRUE(contains(all, "SafetyBallCircle-v0,trpo,target_kl=0.001,2,2,100.0,80.0,25.0,false,100.0,false,TRPO\n"));
 }
 
 TEST(Table1, ConfigurationNamesWithCommasAreQuotedInCsv) {
@@ -94,7 +103,7 @@ TEST(Table1, ConfigurationNamesWithCommasAreQuotedInCsv) {
   const std::string csv = table1_csv(table);
   const std::string line = csv.substr(csv.find('\n') + 1, csv.find('\n', csv.find('\n') + 1) - csv.find('\n') - 1);
   const std::vector<std::string> fields = parse_csv_fields(line);
-  ASSERT_EQ(fields.size(), 14u);
+  ASSERT_EQ(fields.size(), 15u);
   EXPECT_EQ(fields[3], "target_kl=0.001,lam_c=0.5");
   EXPECT_EQ(fields[4], "SafetyBallCircle-v0/trpo/target_kl=0.001,lam_c=0.5");
 }
@@ -110,6 +119,41 @@ TEST(Table1, LatexMarksBestInfeasibleAndMissing) {
 TEST(Table1, RowLabels) {
   EXPECT_EQ(table1_row_label("SafetyDroneGather-v0"), "DroneGather");
   EXPECT_EQ(table1_column_label(Algorithm::lag_trpo), "TRPO-L");
+  EXPECT_EQ(table1_column_label(Table1Column{Algorithm::lag_trpo, true}), "TRPO-PID");
+  EXPECT_EQ(table1_column_label(Table1Column{Algorithm::pdo, true}), "PDO-PID");
+}
+
+TEST(Table1, PidMultiplierConfigurationsFormColumnsOfTheirOwn) {
+  // TRPO-L with SGD and with PID on the same environment: selected apart. The
+  // PID configuration has the higher return but would not displace SGD's
+  // selection, nor SGD's it: each column holds its own best.
+  const std::string circle = "SafetyBallCircle-v0";
+  std::vector<ConfigurationResults> all = {
+      config(circle, Algorithm::trpo, "default", {{0, 200, 80, {}}}, 1),
+      config(circle, Algorithm::lag_trpo, "sgd", {{0, 150, 24, {}}}, 1),
+      config(circle, Algorithm::lag_trpo, "pid", {{0, 170, 25, {}}}, 1),
+      config(circle, Algorithm::pdo, "pid", {{0, 100, 40, {}}}, 1),
+  };
+  all[2].pid_multiplier = true;
+  all[3].pid_multiplier = true;
+  all[3].config_dir = "sweeps/pid/SafetyBallCircle-v0/pdo/pid";
+  const Table1 table = build_table1(all, SelectionScore::mean_return);
+  EXPECT_EQ(table.columns, (std::vector<Table1Column>{{Algorithm::trpo, false},
+                                                      {Algorithm::lag_trpo, false},
+                                                      {Algorithm::lag_trpo, true},
+                                                      {Algorithm::pdo, true}}));
+  const Table1Row& row = table.rows.at(0);
+  EXPECT_EQ(row.cells[1].config_name, "sgd");
+  EXPECT_EQ(row.cells[2].config_name, "pid");
+  EXPECT_TRUE(row.cells[2].best_constrained);  // 170 / 200 within the limit beats 150 / 200
+  EXPECT_EQ(row.cells[3].config_dir, "sweeps/pid/SafetyBallCircle-v0/pdo/pid");
+  const std::string markdown = table1_markdown(table);
+  EXPECT_TRUE(contains(markdown, "| Env | TRPO | TRPO-L | TRPO-PID | PDO-PID |\n")) << markdown;
+  EXPECT_TRUE(contains(markdown, "| BallCircle | 1.00 (3.20) | 0.75 (0.96) | **0.85 (1.00)** | 0.50 (1.60)\u2020 |"))
+      << markdown;
+  EXPECT_TRUE(contains(table1_csv(table), "SafetyBallCircle-v0,lag-trpo,feasible,pid,SafetyBallCircle-v0/lag-trpo/pid,"
+                                          "1,1,170.0,25.0,25.0,0.85,1.0,true,true,TRPO-PID\n"));
+  EXPECT_TRUE(contains(configurations_csv(table), "SafetyBallCircle-v0,lag-trpo,sgd,1,1,150.0,24.0,25.0,true,150.0,true,TRPO-L\n"));
 }
 
 }  // namespace
