@@ -118,42 +118,7 @@ TEST(Pdo, AdamStateRoundTripsThroughTheCheckpoint) {
 }
 
 TEST(Pdo, PidMultiplierSteersThePolicyStepAndLogsItsTerms) {
-  // J_C = 30, d = 25: P = 0.1 * 5 = 0.5, I = 0.001 + 0.05 * 5 = 0.251,
-  // D = 0.2 * max(0, 30 - 0) = 6, lambda = 6.751: the step an SGD multiplier
-  // reaching the same lambda (6.501 + 0.05 * 5) takes.
-  RunConfig pid_config = testing::config_for(Algorithm::pdo);
-  pid_config.lambda_optimizer = LambdaOptimizer::pid;
-  pid_config.lagrangian_multiplier_init = 0.001;
-  pid_config.pid_kp = 0.1;
-  pid_config.pid_ki = 0.05;
-  pid_config.pid_kd = 0.2;
-  RunConfig sgd_config = testing::config_for(Algorithm::pdo);
-  sgd_config.lambda_optimizer = LambdaOptimizer::sgd;
-  sgd_config.lagrangian_multiplier_init = 6.501;
-  sgd_config.lambda_lr = 0.05;
-
-  SyntheticBatch pid_batch(64, 3, 4);
-  SyntheticBatch sgd_batch(64, 3, 4);
-  PolicySurrogate pid_surrogate = pid_batch.surrogate();
-  PolicySurrogate sgd_surrogate = sgd_batch.surrogate();
-  Pdo pid(pid_config);
-  Pdo sgd(sgd_config);
-  const PolicyUpdateResult pid_result = pid.update(testing::inputs_for(pid_batch, pid_surrogate, 30.0, 100.0));
-  const PolicyUpdateResult sgd_result = sgd.update(testing::inputs_for(sgd_batch, sgd_surrogate, 30.0, 100.0));
-
-  EXPECT_NEAR(pid_result.value("PID/P"), 0.5, 1e-15);
-  EXPECT_NEAR(pid_result.value("PID/I"), 0.251, 1e-15);
-  EXPECT_NEAR(pid_result.value("PID/D"), 6.0, 1e-15);
-  EXPECT_NEAR(pid_result.value("LagrangeMultiplier"), 6.751, 1e-14);
-  EXPECT_NEAR(sgd_result.value("LagrangeMultiplier"), 6.751, 1e-14);
-  EXPECT_THROW(sgd_result.value("PID/P"), std::out_of_range);
-  ASSERT_GE(pid_result.value("Misc/AcceptanceStep"), 1.0);
-  EXPECT_EQ(pid_result.value("Misc/AcceptanceStep"), sgd_result.value("Misc/AcceptanceStep"));
-  EXPECT_TRUE(pid_batch.policy.mean_net().parameters().isApprox(sgd_batch.policy.mean_net().parameters(), 1e-10));
-  const std::vector<std::string> names = pid.diagnostic_names();
-  ASSERT_EQ(names.size(), pid_result.diagnostics.size());
-  for (std::size_t i = 0; i < names.size(); ++i) EXPECT_EQ(pid_result.diagnostics[i].name, names[i]);
-  EXPECT_EQ(names.size(), sgd.diagnostic_names().size() + 3);
+  testing::expect_pid_multiplier_steers_like_sgd<Pdo>(Algorithm::pdo);
 }
 
 }  // namespace
