@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct AntEnvCase {
   int sub_steps;
   bool power_upgrade;
 };
+
+// So that gtest names the case in its listing instead of dumping its bytes.
+void PrintTo(const AntEnvCase& c, std::ostream* out) { *out << c.env_id; }
 
 const std::array<AntEnvCase, 4> kCases = {{
     {"SafetyAntRun-v0", WorldLayout::kPlane200, 4, false},

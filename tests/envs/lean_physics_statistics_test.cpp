@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,11 @@ struct Case {
   std::string id;
   bool random_policy;
 };
+
+// So that gtest names the case in its listing instead of dumping its bytes.
+void PrintTo(const Case& c, std::ostream* out) {
+  *out << c.id << (c.random_policy ? ", random policy" : ", zero policy");
+}
 
 class LeanPhysicsStatistics : public ::testing::TestWithParam<Case> {};
 
