@@ -4,6 +4,7 @@
 #include <cmath>
 #include <ctime>
 #include <iostream>
+#include <limits>
 #include <ostream>
 
 #include "algos/epoch_log.h"
@@ -287,9 +288,17 @@ TrainingOutcome OnPolicyTrainer::run() {
   outcome.finished = progress_.epochs_completed == config_.epochs;
   if (!outcome.finished) return outcome;
   if (config_.eval_episodes / mpi_.size() == 0) {
-    if (mpi_.is_root() && options_.log != nullptr) {
-      *options_.log << "evaluation skipped (eval_episodes = " << config_.eval_episodes << " for " << mpi_.size()
-                    << (mpi_.size() == 1 ? " rank)" : " ranks)") << std::endl;
+    // No evaluation episodes: the run is still finished, and evaluation.json
+    // says so (0 episodes, null J and H), because sweeps, `bsg sweep --status`
+    // and resume take that file as the mark of a finished run.
+    if (mpi_.is_root()) {
+      constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+      write_evaluation_files(directory_, EvaluationSummary{{}, kNone, kNone, kNone});
+      if (options_.log != nullptr) {
+        *options_.log << "evaluation skipped (eval_episodes = " << config_.eval_episodes << " for " << mpi_.size()
+                      << (mpi_.size() == 1 ? " rank" : " ranks") << "): evaluation.json records 0 episodes"
+                      << std::endl;
+      }
     }
     return outcome;
   }

@@ -147,7 +147,8 @@ std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path
         }
       }
       const std::optional<RunEvaluation> evaluation = read_run_evaluation(directory);
-      if (!evaluation) continue;
+      // A run trained with eval_episodes: 0 is finished but has no J or H.
+      if (!evaluation || evaluation->episodes == 0) continue;
       SeedResult seed{run.seed, evaluation->mean_return, evaluation->mean_cost, {}};
       if (with_episode_returns) seed.episode_returns = read_value_per_line(directory.returns());
       config.seeds.push_back(std::move(seed));

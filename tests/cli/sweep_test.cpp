@@ -342,6 +342,36 @@ TEST(Sweep, AFailedRunIsReportedWithItsLogAndTheExitCodeSaysSo) {
   EXPECT_NE(read_text_file(run_dir / bsg::kSweepRunLogName).find("checkpoint"), std::string::npos);
 }
 
+TEST(Sweep, RunsWithoutEvaluationEpisodesFinishAndTheTableCountsThemMissing) {
+  // eval_episodes: 0 (learning curves only): the run ends with an
+  // evaluation.json of 0 episodes, the sweep and --status see it finished,
+  // and Table 1 has no J or H for it.
+  TemporaryDirectory temp;
+  const fs::path grid = temp.path() / "curves.yaml";
+  std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [7]\n"
+                         "fixed: {epochs: 1, steps_per_epoch: 500, eval_episodes: 0}\nalgorithms: {trpo: }\n";
+  const fs::path out = temp.path() / "out";
+  const std::string sweep = "sweep " + grid.string() + " --configs " + (kSource / "configs").string() +
+                            " --out " + out.string();
+  const auto first = run_bsg(sweep);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const fs::path run_dir = out / "SafetyBallCircle-v0" / "trpo" / "default" / "seed=7";
+  const std::string evaluation = read_text_file(bsg::RunDirectory(run_dir).evaluation());
+  EXPECT_NE(evaluation.find("\"episodes\": 0"), std::string::npos) << evaluation;
+  EXPECT_NE(evaluation.find("\"mean_return\": null"), std::string::npos) << evaluation;
+  EXPECT_EQ(bsg::logged_epochs(bsg::RunDirectory(run_dir)), 1);
+
+  const auto again = run_bsg(sweep);
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("1 already finished"), std::string::npos) << again.output;
+  const auto status = run_bsg("sweep --status " + out.string());
+  EXPECT_EQ(status.exit_code, 0) << status.output;
+  EXPECT_NE(status.output.find("finished"), std::string::npos) << status.output;
+  const auto table = run_bsg("table " + out.string());
+  EXPECT_EQ(table.exit_code, 0) << table.output;
+  EXPECT_NE(read_text_file(out / "table1.md").find("missing"), std::string::npos) << read_text_file(out / "table1.md");
+}
+
 TEST(Sweep, ARunDirectoryOfAnotherConfigurationIsNotTouched) {
   const OneRunSweep sweep;
   bsg::RunConfig config =
