@@ -29,6 +29,14 @@ inline ProgramResult run_command(const std::string& command_line) {
   return result;
 }
 
+// `mpirun -np 2` as these tests start it: Open MPI refuses to run as root (CI
+// does) without its two consent variables, and under ASan its own
+// allocations, which are not ours, would be reported as leaks by the ranks.
+inline std::string mpirun_two_ranks() {
+  return "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ASAN_OPTIONS=detect_leaks=0 "
+         "mpirun -np 2 --oversubscribe ";
+}
+
 inline ProgramResult run_bsg(const std::string& arguments) {
   return run_command(std::string(BSG_BINARY) + " " + arguments);
 }

@@ -118,8 +118,7 @@ TEST(TrainSignal, SigintStopsLikewise) {
 }
 
 TEST(TrainSignal, Sigusr1ToMpirunStopsBothRanksAtTheSameEpochAndTheResumeEqualsAnUninterruptedRun) {
-  check_stopped_resumes_like_uninterrupted(
-      "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun -np 2 --oversubscribe ", SIGUSR1);
+  check_stopped_resumes_like_uninterrupted(bsg::testing::mpirun_two_ranks(), SIGUSR1);
 }
 
 TEST(TrainSignal, TheHelpDocumentsTheSignalsAndTheExitCode) {

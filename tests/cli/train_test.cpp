@@ -233,20 +233,11 @@ TEST(Train, AnErrorOnOneMpiRankEndsTheWholeJob) {
   ASSERT_EQ(run_bsg(command).exit_code, 0);
   // Only rank 0 checks the run directory: rank 1 goes on into the first
   // collective and must be ended by rank 0's abort, not left waiting.
-  // Open MPI refuses to run as root without these (CI runs as root).
-  const std::string mpi_command = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 120 "
-                                  "mpirun -np 2 --oversubscribe " +
-                                  std::string(BSG_BINARY) + " " + command + " 2>&1";
-  FILE* pipe = popen(mpi_command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char chunk[4096];
-  std::size_t n = 0;
-  while ((n = fread(chunk, 1, sizeof(chunk), pipe)) > 0) output.append(chunk, n);
-  const int status = pclose(pipe);
-  ASSERT_TRUE(WIFEXITED(status)) << output;
-  EXPECT_NE(WEXITSTATUS(status), 0) << output;
-  EXPECT_NE(WEXITSTATUS(status), 124) << "timed out (a rank hung):\n" << output;
+  const auto [exit_code, output] = bsg::testing::run_command("timeout 120 " + bsg::testing::mpirun_two_ranks() +
+                                                             std::string(BSG_BINARY) + " " + command);
+  ASSERT_NE(exit_code, -1) << output;
+  EXPECT_NE(exit_code, 0) << output;
+  EXPECT_NE(exit_code, 124) << "timed out (a rank hung):\n" << output;
   EXPECT_NE(output.find("already holds a run"), std::string::npos) << output;
   EXPECT_NE(output.find("rank 0"), std::string::npos) << output;
 }
