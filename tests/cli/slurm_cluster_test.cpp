@@ -32,18 +32,7 @@ namespace {
 
 const fs::path kSource(BSG_SOURCE_DIR);
 
-bsg::testing::ProgramResult shell(const std::string& command) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  bsg::testing::ProgramResult result;
-  if (pipe == nullptr) return result;
-  char chunk[4096];
-  std::size_t n = 0;
-  while ((n = fread(chunk, 1, sizeof chunk, pipe)) > 0) result.output.append(chunk, n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
+using bsg::testing::run_command;
 
 
 std::size_t count_of(const std::string& text, const std::string& part) {
@@ -56,19 +45,19 @@ class LocalSlurmCluster : public ::testing::Test {
  protected:
   void SetUp() override {
     if (::geteuid() != 0) GTEST_SKIP() << "needs root to start munged, slurmctld and slurmd";
-    if (shell("command -v slurmctld && command -v slurmd && command -v munged").exit_code != 0) {
+    if (run_command("command -v slurmctld && command -v slurmd && command -v munged").exit_code != 0) {
       GTEST_SKIP() << "Slurm or munge is not installed (scripts/install_deps.sh installs them)";
     }
     dir_ = temp_.path() / "cluster";
-    const auto started = shell("bash " + (kSource / "scripts" / "slurm_local.sh").string() + " start " + dir_.string());
+    const auto started = run_command("bash " + (kSource / "scripts" / "slurm_local.sh").string() + " start " + dir_.string());
     ASSERT_EQ(started.exit_code, 0) << started.output;
     running_ = true;
     ::setenv("SLURM_CONF", (dir_ / "slurm.conf").c_str(), 1);
   }
   void TearDown() override {
     if (running_) {
-      shell("scancel --user=root --quiet");
-      const auto stopped = shell("bash " + (kSource / "scripts" / "slurm_local.sh").string() + " stop " + dir_.string());
+      run_command("scancel --user=root --quiet");
+      const auto stopped = run_command("bash " + (kSource / "scripts" / "slurm_local.sh").string() + " stop " + dir_.string());
       EXPECT_EQ(stopped.exit_code, 0) << stopped.output;
     }
     ::unsetenv("SLURM_CONF");
@@ -77,7 +66,7 @@ class LocalSlurmCluster : public ::testing::Test {
   bool wait_for_empty_queue(int seconds) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
     while (std::chrono::steady_clock::now() < deadline) {
-      const auto queue = shell("squeue --noheader --user=root");
+      const auto queue = run_command("squeue --noheader --user=root");
       if (queue.exit_code == 0 && queue.output.find_first_not_of(" \n") == std::string::npos) return true;
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
     }
@@ -116,7 +105,7 @@ TEST_F(LocalSlurmCluster, ACancelledTaskResumesOnResubmissionAndEveryRunFinishes
   const std::string job_id = job.substr(0, job.find(' '));
   const auto status_live = run_bsg("sweep --status " + sweep.string());
   EXPECT_EQ(status_live.exit_code, 0) << status_live.output;
-  ASSERT_EQ(shell("scancel " + job_id + "_1").exit_code, 0);
+  ASSERT_EQ(run_command("scancel " + job_id + "_1").exit_code, 0);
   ASSERT_TRUE(wait_for_empty_queue(90));
   const int epochs_before = bsg::testing::progress_rows(sweep / runs[1] / "progress.csv");
   EXPECT_GE(epochs_before, 1);
