@@ -144,6 +144,35 @@ TEST_F(LocalSlurmCluster, ACancelledTaskResumesOnResubmissionAndEveryRunFinishes
   EXPECT_TRUE(fs::exists(sweep / "table1_compare.csv"));
 }
 
+TEST_F(LocalSlurmCluster, ARunOfTwoRanksTrainsUnderMpirunInsideItsAllocationLikeALocalSweep) {
+  // --ranks-per-run 2: the task asks for 2 tasks and runs mpirun -np 2 in its
+  // allocation; the run equals a local sweep's 2-rank run. Under ASan, Open
+  // MPI's own allocations would be reported as leaks by the ranks (the
+  // submitting environment reaches the task), so leak checks are off for them.
+  ::setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
+  const fs::path grid = temp_.path() / "two_ranks.yaml";
+  std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [3]\n"
+                         "fixed: {epochs: 3, steps_per_epoch: 2000, eval_episodes: 2}\nalgorithms: {lag-trpo: }\n";
+  const fs::path sweep = temp_.path() / "slurm_two_ranks";
+  const auto submitted = run_bsg("sweep " + grid.string() + " --configs " + (kSource / "configs").string() +
+                                 " --slurm --ranks-per-run 2 --out " + sweep.string());
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+  EXPECT_NE(read_text_file(sweep / "slurm_array.sh").find("#SBATCH --ntasks=2"), std::string::npos);
+  ASSERT_TRUE(wait_for_empty_queue(120));
+  const fs::path local = temp_.path() / "local_two_ranks";
+  const auto local_run = run_bsg("sweep " + grid.string() + " --configs " + (kSource / "configs").string() +
+                                 " --ranks-per-run 2 --out " + local.string());
+  ::unsetenv("ASAN_OPTIONS");
+  ASSERT_EQ(local_run.exit_code, 0) << local_run.output;
+  const fs::path run = bsg::expand_grid(bsg::load_grid_file(grid)).front().relative_dir();
+  const std::string log = read_text_file(sweep / run / "train.log");
+  EXPECT_NE(log.find("on 2 ranks"), std::string::npos) << log;
+  ASSERT_TRUE(fs::exists(sweep / run / "evaluation.json")) << log;
+  EXPECT_EQ(bsg::testing::progress_without_timings(sweep / run / "progress.csv"),
+            bsg::testing::progress_without_timings(local / run / "progress.csv"));
+  EXPECT_EQ(read_text_file(sweep / run / "evaluation.json"), read_text_file(local / run / "evaluation.json"));
+}
+
 TEST_F(LocalSlurmCluster, SbatchRefusingTheJobShowsItsMessage) {
   const fs::path sweep = temp_.path() / "refused";
   const auto result = run_bsg("sweep " + (kSource / "configs" / "grids" / "quick.yaml").string() +
