@@ -18,6 +18,7 @@
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
 #include "orientation.h"
+#include "rigid_body_merge.h"
 #include "world.h"
 
 namespace bsg::envs {
@@ -522,6 +523,15 @@ btCollisionShape* link_shape(World& world, const LinkSpec& spec) {
   return world.keep_shape(std::move(compound));
 }
 
+// True for the links the lean model welds into the base: their joint, and
+// every joint between them and the chassis, is fixed.
+bool welded_into_base(int link) {
+  for (int i = link; i >= 0; i = kLinks[i].parent) {
+    if (kLinks[i].joint != JointKind::kFixed) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 CarAgent::CarAgent(World& world, const AgentOptions& options)
@@ -537,47 +547,121 @@ CarAgent::CarAgent(World& world, const AgentOptions& options)
   traits_.run_speed_limit = 1.5;
   traits_.sensor_rotates = true;
   traits_.sensor_offset = btVector3(0.2, 0, 0.3);
+  build(world, options.physics == PhysicsModel::kLean);
+}
 
-  // Base: the chassis compound holds the hull at −COM (inertial frame at COM).
+void CarAgent::build(World& world, bool lean) {
+  // The chassis compound holds the hull at −COM (inertial frame at COM).
   const btTransform chassis_inertial = translation(scaled(kChassisCom));
+  btCollisionShape* hull = world.keep_shape(chassis_hull());
   auto chassis = std::make_unique<btCompoundShape>();
   chassis->setMargin(kMargin);
-  chassis->addChildShape(chassis_inertial.inverse(), world.keep_shape(chassis_hull()));
+  chassis->addChildShape(chassis_inertial.inverse(), hull);
   btCollisionShape* chassis_shape = world.keep_shape(std::move(chassis));
   btVector3 chassis_inertia;
   chassis_shape->calculateLocalInertia(kChassisMassKg, chassis_inertia);
 
-  auto body = std::make_unique<btMultiBody>(kLinkCount, kChassisMassKg, chassis_inertia,
+  // Link shapes, and inertias from them, not from the URDF (docs/environments.md#how-bodies-are-built).
+  std::array<btCollisionShape*, kLinkCount> shapes{};
+  std::array<btVector3, kLinkCount> inertias{};
+  for (int i = 0; i < kLinkCount; ++i) {
+    shapes[i] = link_shape(world, kLinks[i]);
+    inertias[i].setZero();
+    shapes[i]->calculateLocalInertia(kLinks[i].mass_kg, inertias[i]);
+  }
+
+  // The base: the chassis alone (faithful), or the chassis with the links
+  // welded to it (lean). base_inertial is the base's COM frame in the chassis
+  // link frame.
+  welded_base_ = lean;
+  double base_mass = kChassisMassKg;
+  btVector3 base_inertia = chassis_inertia;
+  btTransform base_inertial = chassis_inertial;
+  btCollisionShape* base_shape = chassis_shape;
+  std::array<int, kLinkCount> body_link{};  // −1: welded into the base
+  int body_link_count = 0;
+  for (int i = 0; i < kLinkCount; ++i) {
+    body_link[i] = lean && welded_into_base(i) ? -1 : body_link_count++;
+    link_places_[i] = {body_link[i], btTransform::getIdentity()};
+  }
+  if (lean) {
+    // COM frames of the welded links in the chassis link frame (URDF chain).
+    std::array<btTransform, kLinkCount> link_frame{};
+    std::array<btTransform, kLinkCount> com_frame{};
+    std::vector<RigidPart> parts = {
+        {kChassisMassKg, chassis_inertia, chassis_inertial.getOrigin(), btQuaternion::getIdentity()}};
+    for (int i = 0; i < kLinkCount; ++i) {
+      if (body_link[i] >= 0) continue;
+      const LinkSpec& spec = kLinks[i];
+      const btTransform parent_frame =
+          spec.parent < 0 ? btTransform::getIdentity() : link_frame[spec.parent];
+      link_frame[i] = parent_frame * urdf_origin(spec.origin_xyz, spec.origin_rpy);
+      com_frame[i] = link_frame[i] * translation(scaled(spec.com_xyz));
+      parts.push_back({spec.mass_kg, inertias[i], com_frame[i].getOrigin(), com_frame[i].getRotation()});
+    }
+    const MergedBody merged = merge_rigid_parts(parts);
+    // The laser and the cameras sit above and ahead of the chassis COM, so the
+    // merged inertia has a product I_xz; btMultiBody takes a diagonal base
+    // inertia, so the base's COM frame is the merged body's principal frame
+    // (turned about y by a small angle; the y products vanish by symmetry).
+    btMatrix3x3 principal = merged.inertia;
+    btMatrix3x3 axes;
+    principal.diagonalize(axes, SIMD_EPSILON, 32);
+    const double trace = principal[0][0] + principal[1][1] + principal[2][2];
+    const double off_diagonal = std::max(
+        {std::abs(principal[0][1]), std::abs(principal[0][2]), std::abs(principal[1][2])});
+    if (!(off_diagonal <= 1e-14 * trace) || axes.determinant() < 0) {
+      throw std::logic_error("CarAgent: the lean base's inertia has no principal frame");
+    }
+    base_mass = merged.mass;
+    base_inertia = btVector3(principal[0][0], principal[1][1], principal[2][2]);
+    base_inertial = btTransform(axes, merged.com);
+    chassis_in_base_ = base_inertial.inverse() * chassis_inertial;
+    // One compound: the chassis hull and the welded links' geometry where the
+    // faithful links put them (the shapes are expressed in the link COM frames).
+    auto compound = std::make_unique<btCompoundShape>();
+    compound->setMargin(kMargin);
+    compound->addChildShape(base_inertial.inverse(), hull);
+    for (int i = 0; i < kLinkCount; ++i) {
+      if (body_link[i] >= 0) continue;
+      link_places_[i].offset = base_inertial.inverse() * com_frame[i];
+      if (kLinks[i].geometry != Geometry::kNone) {
+        compound->addChildShape(link_places_[i].offset, shapes[i]);
+      }
+    }
+    base_shape = world.keep_shape(std::move(compound));
+  }
+
+  auto body = std::make_unique<btMultiBody>(body_link_count, base_mass, base_inertia,
                                             /*fixedBase=*/false, /*canSleep=*/false);
   btMultiBody& mb = *body;
-
-  std::array<btCollisionShape*, kLinkCount> shapes{};
   for (int i = 0; i < kLinkCount; ++i) {
+    if (body_link[i] < 0) continue;
     const LinkSpec& spec = kLinks[i];
-    shapes[i] = link_shape(world, spec);
-    // Inertia from the collision shape, not the URDF (docs/environments.md#how-bodies-are-built).
-    btVector3 inertia(0, 0, 0);
-    shapes[i]->calculateLocalInertia(spec.mass_kg, inertia);
-
+    const int parent = spec.parent < 0 ? -1 : body_link[spec.parent];
+    if (spec.parent >= 0 && parent < 0) {
+      throw std::logic_error("CarAgent: a moving link hangs from a welded one");
+    }
     // Joint frames exactly as URDF2Bullet computes them.
     const btTransform parent_inertial =
-        spec.parent < 0 ? chassis_inertial : translation(scaled(kLinks[spec.parent].com_xyz));
+        spec.parent < 0 ? base_inertial : translation(scaled(kLinks[spec.parent].com_xyz));
     const btTransform local_inertial = translation(scaled(spec.com_xyz));
     const btTransform parent_to_joint = urdf_origin(spec.origin_xyz, spec.origin_rpy);
     const btTransform offset_in_a = parent_inertial.inverse() * parent_to_joint;
     const btTransform offset_in_b = local_inertial.inverse();
     const btQuaternion parent_rot_to_this =
         offset_in_b.getRotation() * offset_in_a.inverse().getRotation();
+    const int link = body_link[i];
     if (spec.joint == JointKind::kRevolute) {
-      mb.setupRevolute(i, spec.mass_kg, inertia, spec.parent, parent_rot_to_this,
+      mb.setupRevolute(link, spec.mass_kg, inertias[i], parent, parent_rot_to_this,
                        quatRotate(offset_in_b.getRotation(), spec.axis), offset_in_a.getOrigin(),
                        -offset_in_b.getOrigin(), /*disableParentCollision=*/true);
       if (spec.limited) {
-        mb.getLink(i).m_jointLowerLimit = -kSteeringLimitRad;
-        mb.getLink(i).m_jointUpperLimit = kSteeringLimitRad;
+        mb.getLink(link).m_jointLowerLimit = -kSteeringLimitRad;
+        mb.getLink(link).m_jointUpperLimit = kSteeringLimitRad;
       }
     } else {
-      mb.setupFixed(i, spec.mass_kg, inertia, spec.parent, parent_rot_to_this,
+      mb.setupFixed(link, spec.mass_kg, inertias[i], parent, parent_rot_to_this,
                     offset_in_a.getOrigin(), -offset_in_b.getOrigin());
     }
   }
@@ -596,28 +680,37 @@ CarAgent::CarAgent(World& world, const AgentOptions& options)
     } else {
       mb.getLink(link).m_collider = added;
     }
-    colliders_[link + 1] = added;
+    colliders_.push_back(added);
   };
-  add_collider(-1, chassis_shape, kChassisFriction, false);
+  // The welded links' friction (0.5) and hard contacts are the chassis's.
+  add_collider(-1, base_shape, kChassisFriction, false);
   for (int i = 0; i < kLinkCount; ++i) {
-    add_collider(i, shapes[i], kLinks[i].friction, kLinks[i].soft_contact);
+    if (body_link[i] >= 0) add_collider(body_link[i], shapes[i], kLinks[i].friction, kLinks[i].soft_contact);
   }
 
   mb.setHasSelfCollision(false);
   mb.finalizeMultiDof();
   body_ = world.add_multibody(std::move(body));
+  for (int m = 0; m < kMovableJointCount; ++m) movable_links_[m] = body_link[kMovableLinks[m]];
   set_base_pose(traits_.initial_position, quaternion_from_euler(0, 0, traits_.initial_yaw));
 
   // Constraints in PyBullet's order: joint limits (importer), one motor per
   // revolute joint (createJointMotors), then the gears (the agent's code).
   for (int i = 0; i < kLinkCount; ++i) {
     if (kLinks[i].limit_constraint) {
+      const btMultibodyLink& link = body_->getLink(body_link[i]);
       world.add_constraint(std::make_unique<btMultiBodyJointLimitConstraint>(
-          body_, i, body_->getLink(i).m_jointLowerLimit, body_->getLink(i).m_jointUpperLimit));
+          body_, body_link[i], link.m_jointLowerLimit, link.m_jointUpperLimit));
     }
   }
   for (int m = 0; m < kMovableJointCount; ++m) {
-    auto motor = std::make_unique<btMultiBodyJointMotor>(body_, kMovableLinks[m], 0,
+    // The lean model keeps the 10 motors that are never switched on. They make
+    // no solver row (Bullet skips a motor whose max impulse is 0), so leaving
+    // them out saves under 1 % of the instructions; but Bullet quick-sorts the
+    // constraint array each step (not a stable sort), and without them the
+    // gear rows are solved in another order: the differentials' spider gears
+    // then part from the faithful model by ~20 rad/s in the first step.
+    auto motor = std::make_unique<btMultiBodyJointMotor>(body_, movable_links_[m], 0,
                                                          /*desiredVelocity=*/0.0,
                                                          /*maxMotorImpulse=*/1.0);
     motor->setPositionTarget(0, 0);
@@ -631,20 +724,23 @@ CarAgent::CarAgent(World& world, const AgentOptions& options)
   const btMatrix3x3 identity = btMatrix3x3::getIdentity();
   for (const GearSpec& gear : kGears) {
     auto constraint = std::make_unique<btMultiBodyGearConstraint>(
-        body_, gear.link_a, body_, gear.link_b, btVector3(0, 0, 0), btVector3(0, 0, 0), identity,
-        identity);
+        body_, body_link[gear.link_a], body_, body_link[gear.link_b], btVector3(0, 0, 0),
+        btVector3(0, 0, 0), identity, identity);
     constraint->setGearRatio(gear.ratio);
-    if (gear.aux_link >= 0) constraint->setGearAuxLink(gear.aux_link);
+    if (gear.aux_link >= 0) constraint->setGearAuxLink(body_link[gear.aux_link]);
     constraint->setMaxAppliedImpulse(gear_max_impulse);
     world.add_constraint(std::move(constraint));
   }
 }
 
 void CarAgent::refresh_colliders() {
-  btAlignedObjectArray<btQuaternion> scratch_q;
-  btAlignedObjectArray<btVector3> scratch_m;
-  body_->forwardKinematics(scratch_q, scratch_m);
-  body_->updateCollisionObjectWorldTransforms(scratch_q, scratch_m);
+  body_->forwardKinematics(scratch_rotations_, scratch_vectors_);
+  body_->updateCollisionObjectWorldTransforms(scratch_rotations_, scratch_vectors_);
+}
+
+btTransform CarAgent::chassis_com_transform() const {
+  if (!welded_base_) return body_->getBaseWorldTransform();
+  return body_->getBaseWorldTransform() * chassis_in_base_;
 }
 
 void CarAgent::reset(Rng& rng) {
@@ -664,6 +760,8 @@ void CarAgent::set_base_pose(const btVector3& com_position, const btQuaternion& 
   transform.setIdentity();
   transform.setOrigin(com_position);
   transform.setRotation(orientation);
+  // Lean: the pose given is the chassis COM's; the base's COM frame follows it.
+  if (welded_base_) transform = transform * chassis_in_base_.inverse();
   body_->setBaseWorldTransform(transform);
   refresh_colliders();
 }
@@ -675,8 +773,8 @@ void CarAgent::set_joint_positions(std::span<const double> joint_positions) {
                                 std::to_string(joint_positions.size()));
   }
   for (int m = 0; m < kMovableJointCount; ++m) {
-    body_->setJointPos(kMovableLinks[m], joint_positions[m]);
-    body_->setJointVel(kMovableLinks[m], 0);
+    body_->setJointPos(movable_links_[m], joint_positions[m]);
+    body_->setJointVel(movable_links_[m], 0);
   }
   refresh_colliders();
 }
@@ -700,7 +798,7 @@ void CarAgent::apply_action(std::span<const double> action) {
   for (int m : {kLeftHingeMotor, kRightHingeMotor}) {
     // POSITION_CONTROL with PyBullet's defaults; the target is clamped to the
     // hinge limits (both hinges are limited, docs/environments.md#car).
-    const btMultibodyLink& link = body_->getLink(kMovableLinks[m]);
+    const btMultibodyLink& link = body_->getLink(movable_links_[m]);
     const double target = std::clamp(steering_rad, link.m_jointLowerLimit, link.m_jointUpperLimit);
     btMultiBodyJointMotor& motor = *motors_[m];
     motor.setVelocityTarget(0, kSteeringKd);
@@ -728,14 +826,22 @@ void CarAgent::write_observation(std::span<double> out) const {
   out[6] = 0.1 * angular_velocity().z();
 }
 
-btVector3 CarAgent::position() const { return body_->getBasePos(); }
+btVector3 CarAgent::position() const {
+  if (!welded_base_) return body_->getBasePos();
+  return chassis_com_transform().getOrigin();
+}
 
 btQuaternion CarAgent::orientation() const {
   // As PyBullet reports it: from the base world transform (matrix → quaternion).
-  return body_->getBaseWorldTransform().getRotation();
+  return chassis_com_transform().getRotation();
 }
 
-btVector3 CarAgent::linear_velocity() const { return body_->getBaseVel(); }
+btVector3 CarAgent::linear_velocity() const {
+  if (!welded_base_) return body_->getBaseVel();
+  // The chassis COM's velocity on the welded base: v + ω × r.
+  const btVector3 r = body_->getBaseWorldTransform().getBasis() * chassis_in_base_.getOrigin();
+  return body_->getBaseVel() + body_->getBaseOmega().cross(r);
+}
 
 btVector3 CarAgent::angular_velocity() const { return body_->getBaseOmega(); }
 
@@ -745,8 +851,8 @@ void CarAgent::joint_state(std::span<double> positions, std::span<double> veloci
                                 std::to_string(kMovableJointCount) + " entries");
   }
   for (int m = 0; m < kMovableJointCount; ++m) {
-    positions[m] = body_->getJointPos(kMovableLinks[m]);
-    velocities[m] = body_->getJointVel(kMovableLinks[m]);
+    positions[m] = body_->getJointPos(movable_links_[m]);
+    velocities[m] = body_->getJointVel(movable_links_[m]);
   }
 }
 
@@ -755,7 +861,9 @@ btTransform CarAgent::link_com_transform(int link) const {
     throw std::out_of_range("CarAgent::link_com_transform: link " + std::to_string(link) +
                             " outside [0, " + std::to_string(kLinkCount) + ")");
   }
-  return body_->getLink(link).m_cachedWorldTransform;
+  const LinkPlace& place = link_places_[link];
+  if (place.body_link >= 0) return body_->getLink(place.body_link).m_cachedWorldTransform;
+  return body_->getBaseWorldTransform() * place.offset;
 }
 
 std::unique_ptr<Agent> make_car_agent(World& world, const AgentOptions& options) {

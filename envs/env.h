@@ -16,8 +16,9 @@
 //              and sub-steps unchanged. Trajectories differ from faithful ones
 //              only by rounding (which chaos amplifies); episode statistics
 //              agree (tests/envs/lean_physics_statistics_test.cpp). Only the Ant
-//              has a lean model (ant_agent.h); make() rejects kLean for the
-//              others rather than quietly building their faithful model.
+//              and the Car have a lean model (ant_agent.h, car_agent.h); make()
+//              rejects kLean for the others rather than quietly building their
+//              faithful model.
 //
 // Threading: an Env is not thread-safe; use one per thread. Observations and
 // cost terms returned by reset()/step() are views into buffers the Env owns,

@@ -9,8 +9,8 @@ namespace bsg::envs {
 std::unique_ptr<Env> build_env(const EnvRegistration& registration, const EnvOptions& options) {
   if (options.physics == PhysicsModel::kLean && !registration.has_lean_model) {
     throw std::invalid_argument(registration.id + ": the " + registration.agent_name +
-                                " has no lean physics model (only the Ant has "
-                                "one); use physics: faithful");
+                                " has no lean physics model (only the Ant and the "
+                                "Car have one); use physics: faithful");
   }
   const TaskBlueprint& blueprint = registration.task;
   auto world = std::make_unique<World>(blueprint.layout, blueprint.sub_steps);

@@ -35,10 +35,10 @@ const std::map<std::string, EnvRegistration>& registry() {
     std::map<std::string, EnvRegistration> result;
     // Episode lengths and cost limits: docs/environments.md#the-sixteen-environments (report Table 3).
     // Lean models (env.h): the Ball is one sphere, nothing to weld; the Car
-    // and the Drone have none yet (the Car's could weld its sensors to the
-    // chassis and its rear wheels to their side gears).
+    // welds its sensor links into the chassis (car_agent.h); the Drone has
+    // none yet.
     add_agent(result, "Ball", make_ball_agent, 250, kStandardCostLimits, LeanModel::kNone);
-    add_agent(result, "Car", make_car_agent, 500, kStandardCostLimits, LeanModel::kNone);
+    add_agent(result, "Car", make_car_agent, 500, kStandardCostLimits, LeanModel::kBuilt);
     add_agent(result, "Drone", make_drone_agent, 500, kStandardCostLimits, LeanModel::kNone,
               ZoneKind::kPillar);
     add_agent(result, "Ant", make_ant_agent, 1000, TaskCostLimits{.reach = 25},

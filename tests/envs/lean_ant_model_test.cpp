@@ -191,7 +191,7 @@ TEST(PhysicsModel, NamesParseAndBadOnesAreRejected) {
 
 TEST(PhysicsModel, AgentsWithoutALeanModelRejectLean) {
   for (const std::string& id : registered_ids()) {
-    const bool lean_expected = id.starts_with("SafetyAnt");
+    const bool lean_expected = id.starts_with("SafetyAnt") || id.starts_with("SafetyCar");
     EXPECT_EQ(has_lean_model(id), lean_expected) << id;
     if (lean_expected) {
       EXPECT_NO_THROW(make(id, {.physics = PhysicsModel::kLean})) << id;
