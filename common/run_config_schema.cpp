@@ -102,7 +102,7 @@ const std::vector<SchemaRow>& schema_rows() {
     text("log_dir", &R::log_dir, L::run,
          "directory under which the run directory is created"),
     choice("physics", enum_access<&R::physics>(), kPhysicsNames, L::run, all,
-           "faithful (the original's model) or lean (equivalent, faster; the Ant only)"),
+           "faithful (the original's model) or lean (equivalent, faster; the Ant and the Car)"),
     // --- environment (report Table 3, docs/reproducing.md#environment-settings) ---
     real("cost_limit", &R::cost_limit, L::environment, at_least(0), all,
          "d: limit on the undiscounted episode cost"),
