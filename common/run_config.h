@@ -102,7 +102,7 @@ struct RunConfig {
   LambdaOptimizer lambda_optimizer = LambdaOptimizer::sgd;
   // PID multiplier (lambda_optimizer PID only; algos/pid_lagrangian.h)
   double pid_kp = 0.1;                  // K_P
-  double pid_ki = 0.05;                 // K_I (replaces lambda_lr)
+  double pid_ki = 0.005;                // K_I (replaces lambda_lr)
   double pid_kd = 0.0;                  // K_D
   int pid_d_delay = 10;                 // epochs between the J_ema compared by D
   double pid_delta_p_ema_alpha = 0.0;   // EMA factor of the P input; 0 = none

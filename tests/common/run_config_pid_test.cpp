@@ -43,7 +43,7 @@ TEST(PidConfig, ShippedDefaultsOfBothLagrangianAlgorithms) {
     const RunConfig config = resolve_run_config(shipped(alg, {"lambda_optimizer=PID"})).config;
     EXPECT_EQ(config.lambda_optimizer, LambdaOptimizer::pid);
     EXPECT_EQ(config.pid_kp, 0.1);
-    EXPECT_EQ(config.pid_ki, 0.05);
+    EXPECT_EQ(config.pid_ki, 0.005);
     EXPECT_EQ(config.pid_kd, 0.0);
     EXPECT_EQ(config.pid_d_delay, 10);
     EXPECT_EQ(config.pid_delta_p_ema_alpha, 0.0);
