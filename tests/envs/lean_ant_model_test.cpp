@@ -18,6 +18,7 @@
 #include "envs/ant_agent.h"
 #include "envs/env.h"
 #include "envs/world.h"
+#include "lean_trajectory_gap.h"
 
 namespace bsg::envs {
 namespace {
@@ -109,41 +110,6 @@ TEST(LeanAnt, PlacesEveryLinkWhereTheFaithfulModelDoes) {
   }
 }
 
-struct Gap {
-  double position = 0;  // base COM [m]
-  double joints = 0;    // joint angles [rad]
-  double velocity = 0;  // base linear velocity [m/s]
-};
-
-// Largest gaps between faithful and lean over `steps` steps of random (or zero) actions.
-Gap largest_gap(const std::string& id, int steps, std::uint64_t seed, bool random_actions) {
-  const auto faithful = make(id);
-  const auto lean = make(id, {.physics = PhysicsModel::kLean});
-  faithful->reset(seed);
-  lean->reset(seed);
-  Rng rng(seed + 1);
-  std::vector<double> action(static_cast<size_t>(faithful->spec().action_dim));
-  Gap gap;
-  for (int t = 0; t < steps; ++t) {
-    if (random_actions) {
-      for (double& x : action) x = uniform(rng, -1, 1);
-    }
-    faithful->step(action);
-    lean->step(action);
-    const EnvState f = faithful->state();
-    const EnvState l = lean->state();
-    for (int axis = 0; axis < 3; ++axis) {
-      gap.position = std::max(gap.position, std::abs(f.agent_position[axis] - l.agent_position[axis]));
-      gap.velocity = std::max(gap.velocity,
-                              std::abs(f.agent_linear_velocity[axis] - l.agent_linear_velocity[axis]));
-    }
-    for (size_t j = 0; j < f.joint_positions.size(); ++j) {
-      gap.joints = std::max(gap.joints, std::abs(f.joint_positions[j] - l.joint_positions[j]));
-    }
-  }
-  return gap;
-}
-
 TEST(LeanAnt, FollowsTheFaithfulTrajectoryThroughTheLanding) {
   // Without actions no joint limit is reached. The first 7 steps are free fall
   // (the feet touch down in step 8), where the models agree to rounding; then
@@ -153,9 +119,9 @@ TEST(LeanAnt, FollowsTheFaithfulTrajectoryThroughTheLanding) {
   // leaves rounding-level differences that mostly grow slowly (seed 3 after
   // 40 steps: 1.6e-8 m and 3.6e-7 rad). Some landings amplify them more (seed
   // 4, no joint limit reached: 8e-4 rad), as the random-torque case below.
-  EXPECT_LT(largest_gap("SafetyAntRun-v0", 7, 3, /*random_actions=*/false).joints, 1e-12);
+  EXPECT_LT(largest_lean_gap("SafetyAntRun-v0", 7, 3, /*random_actions=*/false).joints, 1e-12);
   for (std::uint64_t seed : {3u, 5u, 6u, 7u}) {
-    const Gap gap = largest_gap("SafetyAntRun-v0", 40, seed, /*random_actions=*/false);
+    const TrajectoryGap gap = largest_lean_gap("SafetyAntRun-v0", 40, seed, /*random_actions=*/false);
     EXPECT_LT(gap.position, 1e-6) << "seed " << seed;
     EXPECT_LT(gap.joints, 1e-5) << "seed " << seed;
     EXPECT_LT(gap.velocity, 1e-5) << "seed " << seed;
@@ -170,7 +136,7 @@ TEST(LeanAnt, FollowsTheFaithfulTrajectoryWithRandomTorques) {
   // move by about 1 rad, the torso by 0.1 m) the gaps stay small (measured
   // at most 7e-5 m and 2.5e-3 rad over seeds 0-3).
   for (std::uint64_t seed : {0u, 1u, 2u, 3u}) {
-    const Gap gap = largest_gap("SafetyAntRun-v0", 12, seed, /*random_actions=*/true);
+    const TrajectoryGap gap = largest_lean_gap("SafetyAntRun-v0", 12, seed, /*random_actions=*/true);
     EXPECT_LT(gap.position, 1e-3) << "seed " << seed;
     EXPECT_LT(gap.joints, 2e-2) << "seed " << seed;
   }

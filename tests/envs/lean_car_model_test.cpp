@@ -20,6 +20,7 @@
 #include "envs/car_agent.h"
 #include "envs/env.h"
 #include "envs/world.h"
+#include "lean_trajectory_gap.h"
 
 namespace bsg::envs {
 namespace {
@@ -140,40 +141,6 @@ TEST(LeanCar, PlacesEveryLinkAndTheChassisWhereTheFaithfulModelDoes) {
   }
 }
 
-struct Gap {
-  double position = 0;  // chassis COM [m]
-  double velocity = 0;  // chassis COM velocity [m/s]
-  double joints = 0;    // joint angles [rad]
-};
-
-// Largest gaps between faithful and lean over `steps` steps of random actions.
-Gap largest_gap(const std::string& id, int steps, std::uint64_t seed) {
-  const auto faithful = make(id);
-  const auto lean = make(id, {.physics = PhysicsModel::kLean});
-  faithful->reset(seed);
-  lean->reset(seed);
-  Rng rng(seed + 1);
-  std::vector<double> action(static_cast<size_t>(faithful->spec().action_dim));
-  Gap gap;
-  for (int t = 0; t < steps; ++t) {
-    for (double& x : action) x = uniform(rng, -1, 1);
-    faithful->step(action);
-    lean->step(action);
-    const EnvState f = faithful->state();
-    const EnvState l = lean->state();
-    for (int axis = 0; axis < 3; ++axis) {
-      gap.position =
-          std::max(gap.position, std::abs(f.agent_position[axis] - l.agent_position[axis]));
-      gap.velocity = std::max(
-          gap.velocity, std::abs(f.agent_linear_velocity[axis] - l.agent_linear_velocity[axis]));
-    }
-    for (size_t j = 0; j < f.joint_positions.size(); ++j) {
-      gap.joints = std::max(gap.joints, std::abs(f.joint_positions[j] - l.joint_positions[j]));
-    }
-  }
-  return gap;
-}
-
 TEST(LeanCar, FollowsTheFaithfulTrajectoryWithRandomActions) {
   // The car drops onto its wheels and the motors start; the welded mass
   // properties, the turned base frame and the reported chassis velocity all
@@ -185,7 +152,7 @@ TEST(LeanCar, FollowsTheFaithfulTrajectoryWithRandomActions) {
   // axes (its product of inertia I_xz dropped) already shows at least 7.2e-7 m
   // and 3.0e-6 rad there.
   for (std::uint64_t seed : {0u, 1u, 2u, 3u}) {
-    const Gap gap = largest_gap("SafetyCarRun-v0", 3, seed);
+    const TrajectoryGap gap = largest_lean_gap("SafetyCarRun-v0", 3, seed, /*random_actions=*/true);
     std::printf("seed %d: position %.3g m, velocity %.3g m/s, joints %.3g rad\n",
                 static_cast<int>(seed), gap.position, gap.velocity, gap.joints);
     EXPECT_LT(gap.position, 3e-7) << "seed " << seed;
