@@ -479,9 +479,9 @@ double AntAgent::total_mass_kg() const {
   return mass;
 }
 
-btTransform AntAgent::link_com_pose(int link) const {
+btTransform AntAgent::link_com_transform(int link) const {
   if (link < 0 || link >= kLinkCount) {
-    throw std::out_of_range("AntAgent::link_com_pose: link " + std::to_string(link) +
+    throw std::out_of_range("AntAgent::link_com_transform: link " + std::to_string(link) +
                             " outside [0, 20)");
   }
   const LinkPlace& place = link_places_[link];

@@ -74,7 +74,7 @@ class AntAgent final : public Agent {
   // World pose of the COM (inertial) frame of PyBullet link `link` in [0, 20),
   // from the current joint angles (fresh forward kinematics). In the lean model
   // a massless joint link's COM frame is its pivot, as in the faithful one.
-  btTransform link_com_pose(int link) const;
+  btTransform link_com_transform(int link) const;
   // Joint torque [N·m] per unit of action: 250, or 1000 with the power upgrade.
   double torque_per_unit_action() const { return torque_per_unit_action_; }
   // The multibody, for model checks (lean vs faithful mass properties).

@@ -141,7 +141,7 @@ TEST(AntAgent, LinkComPosesMatchGoldenPlacement) {
     double worst_pos = 0, worst_orn = 0;
     for (int link = 0; link < AntAgent::kLinkCount; ++link) {
       const LinkPoseError error =
-          link_pose_error(as_ant(agent).link_com_pose(link), placed.at("links").at(link));
+          link_pose_error(as_ant(agent).link_com_transform(link), placed.at("links").at(link));
       worst_pos = std::max(worst_pos, error.position);
       worst_orn = std::max(worst_orn, error.orientation);
     }
@@ -237,7 +237,7 @@ SequenceReport replay(const AntEnvCase& c, const nlohmann::json& golden, const s
   EXPECT_LT(max_abs_diff(qd, movable(after_reset.at("joint_qd"))), 1e-9);
   for (int link = 0; link < AntAgent::kLinkCount; ++link) {
     const auto& expected = after_reset.at("links").at(link);
-    const btTransform pose = agent.link_com_pose(link);
+    const btTransform pose = agent.link_com_transform(link);
     EXPECT_LT(max_abs_diff(pose.getOrigin(), golden_vec3(expected.at("com_pos"))), 1e-6) << link;
     EXPECT_LT(quat_diff(pose.getRotation(), golden_quat(expected.at("com_orn"))), 1e-6) << link;
   }

@@ -7,7 +7,6 @@
 // to amplify rounding.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -20,7 +19,7 @@
 #include "envs/car_agent.h"
 #include "envs/env.h"
 #include "envs/world.h"
-#include "lean_trajectory_gap.h"
+#include "lean_model_gaps.h"
 
 namespace bsg::envs {
 namespace {
@@ -29,12 +28,6 @@ std::unique_ptr<CarAgent> make_car(World& world, PhysicsModel physics) {
   AgentOptions options;
   options.physics = physics;
   return std::make_unique<CarAgent>(world, options);
-}
-
-double rotation_gap(const btMatrix3x3& a, const btMatrix3x3& b) {
-  double gap = 0;
-  for (int row = 0; row < 3; ++row) gap += (a.getRow(row) - b.getRow(row)).length();
-  return gap;
 }
 
 // A welded part: mass, own inertia (from the faithful model) and COM in the

@@ -1,8 +1,8 @@
-// How far a lean model's trajectory strays from the faithful one's (env.h,
-// PhysicsModel): both environments reset with the same seed and driven by the
-// same actions, the largest differences of the agent's COM position and
-// velocity and of the joint angles over the steps. Shared by the lean Ant and
-// lean Car model tests.
+// How far a lean model strays from the faithful one (env.h, PhysicsModel), for
+// the lean Ant and lean Car model tests: the gap between two orientations, and
+// over a trajectory (both environments reset with the same seed and driven by
+// the same actions) the largest differences of the agent's COM position and
+// velocity and of the joint angles.
 #pragma once
 
 #include <algorithm>
@@ -11,10 +11,19 @@
 #include <string>
 #include <vector>
 
+#include <LinearMath/btMatrix3x3.h>
+
 #include "common/random.h"
 #include "envs/env.h"
 
 namespace bsg::envs {
+
+// Sum over the rows of the distance between two rotation matrices' rows.
+inline double rotation_gap(const btMatrix3x3& a, const btMatrix3x3& b) {
+  double gap = 0;
+  for (int row = 0; row < 3; ++row) gap += (a.getRow(row) - b.getRow(row)).length();
+  return gap;
+}
 
 struct TrajectoryGap {
   double position = 0;  // agent COM [m]
