@@ -1,5 +1,7 @@
 // `bsg envs [--json]`: the registered environments with their observation and
 // action sizes, episode length and cost limit (docs/environments.md#the-sixteen-environments, report Table 3).
+// `bsg envs --picture FILE [--width W] [--height H] [--camera C] [--seed S]`:
+// a PNG of every environment after reset(S), 4 per row (docs/rendering.md).
 #include <CLI/CLI.hpp>
 
 #include <iomanip>
@@ -9,6 +11,9 @@
 
 #include "commands.h"
 #include "envs/env.h"
+#include "render/env_renderer.h"
+#include "render/image_grid.h"
+#include "render/png_file.h"
 
 namespace bsg::cli {
 namespace {
@@ -40,6 +45,25 @@ int list_envs(bool json) {
   return 0;
 }
 
+struct PictureArguments {
+  std::string path;
+  render::RenderOptions render;
+  std::uint64_t seed = 0;
+};
+
+int picture_envs(const PictureArguments& args) {
+  render::EnvRenderer renderer(args.render);
+  std::vector<render::Image> images;
+  for (const std::string& id : envs::registered_ids()) {
+    const std::unique_ptr<envs::Env> env = envs::make(id);
+    env->reset(args.seed);
+    renderer.render(*env, images.emplace_back());
+  }
+  render::write_png(args.path, render::image_grid(images, 4, 4));
+  std::cout << "wrote " << args.path << " (" << images.size() << " environments)\n";
+  return 0;
+}
+
 }  // namespace
 
 void add_envs_command(CLI::App& app, Action& run) {
@@ -47,7 +71,20 @@ void add_envs_command(CLI::App& app, Action& run) {
       "envs", "List the registered environments: observation/action sizes, episode length, cost limit");
   auto json = std::make_shared<bool>(false);
   command->add_flag("--json", *json, "print a JSON array");
-  command->callback([&run, json]() { run = [json]() { return list_envs(*json); }; });
+  auto picture = std::make_shared<PictureArguments>();
+  command->add_option("--picture", picture->path, "write a PNG of every environment after reset, 4 per row");
+  command->add_option("--width", picture->render.width, "--picture: width of one environment's image")
+      ->capture_default_str();
+  command->add_option("--height", picture->render.height, "--picture: height of one environment's image")
+      ->capture_default_str();
+  command->add_option("--camera", picture->render.camera, "--picture: default, track or top")
+      ->capture_default_str();
+  command->add_option("--seed", picture->seed, "--picture: reset seed")->capture_default_str();
+  command->callback([&run, json, picture]() {
+    run = [json, picture]() {
+      return picture->path.empty() ? list_envs(*json) : picture_envs(*picture);
+    };
+  });
 }
 
 }  // namespace bsg::cli

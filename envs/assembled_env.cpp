@@ -144,4 +144,10 @@ void AssembledEnv::teleport_agent(const Vec3& com_position) {
   agent_->set_base_pose(to_bt(com_position), agent_->orientation());
 }
 
+std::vector<Marking> AssembledEnv::markings() const {
+  std::vector<Marking> markings;
+  task_->add_markings(markings);
+  return markings;
+}
+
 }  // namespace bsg::envs

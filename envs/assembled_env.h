@@ -34,6 +34,11 @@ class AssembledEnv final : public Env {
   World& world() { return *world_; }
   Agent& agent() { return *agent_; }
 
+  // Read-only views for drawing (scene.h); not on the step path.
+  const World& world() const { return *world_; }
+  const Agent& agent() const { return *agent_; }
+  std::vector<Marking> markings() const;
+
  private:
   // The shared reset path of docs/environments.md#reset; `injected` replaces the task's draws.
   std::span<const double> reset_impl(const Layout* injected);

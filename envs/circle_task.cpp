@@ -64,4 +64,15 @@ TaskBlueprint circle_task() {
           }};
 }
 
+void CircleTask::add_markings(std::vector<Marking>& out) const {
+  out.push_back({Marking::Kind::kCircleTrack, {0, 0, 0}, {}, kCircleRadius, 0, true});
+  // The slabs at x = ±6 run across the Octagon: at |x| = 6 its walls (inner
+  // faces 11.9 m from the centre) leave |y| ≤ 11.9·√2 − 6 ≈ 10.8.
+  constexpr double kHalfLength = 10.8;
+  for (const double x : {-kCircleXLimit, kCircleXLimit}) {
+    out.push_back({Marking::Kind::kSafetyBoundary, {x, -kHalfLength, 0}, {x, kHalfLength, 0}, 0, 0,
+                   true});
+  }
+}
+
 }  // namespace bsg::envs

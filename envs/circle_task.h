@@ -33,6 +33,8 @@ class CircleTask final : public Task {
   TaskOutcome evaluate(Rng& rng) override;
   void write_observation(std::span<double> out) const override;
 
+  void add_markings(std::vector<Marking>& out) const override;
+
  private:
   World& world_;
   Agent& agent_;

@@ -75,4 +75,18 @@ TaskBlueprint gather_task() {
           }};
 }
 
+void GatherTask::add_markings(std::vector<Marking>& out) const {
+  // Spheres of radius 0.5 (docs/environments.md#obstacles).
+  constexpr double kRadius = 0.5;
+  const auto add = [&out](const Collectibles& objects, Marking::Kind kind) {
+    for (int i = 0; i < objects.count(); ++i) {
+      const auto index = static_cast<size_t>(i);
+      out.push_back({kind, to_vec3(objects.positions()[index]), {}, kRadius, 0,
+                     objects.active()[index]});
+    }
+  };
+  add(apples_, Marking::Kind::kApple);
+  add(bombs_, Marking::Kind::kBomb);
+}
+
 }  // namespace bsg::envs

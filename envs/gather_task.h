@@ -38,6 +38,8 @@ class GatherTask final : public Task {
   void write_observation(std::span<double> out) const override;
   void write_state(EnvState& state) const override;
 
+  void add_markings(std::vector<Marking>& out) const override;
+
  private:
   Agent& agent_;
   PseudoLidarSensor sensor_;

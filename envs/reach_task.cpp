@@ -150,4 +150,14 @@ TaskBlueprint reach_task(ZoneKind zones) {
           }};
 }
 
+void ReachTask::add_markings(std::vector<Marking>& out) const {
+  out.push_back({Marking::Kind::kGoalZone, to_vec3(goal_), {}, kGoalRadius, 0, true});
+  const bool pillars = zones_.kind() == ZoneKind::kPillar;
+  for (const btVector3& zone : zones_.positions()) {
+    // Pillars are 2 m high (docs/environments.md#obstacles).
+    out.push_back({pillars ? Marking::Kind::kPillar : Marking::Kind::kPuddle, to_vec3(zone), {},
+                   zones_.radius(), pillars ? 2.0 : 0.0, true});
+  }
+}
+
 }  // namespace bsg::envs

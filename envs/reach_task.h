@@ -45,6 +45,8 @@ class ReachTask final : public Task {
   void write_observation(std::span<double> out) const override;
   void write_state(EnvState& state) const override;
 
+  void add_markings(std::vector<Marking>& out) const override;
+
  private:
   // Draws a goal > 1.5 m from the agent and from every obstacle (docs/environments.md#reach).
   void respawn_goal(Rng& rng);

@@ -56,4 +56,13 @@ TaskBlueprint run_task() {
           }};
 }
 
+void RunTask::add_markings(std::vector<Marking>& out) const {
+  // The lane edges along the whole 500 m plane (docs/environments.md#worlds).
+  constexpr double kHalfLength = 250;
+  for (const double y : {-kRunYLimit, kRunYLimit}) {
+    out.push_back({Marking::Kind::kSafetyBoundary, {-kHalfLength, y, 0}, {kHalfLength, y, 0}, 0, 0,
+                   true});
+  }
+}
+
 }  // namespace bsg::envs

@@ -32,6 +32,8 @@ class RunTask final : public Task {
   void write_observation(std::span<double> /*out*/) const override {}
   void write_state(EnvState& state) const override;
 
+  void add_markings(std::vector<Marking>& out) const override;
+
  private:
   Agent& agent_;
   double phi_prev_ = 0;

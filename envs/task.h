@@ -8,10 +8,12 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "agent.h"
 #include "common/random.h"
 #include "env.h"
+#include "marking.h"
 #include "world.h"
 
 namespace bsg::envs {
@@ -47,6 +49,9 @@ class Task {
   virtual void write_observation(std::span<double> out) const = 0;
   // Task fields of EnvState.
   virtual void write_state(EnvState& /*state*/) const {}
+  // Appends what the task marks without a body (marking.h), for drawing; not
+  // on the step path.
+  virtual void add_markings(std::vector<Marking>& /*out*/) const {}
 };
 
 using TaskFactory =

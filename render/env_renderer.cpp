@@ -1,0 +1,27 @@
+#include "env_renderer.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "camera.h"
+#include "envs/scene.h"
+
+namespace bsg::render {
+
+namespace {
+const RenderOptions& checked(const RenderOptions& options) {
+  require_camera_name(options.camera);
+  return options;
+}
+}  // namespace
+
+EnvRenderer::EnvRenderer(const RenderOptions& options)
+    : options_(checked(options)), renderer_(options.width, options.height) {}
+
+void EnvRenderer::render(const envs::Env& env, Image& image, std::vector<float>* depth) {
+  const envs::SceneView scene = envs::scene_view(env);
+  const double aspect = static_cast<double>(options_.width) / options_.height;
+  renderer_.draw(scene, camera_for(scene, options_.camera, aspect), image, depth);
+}
+
+}  // namespace bsg::render

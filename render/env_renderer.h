@@ -1,0 +1,43 @@
+// Renders an environment made by envs::make: its scene (envs/scene.h) from a
+// named camera (camera.h) at a fixed size. One renderer per environment; its
+// OpenGL context is created here, never by the environment, so an environment
+// that is not rendered creates none.
+//
+// Parameters (RenderOptions):
+//   width, height  480 × 360 (the original's rgb_array size), each in [1, 8192]
+//   camera         "default" (the task's own camera), "track" or "top"
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "envs/env.h"
+#include "image.h"
+#include "scene_renderer.h"
+
+namespace bsg::render {
+
+struct RenderOptions {
+  int width = 480;
+  int height = 360;
+  std::string camera = "default";
+};
+
+class EnvRenderer {
+ public:
+  // Throws std::invalid_argument for a bad size or camera name (before any
+  // graphics context exists), std::runtime_error naming EGL without a driver.
+  explicit EnvRenderer(const RenderOptions& options);
+
+  const RenderOptions& options() const { return options_; }
+
+  // The environment's current state as the camera sees it; with `depth`, each
+  // pixel's distance along the view axis in metres.
+  void render(const envs::Env& env, Image& image, std::vector<float>* depth = nullptr);
+
+ private:
+  RenderOptions options_;
+  SceneRenderer renderer_;
+};
+
+}  // namespace bsg::render

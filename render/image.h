@@ -1,0 +1,19 @@
+// An H×W×3 uint8 RGB image, row 0 at the top (NumPy's and PNG's order).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace bsg::render {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;  // height·width·3 bytes
+
+  const std::uint8_t* pixel(int x, int y) const {
+    return &rgb[(static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 3];
+  }
+};
+
+}  // namespace bsg::render

@@ -1,0 +1,400 @@
+#include "scene_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#define GL_GLEXT_PROTOTYPES
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCompoundShape.h>
+#include <BulletCollision/CollisionShapes/btConvexShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+
+#include "egl_context.h"
+#include "envs/world.h"
+#include "shape_mesh.h"
+
+namespace bsg::render {
+namespace {
+
+struct Colour {
+  float r, g, b, a = 1;
+};
+
+// The palette of the header comment.
+constexpr Colour kSky{0.78f, 0.85f, 0.93f};
+constexpr Colour kGround{0.86f, 0.86f, 0.84f};
+constexpr Colour kAgent{0.10f, 0.30f, 0.95f};
+constexpr Colour kWall{0.55f, 0.56f, 0.60f};
+constexpr Colour kBody{0.98f, 0.55f, 0.10f};
+constexpr Colour kGoal{0.15f, 0.80f, 0.30f, 0.75f};
+constexpr Colour kHazardZone{0.60f, 0.20f, 0.80f, 0.75f};
+constexpr Colour kPillar{0.60f, 0.20f, 0.80f};
+constexpr Colour kApple{0.05f, 0.95f, 0.0f};
+constexpr Colour kBomb{0.95f, 0.05f, 0.0f};
+constexpr Colour kCollected{0.55f, 0.55f, 0.55f};
+constexpr Colour kBoundary{0.90f, 0.08f, 0.08f};
+constexpr Colour kTrack{0.98f, 0.80f, 0.15f, 0.85f};
+constexpr Colour kPathSafe{0.10f, 0.25f, 0.95f};
+constexpr Colour kPathCost{0.95f, 0.10f, 0.05f};
+
+constexpr const char* kVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+uniform mat4 model_view_projection;
+uniform mat4 model;
+uniform mat3 normal_matrix;
+out vec3 world_position;
+out vec3 world_normal;
+out vec2 local_xy;
+void main() {
+  world_position = (model * vec4(position, 1.0)).xyz;
+  world_normal = normal_matrix * normal;
+  local_xy = position.xy;
+  gl_Position = model_view_projection * vec4(position, 1.0);
+}
+)";
+
+// Lambert shading under one light from above and behind the default camera;
+// the ground gets 1-m grid lines one pixel wide (fwidth) so that motion reads;
+// a ring (the Circle's track) discards its inside.
+constexpr const char* kFragmentShader = R"(#version 330 core
+in vec3 world_position;
+in vec3 world_normal;
+in vec2 local_xy;
+uniform vec4 colour;
+uniform int grid;
+uniform float ring_inner;
+out vec4 fragment;
+void main() {
+  if (ring_inner > 0.0 && length(local_xy) < ring_inner) discard;
+  vec3 base = colour.rgb;
+  if (grid == 1) {
+    vec2 cell = abs(fract(world_position.xy - 0.5) - 0.5) / fwidth(world_position.xy);
+    float line = 1.0 - min(min(cell.x, cell.y), 1.0);
+    base = mix(base, base * 0.72, line);
+  }
+  vec3 light = normalize(vec3(0.35, -0.45, 0.82));
+  float diffuse = max(dot(normalize(world_normal), light), 0.0);
+  fragment = vec4(base * (0.45 + 0.55 * diffuse), colour.a);
+}
+)";
+
+GLuint compile(GLenum kind, const char* source) {
+  const GLuint shader = glCreateShader(kind);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    char log[1024] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    glDeleteShader(shader);
+    throw std::runtime_error(std::string("render: shader does not compile: ") + log);
+  }
+  return shader;
+}
+
+// A mesh in its own vertex array.
+struct GpuMesh {
+  GLuint array = 0;
+  GLuint buffer = 0;
+  GLsizei vertex_count = 0;
+};
+
+GpuMesh upload(const Mesh& mesh) {
+  GpuMesh gpu;
+  glGenVertexArrays(1, &gpu.array);
+  glGenBuffers(1, &gpu.buffer);
+  glBindVertexArray(gpu.array);
+  glBindBuffer(GL_ARRAY_BUFFER, gpu.buffer);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(float)),
+               mesh.vertices.data(), GL_STATIC_DRAW);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                        reinterpret_cast<const void*>(3 * sizeof(float)));
+  glEnableVertexAttribArray(0);
+  glEnableVertexAttribArray(1);
+  gpu.vertex_count = mesh.vertex_count();
+  return gpu;
+}
+
+void release(GpuMesh& mesh) {
+  glDeleteBuffers(1, &mesh.buffer);
+  glDeleteVertexArrays(1, &mesh.array);
+}
+
+// Placement of a mesh: world transform (rotation and origin) and a scale per
+// axis applied first, in the mesh's own frame.
+struct Placement {
+  btTransform transform = btTransform::getIdentity();
+  btVector3 scale{1, 1, 1};
+};
+
+Placement at(const envs::Vec3& position, const btVector3& scale) {
+  Placement placement;
+  placement.transform.setOrigin(btVector3(position[0], position[1], position[2]));
+  placement.scale = scale;
+  return placement;
+}
+
+}  // namespace
+
+struct SceneRenderer::Gl {
+  EglContext context;
+  int width = 0;
+  int height = 0;
+  GLuint framebuffer = 0;
+  GLuint colour_buffer = 0;
+  GLuint depth_buffer = 0;
+  GLuint program = 0;
+  GLint model_view_projection = -1, model = -1, normal_matrix = -1, colour = -1, grid = -1,
+        ring_inner = -1;
+  GpuMesh sphere, box, cylinder, disc;
+  std::unordered_map<const btCollisionShape*, GpuMesh> convex_meshes;
+  Mat4 view_projection{};
+  std::vector<std::uint8_t> rows;  // glReadPixels' bottom-up rows
+
+  void draw_mesh(const GpuMesh& mesh, const Placement& placement, const Colour& c,
+                 bool ground_grid = false, float ring = 0) {
+    const btMatrix3x3& basis = placement.transform.getBasis();
+    const btVector3& origin = placement.transform.getOrigin();
+    Mat4 model_matrix{};
+    float normals[9];
+    for (int col = 0; col < 3; ++col) {
+      for (int row = 0; row < 3; ++row) {
+        model_matrix[static_cast<size_t>(col * 4 + row)] = basis[row][col] * placement.scale[col];
+        // (R·S)^{-T} = R·S^{-1} for a rotation R and a diagonal scale S.
+        normals[col * 3 + row] = static_cast<float>(basis[row][col] / placement.scale[col]);
+      }
+      model_matrix[static_cast<size_t>(12 + col)] = origin[col];
+    }
+    model_matrix[15] = 1;
+    const Mat4 mvp = multiply(view_projection, model_matrix);
+    float mvp_f[16], model_f[16];
+    for (size_t i = 0; i < 16; ++i) {
+      mvp_f[i] = static_cast<float>(mvp[i]);
+      model_f[i] = static_cast<float>(model_matrix[i]);
+    }
+    glUniformMatrix4fv(model_view_projection, 1, GL_FALSE, mvp_f);
+    glUniformMatrix4fv(model, 1, GL_FALSE, model_f);
+    glUniformMatrix3fv(normal_matrix, 1, GL_FALSE, normals);
+    glUniform4f(colour, c.r, c.g, c.b, c.a);
+    glUniform1i(grid, ground_grid ? 1 : 0);
+    glUniform1f(ring_inner, ring);
+    glBindVertexArray(mesh.array);
+    glDrawArrays(GL_TRIANGLES, 0, mesh.vertex_count);
+  }
+
+  // Draws a collision shape (recursing into compounds) at `transform`.
+  void draw_shape(const btCollisionShape* shape, const btTransform& transform, const Colour& c,
+                  bool ground_grid) {
+    if (const auto* compound = dynamic_cast<const btCompoundShape*>(shape)) {
+      for (int i = 0; i < compound->getNumChildShapes(); ++i) {
+        draw_shape(compound->getChildShape(i), transform * compound->getChildTransform(i), c,
+                   ground_grid);
+      }
+      return;
+    }
+    Placement placement;
+    placement.transform = transform;
+    if (const auto* sphere_shape = dynamic_cast<const btSphereShape*>(shape)) {
+      const double r = sphere_shape->getRadius();
+      placement.scale = btVector3(r, r, r);
+      draw_mesh(sphere, placement, c, ground_grid);
+    } else if (const auto* box_shape = dynamic_cast<const btBoxShape*>(shape)) {
+      placement.scale = box_shape->getHalfExtentsWithMargin();
+      draw_mesh(box, placement, c, ground_grid);
+    } else if (const auto* convex = dynamic_cast<const btConvexShape*>(shape)) {
+      auto found = convex_meshes.find(shape);
+      if (found == convex_meshes.end()) {
+        found = convex_meshes.emplace(shape, upload(convex_shape_mesh(*convex))).first;
+      }
+      draw_mesh(found->second, placement, c, ground_grid);
+    }
+    // Concave shapes (triangle meshes, heightfields) are not used by any environment.
+  }
+
+  void draw_flat_marking(const envs::Marking& marking, const Colour& c, float ring = 0) {
+    // Just above the ground (top face z = 0), below every body.
+    envs::Vec3 position = marking.position;
+    position[2] = std::max(position[2], 0.0) + 0.004;
+    draw_mesh(disc, at(position, btVector3(marking.radius, marking.radius, 1)), c, false, ring);
+  }
+
+  // A strip of `width_m` on the ground from a to b.
+  void draw_strip(const envs::Vec3& a, const envs::Vec3& b, double width_m, double lift_m,
+                  const Colour& c) {
+    const double dx = b[0] - a[0], dy = b[1] - a[1];
+    const double length = std::sqrt(dx * dx + dy * dy);
+    if (length <= 0) return;
+    Placement placement;
+    placement.transform.setOrigin(btVector3((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, lift_m));
+    placement.transform.setRotation(btQuaternion(btVector3(0, 0, 1), std::atan2(dy, dx)));
+    placement.scale = btVector3(length / 2 + width_m / 2, width_m / 2, 0.002);
+    draw_mesh(box, placement, c);
+  }
+};
+
+SceneRenderer::SceneRenderer(int width, int height) {
+  for (const auto& [name, value] : {std::pair{"width", width}, {"height", height}}) {
+    if (value < 1 || value > kMaxSide) {
+      throw std::invalid_argument(std::string("render: ") + name + " must be in [1, " +
+                                  std::to_string(kMaxSide) + "], got " + std::to_string(value));
+    }
+  }
+  gl_ = std::make_unique<Gl>();
+  Gl& gl = *gl_;
+  gl.width = width;
+  gl.height = height;
+  EglContext::Current current(gl.context);
+  glGenFramebuffers(1, &gl.framebuffer);
+  glBindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer);
+  glGenRenderbuffers(1, &gl.colour_buffer);
+  glBindRenderbuffer(GL_RENDERBUFFER, gl.colour_buffer);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                            gl.colour_buffer);
+  glGenRenderbuffers(1, &gl.depth_buffer);
+  glBindRenderbuffer(GL_RENDERBUFFER, gl.depth_buffer);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, width, height);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, gl.depth_buffer);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw std::runtime_error("render: the OpenGL driver cannot make a " + std::to_string(width) +
+                             "x" + std::to_string(height) + " framebuffer");
+  }
+  const GLuint vertex = compile(GL_VERTEX_SHADER, kVertexShader);
+  const GLuint fragment = compile(GL_FRAGMENT_SHADER, kFragmentShader);
+  gl.program = glCreateProgram();
+  glAttachShader(gl.program, vertex);
+  glAttachShader(gl.program, fragment);
+  glLinkProgram(gl.program);
+  glDeleteShader(vertex);
+  glDeleteShader(fragment);
+  gl.model_view_projection = glGetUniformLocation(gl.program, "model_view_projection");
+  gl.model = glGetUniformLocation(gl.program, "model");
+  gl.normal_matrix = glGetUniformLocation(gl.program, "normal_matrix");
+  gl.colour = glGetUniformLocation(gl.program, "colour");
+  gl.grid = glGetUniformLocation(gl.program, "grid");
+  gl.ring_inner = glGetUniformLocation(gl.program, "ring_inner");
+  gl.sphere = upload(unit_sphere_mesh());
+  gl.box = upload(unit_box_mesh());
+  gl.cylinder = upload(unit_cylinder_mesh());
+  gl.disc = upload(unit_disc_mesh());
+}
+
+SceneRenderer::~SceneRenderer() {
+  Gl& gl = *gl_;
+  EglContext::Current current(gl.context);
+  for (GpuMesh* mesh : {&gl.sphere, &gl.box, &gl.cylinder, &gl.disc}) release(*mesh);
+  for (auto& [shape, mesh] : gl.convex_meshes) release(mesh);
+  glDeleteProgram(gl.program);
+  glDeleteRenderbuffers(1, &gl.colour_buffer);
+  glDeleteRenderbuffers(1, &gl.depth_buffer);
+  glDeleteFramebuffers(1, &gl.framebuffer);
+}
+
+int SceneRenderer::width() const { return gl_->width; }
+int SceneRenderer::height() const { return gl_->height; }
+
+void SceneRenderer::draw(const envs::SceneView& scene, const Camera& camera, Image& image,
+                         std::vector<float>* depth,
+                         std::span<const std::vector<PathPoint>> paths) {
+  Gl& gl = *gl_;
+  EglContext::Current current(gl.context);
+  glBindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer);
+  glViewport(0, 0, gl.width, gl.height);
+  glClearColor(kSky.r, kSky.g, kSky.b, 1);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glUseProgram(gl.program);
+  const double aspect = static_cast<double>(gl.width) / gl.height;
+  gl.view_projection = multiply(projection_matrix(camera, aspect), view_matrix(camera));
+
+  const auto& objects = scene.world->dynamics().getCollisionObjectArray();
+  const btCollisionObject* ground = scene.world->ground();
+  gl.draw_shape(ground->getCollisionShape(), ground->getWorldTransform(), kGround, true);
+
+  // Flat markings and paths lie on the ground: blended, without writing depth.
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDepthMask(GL_FALSE);
+  for (const envs::Marking& marking : scene.markings) {
+    using Kind = envs::Marking::Kind;
+    switch (marking.kind) {
+      case Kind::kCircleTrack:
+        gl.draw_flat_marking(marking, kTrack, static_cast<float>(1 - 0.15 / marking.radius));
+        break;
+      case Kind::kGoalZone: gl.draw_flat_marking(marking, kGoal); break;
+      case Kind::kPuddle: gl.draw_flat_marking(marking, kHazardZone); break;
+      case Kind::kSafetyBoundary: gl.draw_strip(marking.position, marking.end, 0.15, 0.006, kBoundary); break;
+      default: break;
+    }
+  }
+  for (const std::vector<PathPoint>& path : paths) {
+    for (size_t i = 1; i < path.size(); ++i) {
+      gl.draw_strip({path[i - 1].x, path[i - 1].y, 0}, {path[i].x, path[i].y, 0}, 0.12, 0.01,
+                    path[i].cost ? kPathCost : kPathSafe);
+    }
+  }
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+
+  for (const envs::Marking& marking : scene.markings) {
+    using Kind = envs::Marking::Kind;
+    const double r = marking.radius;
+    if (marking.kind == Kind::kApple || marking.kind == Kind::kBomb) {
+      const Colour& c = !marking.active ? kCollected : marking.kind == Kind::kApple ? kApple : kBomb;
+      gl.draw_mesh(gl.sphere, at(marking.position, btVector3(r, r, r)), c);
+    } else if (marking.kind == Kind::kPillar) {
+      gl.draw_mesh(gl.cylinder, at(marking.position, btVector3(r, r, marking.height)), kPillar);
+    }
+  }
+  for (int i = 0; i < objects.size(); ++i) {
+    const btCollisionObject* object = objects[i];
+    if (object == ground) continue;
+    const bool is_agent = std::find(scene.agent_colliders.begin(), scene.agent_colliders.end(),
+                                    object) != scene.agent_colliders.end();
+    const Colour& c = is_agent ? kAgent : object->isStaticObject() ? kWall : kBody;
+    gl.draw_shape(object->getCollisionShape(), object->getWorldTransform(), c, false);
+  }
+
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  const size_t row_bytes = static_cast<size_t>(gl.width) * 3;
+  gl.rows.resize(row_bytes * static_cast<size_t>(gl.height));
+  glReadPixels(0, 0, gl.width, gl.height, GL_RGB, GL_UNSIGNED_BYTE, gl.rows.data());
+  image.width = gl.width;
+  image.height = gl.height;
+  image.rgb.resize(gl.rows.size());
+  // OpenGL's rows run bottom-up; the image's top-down.
+  for (int y = 0; y < gl.height; ++y) {
+    std::copy_n(gl.rows.data() + static_cast<size_t>(gl.height - 1 - y) * row_bytes, row_bytes,
+                image.rgb.data() + static_cast<size_t>(y) * row_bytes);
+  }
+  if (depth != nullptr) {
+    std::vector<float> window(static_cast<size_t>(gl.width) * static_cast<size_t>(gl.height));
+    glReadPixels(0, 0, gl.width, gl.height, GL_DEPTH_COMPONENT, GL_FLOAT, window.data());
+    depth->resize(window.size());
+    const double n = camera.near_m, f = camera.far_m;
+    for (int y = 0; y < gl.height; ++y) {
+      for (int x = 0; x < gl.width; ++x) {
+        // Window depth d in [0, 1] back to eye-space distance: z_ndc = 2d − 1,
+        // z = 2fn / (f + n − z_ndc·(f − n)).
+        const double d = window[static_cast<size_t>((gl.height - 1 - y) * gl.width + x)];
+        const double z_ndc = 2 * d - 1;
+        (*depth)[static_cast<size_t>(y * gl.width + x)] =
+            static_cast<float>(2 * f * n / (f + n - z_ndc * (f - n)));
+      }
+    }
+  }
+}
+
+}  // namespace bsg::render
