@@ -9,6 +9,11 @@ namespace bsg {
 
 RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
                                      const MpiContext& mpi) {
+  return evaluate_run_directory(directory, episodes, mpi, {});
+}
+
+RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
+                                     const MpiContext& mpi, const EnvDecorator& decorate) {
   check_is_run_directory(directory);
   const RunConfig config = load_resolved_run_config(directory.config(), envs::registered_ids());
   std::unique_ptr<envs::Env> env =
@@ -20,6 +25,7 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
   RunEvaluation result;
   result.epochs_completed = progress.epochs_completed;
   result.epochs = config.epochs;
+  if (decorate) env = decorate(std::move(env));
   result.summary = evaluate_policy(*env, actor_critic, episodes.value_or(config.eval_episodes), config.seed,
                                    config.max_ep_len, mpi);
   return result;

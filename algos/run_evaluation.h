@@ -2,6 +2,8 @@
 // directory's latest checkpoint, without writing anything.
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <optional>
 
 #include "algos/evaluation.h"
@@ -20,5 +22,11 @@ struct RunEvaluation {
 // the directory or file at fault (not a run directory, corrupt checkpoint).
 RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
                                      const MpiContext& mpi);
+
+// The same with the environment wrapped by `decorate` before the episodes run
+// (e.g. to record them: render/observed_env.h); the results are unchanged.
+using EnvDecorator = std::function<std::unique_ptr<envs::Env>(std::unique_ptr<envs::Env>)>;
+RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
+                                     const MpiContext& mpi, const EnvDecorator& decorate);
 
 }  // namespace bsg

@@ -1,11 +1,13 @@
 // `bsg eval DIR [--episodes N] [--json]`: the deterministic evaluation of a
 // run directory's latest checkpoint; prints J (mean return) and H (mean cost),
-// with --json also every episode's figures.
+// with --json also every episode's figures. --video FILE.mp4 and
+// --trajectories FILE.png record the episodes (cli/recording.h; one process only).
 #include <CLI/CLI.hpp>
 
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "algos/evaluation_files.h"
@@ -14,6 +16,7 @@
 #include "commands.h"
 #include "common/mpi_context.h"
 #include "mpi_abort_on_error.h"
+#include "recording.h"
 
 namespace bsg::cli {
 namespace {
@@ -22,13 +25,23 @@ struct EvalArguments {
   std::string run_dir;
   std::optional<int> episodes;
   bool json = false;
+  RecordingArguments recording;
 };
 
 int evaluate(const EvalArguments& args) {
   MpiSession session;
   const MpiContext mpi = session.context();
   return run_or_abort_job(mpi, [&]() {
-    const RunEvaluation result = evaluate_run_directory(RunDirectory(args.run_dir), args.episodes, mpi);
+    if (args.recording.any() && mpi.size() > 1) {
+      throw std::invalid_argument("--video and --trajectories record one process's episodes; run bsg eval without mpirun");
+    }
+    std::optional<Recording> recording;
+    if (args.recording.any()) recording.emplace(args.recording);
+    const RunEvaluation result = evaluate_run_directory(
+        RunDirectory(args.run_dir), args.episodes, mpi, [&](std::unique_ptr<envs::Env> env) {
+          return recording ? recording->wrap(std::move(env)) : std::move(env);
+        });
+    if (recording) recording->finish(args.json ? std::cerr : std::cout);
     if (!mpi.is_root()) return 0;
     if (args.json) {
       std::cout << evaluation_json(result.summary, true);
@@ -56,6 +69,7 @@ void add_eval_command(CLI::App& app, Action& run) {
   command->add_option("--episodes", args->episodes, "episodes in total (default: the config's eval_episodes)")
       ->check(CLI::NonNegativeNumber);
   command->add_flag("--json", args->json, "print JSON with every episode's return, cost and length");
+  add_recording_options(*command, args->recording);
   command->callback([&run, args]() { run = [args]() { return evaluate(*args); }; });
 }
 

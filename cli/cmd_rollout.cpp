@@ -4,12 +4,14 @@
 // cost and length, then their mean and standard deviation. The first episode
 // resets with `seed`, later ones continue the environment's random stream; the
 // random policy draws uniformly in [−1, 1] from its own generator seeded with S.
+// --video FILE.mp4 and --trajectories FILE.png record the episodes (cli/recording.h).
 #include <CLI/CLI.hpp>
 
 #include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -17,6 +19,7 @@
 #include "commands.h"
 #include "common/random.h"
 #include "envs/env.h"
+#include "recording.h"
 
 namespace bsg::cli {
 namespace {
@@ -28,6 +31,7 @@ struct RolloutArguments {
   std::uint64_t seed = 0;
   std::string physics = "faithful";
   bool json = false;
+  RecordingArguments recording;
 };
 
 struct Episode {
@@ -52,8 +56,13 @@ MeanStd mean_std(const std::vector<Episode>& episodes, Field field) {
 }
 
 int rollout(const RolloutArguments& args) {
-  const std::unique_ptr<envs::Env> env =
+  std::unique_ptr<envs::Env> env =
       envs::make(args.env_id, {.physics = envs::parse_physics_model(args.physics)});
+  std::optional<Recording> recording;
+  if (args.recording.any()) {
+    recording.emplace(args.recording);
+    env = recording->wrap(std::move(env));
+  }
   const int action_dim = env->spec().action_dim;
   Rng policy_rng(args.seed ^ 0x9e3779b97f4a7c15ULL);  // independent of the env's stream
   std::vector<double> action(static_cast<size_t>(action_dim), 0.0);
@@ -77,6 +86,10 @@ int rollout(const RolloutArguments& args) {
       done = step.terminated || step.truncated;
     }
     episodes.push_back(episode);
+  }
+  if (recording) {
+    env = nullptr;  // destroying the observed env lets the recorders finish the last episode
+    recording->finish(args.json ? std::cerr : std::cout);
   }
   const MeanStd ret = mean_std(episodes, [](const Episode& e) { return e.episode_return; });
   const MeanStd cost = mean_std(episodes, [](const Episode& e) { return e.cost; });
@@ -125,6 +138,7 @@ void add_rollout_command(CLI::App& app, Action& run) {
   command->add_option("--physics", args->physics, "physics model: faithful (default) or lean")
       ->check(CLI::IsMember({"faithful", "lean"}));
   command->add_flag("--json", args->json, "print JSON with every episode and the summary");
+  add_recording_options(*command, args->recording);
   command->callback([&run, args]() { run = [args]() { return rollout(*args); }; });
 }
 

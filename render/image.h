@@ -11,8 +11,10 @@ struct Image {
   int height = 0;
   std::vector<std::uint8_t> rgb;  // height·width·3 bytes
 
-  const std::uint8_t* pixel(int x, int y) const {
-    return &rgb[(static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 3];
+  const std::uint8_t* pixel(int x, int y) const { return &rgb[offset(x, y)]; }
+  std::uint8_t* pixel(int x, int y) { return &rgb[offset(x, y)]; }
+  size_t offset(int x, int y) const {
+    return (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 3;
   }
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -319,6 +320,13 @@ void SceneRenderer::draw(const envs::SceneView& scene, const Camera& camera, Ima
   const double aspect = static_cast<double>(gl.width) / gl.height;
   gl.view_projection = multiply(projection_matrix(camera, aspect), view_matrix(camera));
 
+  // Lines stay at least a few pixels wide however far the camera is (trajectory
+  // plots of a long Run): metres per pixel at the target's distance.
+  const double metres_per_pixel =
+      2 * camera.distance_m * std::tan(camera.vertical_fov_deg * std::numbers::pi / 360) / gl.height;
+  const double boundary_width_m = std::max(0.15, 2 * metres_per_pixel);
+  const double path_width_m = std::max(0.12, 2.5 * metres_per_pixel);
+
   const auto& objects = scene.world->dynamics().getCollisionObjectArray();
   const btCollisionObject* ground = scene.world->ground();
   gl.draw_shape(ground->getCollisionShape(), ground->getWorldTransform(), kGround, true);
@@ -335,13 +343,13 @@ void SceneRenderer::draw(const envs::SceneView& scene, const Camera& camera, Ima
         break;
       case Kind::kGoalZone: gl.draw_flat_marking(marking, kGoal); break;
       case Kind::kPuddle: gl.draw_flat_marking(marking, kHazardZone); break;
-      case Kind::kSafetyBoundary: gl.draw_strip(marking.position, marking.end, 0.15, 0.006, kBoundary); break;
+      case Kind::kSafetyBoundary: gl.draw_strip(marking.position, marking.end, boundary_width_m, 0.006, kBoundary); break;
       default: break;
     }
   }
   for (const std::vector<PathPoint>& path : paths) {
     for (size_t i = 1; i < path.size(); ++i) {
-      gl.draw_strip({path[i - 1].x, path[i - 1].y, 0}, {path[i].x, path[i].y, 0}, 0.12, 0.01,
+      gl.draw_strip({path[i - 1].x, path[i - 1].y, 0}, {path[i].x, path[i].y, 0}, path_width_m, 0.01,
                     path[i].cost ? kPathCost : kPathSafe);
     }
   }

@@ -1,0 +1,67 @@
+#include "recording.h"
+
+#include <CLI/CLI.hpp>
+
+#include <ostream>
+
+namespace bsg::cli {
+
+class Recording::Fanout final : public render::EnvObserver {
+ public:
+  Fanout(render::EnvObserver* first, render::EnvObserver* second) : observers_{first, second} {}
+  void before_reset(const envs::Env& env) override {
+    for (render::EnvObserver* o : observers_) if (o != nullptr) o->before_reset(env);
+  }
+  void after_reset(const envs::Env& env) override {
+    for (render::EnvObserver* o : observers_) if (o != nullptr) o->after_reset(env);
+  }
+  void after_step(const envs::Env& env, const envs::StepResult& result) override {
+    for (render::EnvObserver* o : observers_) if (o != nullptr) o->after_step(env, result);
+  }
+  void before_destroy(const envs::Env& env) noexcept override {
+    for (render::EnvObserver* o : observers_) if (o != nullptr) o->before_destroy(env);
+  }
+
+ private:
+  render::EnvObserver* observers_[2];
+};
+
+void add_recording_options(CLI::App& command, RecordingArguments& args) {
+  command.add_option("--video", args.video,
+                     "write the episodes as an H.264 MP4 (one frame per step, captioned)");
+  command.add_option("--trajectories", args.trajectories,
+                     "write a PNG of each episode's path seen from above (red where it cost)");
+  command.add_option("--camera", args.render.camera, "--video camera: default, track or top")
+      ->capture_default_str();
+  command.add_option("--width", args.render.width, "--video frame width")->capture_default_str();
+  command.add_option("--height", args.render.height, "--video frame height")->capture_default_str();
+}
+
+Recording::Recording(const RecordingArguments& args) : args_(args) {
+  if (!args.video.empty()) video_ = std::make_unique<render::VideoRecorder>(args.video, args.render);
+  if (!args.trajectories.empty()) {
+    trajectories_ = std::make_unique<render::TrajectoryRecorder>(args.trajectories);
+  }
+  fanout_ = std::make_unique<Fanout>(video_.get(), trajectories_.get());
+}
+
+Recording::~Recording() = default;
+
+std::unique_ptr<envs::Env> Recording::wrap(std::unique_ptr<envs::Env> env) {
+  if (!args_.any()) return env;
+  return std::make_unique<render::ObservedEnv>(std::move(env), *fanout_);
+}
+
+void Recording::finish(std::ostream& out) {
+  if (video_) {
+    const int frames = video_->close();
+    out << "video " << args_.video << " (" << frames << " frames, " << args_.render.width << "x"
+        << args_.render.height << ", camera " << args_.render.camera << ")\n";
+  }
+  if (trajectories_) {
+    const int episodes = trajectories_->close();
+    out << "trajectories " << args_.trajectories << " (" << episodes << " episodes)\n";
+  }
+}
+
+}  // namespace bsg::cli

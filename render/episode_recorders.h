@@ -1,0 +1,79 @@
+// Observers (observed_env.h) that record the episodes an environment plays:
+//   VideoRecorder       one MP4 of every episode back to back: the frame after
+//                       each reset and after every step (an episode of n steps
+//                       gives n + 1 frames), captioned with the episode, step,
+//                       return and cost so far
+//   TrajectoryRecorder  a PNG with one top-down panel per episode: the arena at
+//                       the episode's end and the agent's path, red where the
+//                       step cost, blue elsewhere
+#pragma once
+
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "env_renderer.h"
+#include "observed_env.h"
+#include "scene_renderer.h"
+#include "video_file.h"
+
+namespace bsg::render {
+
+class VideoRecorder final : public EnvObserver {
+ public:
+  // Opens the video (throws naming the path if it cannot be written) and the
+  // renderer (throws naming EGL without a driver) before any episode runs.
+  VideoRecorder(const std::string& path, const RenderOptions& render, const VideoOptions& video = {},
+                bool caption = true);
+
+  void after_reset(const envs::Env& env) override;
+  void after_step(const envs::Env& env, const envs::StepResult& result) override;
+  // Finishes the file; returns the number of frames written.
+  int close();
+
+ private:
+  void add_frame(const envs::Env& env);
+
+  EnvRenderer renderer_;
+  VideoFile video_;
+  bool caption_;
+  Image frame_;
+  int episode_ = 0;
+  int step_ = 0;
+  double return_ = 0;
+  double cost_ = 0;
+};
+
+class TrajectoryRecorder final : public EnvObserver {
+ public:
+  static constexpr int kPanelWidth = 480;
+  static constexpr int kPanelHeight = 360;
+
+  // Throws naming the path if it cannot be written (it is created empty here
+  // so that a bad path fails before any episode runs), naming EGL without a driver.
+  explicit TrajectoryRecorder(std::string path);
+
+  void before_reset(const envs::Env& env) override;
+  void after_reset(const envs::Env& env) override;
+  void after_step(const envs::Env& env, const envs::StepResult& result) override;
+  // Draws the last episode's panel.
+  void before_destroy(const envs::Env& env) noexcept override;
+  // Writes the PNG once the observed environment is gone; returns the number
+  // of episodes drawn. Throws naming the path, or what failed while drawing.
+  int close();
+
+ private:
+  void finish_episode(const envs::Env& env);
+
+  std::string path_;
+  SceneRenderer renderer_;
+  std::vector<PathPoint> path_points_;
+  bool in_episode_ = false;
+  double episode_return_ = 0;
+  double episode_cost_ = 0;
+  std::vector<Image> panels_;
+  std::exception_ptr drawing_error_;
+};
+
+}  // namespace bsg::render
