@@ -44,6 +44,9 @@ struct VideoFile::Codec {
     int result = avcodec_send_frame(encoder, input);
     if (result < 0) fail("encoding failed", result);
     while ((result = avcodec_receive_packet(encoder, packet)) >= 0) {
+      // Every frame lasts one tick; without it the last frame gets duration 0
+      // and demuxers that honour the edit list drop it.
+      packet->duration = 1;
       av_packet_rescale_ts(packet, encoder->time_base, stream->time_base);
       packet->stream_index = stream->index;
       const int written = av_interleaved_write_frame(format, packet);
@@ -102,6 +105,9 @@ VideoFile::VideoFile(const std::string& path, int width, int height, const Video
   c.encoder->time_base = AVRational{1, options.fps};
   c.encoder->framerate = AVRational{options.fps, 1};
   c.encoder->gop_size = options.fps;
+  // No B-frames: frames leave the encoder in order, the MP4 needs no edit
+  // list, and every player and decoder shows exactly the frames written.
+  c.encoder->max_b_frames = 0;
   if (c.format->oformat->flags & AVFMT_GLOBALHEADER) c.encoder->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
   AVDictionary* settings = nullptr;
   av_dict_set(&settings, "preset", "veryfast", 0);

@@ -18,6 +18,10 @@ packages=(
   pybind11-dev python3-dev      # the bsg Python module (python/)
   python3-numpy                 # its arrays
   slurm-wlm munge               # bsg sweep --slurm; scripts/slurm_local.sh (a one-node cluster for the tests)
+  libegl-dev libopengl-dev      # render/: headless OpenGL through EGL (GLVND)
+  libegl-mesa0 libgl1-mesa-dri  # Mesa's EGL driver and llvmpipe, the software rasteriser (no GPU needed)
+  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev   # MP4 videos, H.264 via Debian's libx264
+  libpng-dev                    # PNG pictures and trajectory plots
 )
 
 missing=()
