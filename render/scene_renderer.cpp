@@ -54,28 +54,22 @@ uniform mat4 model;
 uniform mat3 normal_matrix;
 out vec3 world_position;
 out vec3 world_normal;
-out vec2 local_xy;
 void main() {
   world_position = (model * vec4(position, 1.0)).xyz;
   world_normal = normal_matrix * normal;
-  local_xy = position.xy;
   gl_Position = model_view_projection * vec4(position, 1.0);
 }
 )";
 
 // Lambert shading under one light from above and behind the default camera;
-// the ground gets 1-m grid lines one pixel wide (fwidth) so that motion reads;
-// a ring (the Circle's track) discards its inside.
+// the ground gets 1-m grid lines one pixel wide (fwidth) so that motion reads.
 constexpr const char* kFragmentShader = R"(#version 330 core
 in vec3 world_position;
 in vec3 world_normal;
-in vec2 local_xy;
 uniform vec4 colour;
 uniform int grid;
-uniform float ring_inner;
 out vec4 fragment;
 void main() {
-  if (ring_inner > 0.0 && length(local_xy) < ring_inner) discard;
   vec3 base = colour.rgb;
   if (grid == 1) {
     vec2 cell = abs(fract(world_position.xy - 0.5) - 0.5) / fwidth(world_position.xy);
@@ -156,15 +150,15 @@ struct SceneRenderer::Gl {
   GLuint colour_buffer = 0;
   GLuint depth_buffer = 0;
   GLuint program = 0;
-  GLint model_view_projection = -1, model = -1, normal_matrix = -1, colour = -1, grid = -1,
-        ring_inner = -1;
+  GLint model_view_projection = -1, model = -1, normal_matrix = -1, colour = -1, grid = -1;
   GpuMesh sphere, box, cylinder, disc;
   std::unordered_map<const btCollisionShape*, GpuMesh> convex_meshes;
+  std::unordered_map<double, GpuMesh> rings;  // by inner radius over outer
   Mat4 view_projection{};
-  std::vector<std::uint8_t> rows;  // glReadPixels' bottom-up rows
+  std::vector<std::uint8_t> rows;  // glReadPixels' bottom-up RGBA rows
 
   void draw_mesh(const GpuMesh& mesh, const Placement& placement, const Colour& c,
-                 bool ground_grid = false, float ring = 0) {
+                 bool ground_grid = false) {
     const btMatrix3x3& basis = placement.transform.getBasis();
     const btVector3& origin = placement.transform.getOrigin();
     Mat4 model_matrix{};
@@ -189,7 +183,6 @@ struct SceneRenderer::Gl {
     glUniformMatrix3fv(normal_matrix, 1, GL_FALSE, normals);
     glUniform4f(colour, c.r, c.g, c.b, c.a);
     glUniform1i(grid, ground_grid ? 1 : 0);
-    glUniform1f(ring_inner, ring);
     glBindVertexArray(mesh.array);
     glDrawArrays(GL_TRIANGLES, 0, mesh.vertex_count);
   }
@@ -223,11 +216,19 @@ struct SceneRenderer::Gl {
     // Concave shapes (triangle meshes, heightfields) are not used by any environment.
   }
 
-  void draw_flat_marking(const envs::Marking& marking, const Colour& c, float ring = 0) {
-    // Just above the ground (top face z = 0), below every body.
+  // A disc, or with `ring_width_m` a ring of that width inside its rim, just
+  // above the ground (top face z = 0), below every body.
+  void draw_flat_marking(const envs::Marking& marking, const Colour& c, double ring_width_m = 0) {
     envs::Vec3 position = marking.position;
     position[2] = std::max(position[2], 0.0) + 0.004;
-    draw_mesh(disc, at(position, btVector3(marking.radius, marking.radius, 1)), c, false, ring);
+    const GpuMesh* mesh = &disc;
+    if (ring_width_m > 0) {
+      const double inner = 1 - ring_width_m / marking.radius;
+      auto found = rings.find(inner);
+      if (found == rings.end()) found = rings.emplace(inner, upload(ring_mesh(inner))).first;
+      mesh = &found->second;
+    }
+    draw_mesh(*mesh, at(position, btVector3(marking.radius, marking.radius, 1)), c);
   }
 
   // A strip of `width_m` on the ground from a to b.
@@ -284,7 +285,6 @@ SceneRenderer::SceneRenderer(int width, int height) {
   gl.normal_matrix = glGetUniformLocation(gl.program, "normal_matrix");
   gl.colour = glGetUniformLocation(gl.program, "colour");
   gl.grid = glGetUniformLocation(gl.program, "grid");
-  gl.ring_inner = glGetUniformLocation(gl.program, "ring_inner");
   gl.sphere = upload(unit_sphere_mesh());
   gl.box = upload(unit_box_mesh());
   gl.cylinder = upload(unit_cylinder_mesh());
@@ -296,6 +296,7 @@ SceneRenderer::~SceneRenderer() {
   EglContext::Current current(gl.context);
   for (GpuMesh* mesh : {&gl.sphere, &gl.box, &gl.cylinder, &gl.disc}) release(*mesh);
   for (auto& [shape, mesh] : gl.convex_meshes) release(mesh);
+  for (auto& [inner, mesh] : gl.rings) release(mesh);
   glDeleteProgram(gl.program);
   glDeleteRenderbuffers(1, &gl.colour_buffer);
   glDeleteRenderbuffers(1, &gl.depth_buffer);
@@ -339,7 +340,7 @@ void SceneRenderer::draw(const envs::SceneView& scene, const Camera& camera, Ima
     using Kind = envs::Marking::Kind;
     switch (marking.kind) {
       case Kind::kCircleTrack:
-        gl.draw_flat_marking(marking, kTrack, static_cast<float>(1 - 0.15 / marking.radius));
+        gl.draw_flat_marking(marking, kTrack, 0.15);
         break;
       case Kind::kGoalZone: gl.draw_flat_marking(marking, kGoal); break;
       case Kind::kPuddle: gl.draw_flat_marking(marking, kHazardZone); break;
@@ -375,17 +376,22 @@ void SceneRenderer::draw(const envs::SceneView& scene, const Camera& camera, Ima
     gl.draw_shape(object->getCollisionShape(), object->getWorldTransform(), c, false);
   }
 
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  const size_t row_bytes = static_cast<size_t>(gl.width) * 3;
-  gl.rows.resize(row_bytes * static_cast<size_t>(gl.height));
-  glReadPixels(0, 0, gl.width, gl.height, GL_RGB, GL_UNSIGNED_BYTE, gl.rows.data());
+  // RGBA is the framebuffer's own layout (drivers copy it without converting);
+  // alpha is dropped here. OpenGL's rows run bottom-up, the image's top-down.
+  const auto w = static_cast<size_t>(gl.width), h = static_cast<size_t>(gl.height);
+  gl.rows.resize(w * h * 4);
+  glReadPixels(0, 0, gl.width, gl.height, GL_RGBA, GL_UNSIGNED_BYTE, gl.rows.data());
   image.width = gl.width;
   image.height = gl.height;
-  image.rgb.resize(gl.rows.size());
-  // OpenGL's rows run bottom-up; the image's top-down.
-  for (int y = 0; y < gl.height; ++y) {
-    std::copy_n(gl.rows.data() + static_cast<size_t>(gl.height - 1 - y) * row_bytes, row_bytes,
-                image.rgb.data() + static_cast<size_t>(y) * row_bytes);
+  image.rgb.resize(w * h * 3);
+  for (size_t y = 0; y < h; ++y) {
+    const std::uint8_t* source = gl.rows.data() + (h - 1 - y) * w * 4;
+    std::uint8_t* target = image.rgb.data() + y * w * 3;
+    for (size_t x = 0; x < w; ++x) {
+      target[3 * x] = source[4 * x];
+      target[3 * x + 1] = source[4 * x + 1];
+      target[3 * x + 2] = source[4 * x + 2];
+    }
   }
   if (depth != nullptr) {
     std::vector<float> window(static_cast<size_t>(gl.width) * static_cast<size_t>(gl.height));

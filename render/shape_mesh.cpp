@@ -43,7 +43,7 @@ btVector3 sphere_point(int ring, int rings, int segment, int segments) {
 }  // namespace
 
 Mesh unit_sphere_mesh() {
-  constexpr int kRings = 16, kSegments = 24;
+  constexpr int kRings = 12, kSegments = 18;
   Mesh mesh;
   for (int r = 0; r < kRings; ++r) {
     for (int s = 0; s < kSegments; ++s) {
@@ -117,8 +117,21 @@ Mesh unit_disc_mesh() {
   return mesh;
 }
 
+Mesh ring_mesh(double inner) {
+  constexpr int kSegments = 96;
+  Mesh mesh;
+  const btVector3 up(0, 0, 1);
+  for (int s = 0; s < kSegments; ++s) {
+    const double a0 = 2 * kPi * s / kSegments, a1 = 2 * kPi * (s + 1) / kSegments;
+    const btVector3 o0(std::cos(a0), std::sin(a0), 0), o1(std::cos(a1), std::sin(a1), 0);
+    const btVector3 i0 = o0 * inner, i1 = o1 * inner;
+    for (const btVector3& p : {i0, o0, o1, i0, o1, i1}) add_vertex(mesh, p, up);
+  }
+  return mesh;
+}
+
 Mesh convex_shape_mesh(const btConvexShape& shape) {
-  constexpr int kRings = 12, kSegments = 24;
+  constexpr int kRings = 10, kSegments = 16;
   std::vector<btVector3> points;
   for (int r = 0; r <= kRings; ++r) {
     for (int s = 0; s < (r == 0 || r == kRings ? 1 : kSegments); ++s) {

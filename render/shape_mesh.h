@@ -22,6 +22,8 @@ Mesh unit_box_mesh();
 Mesh unit_cylinder_mesh();
 // A disc of radius 1 in the plane z = 0, facing +z.
 Mesh unit_disc_mesh();
+// A ring between radii `inner` (in (0, 1)) and 1 in the plane z = 0, facing +z.
+Mesh ring_mesh(double inner);
 // Any convex shape (capsules, multi-spheres, convex hulls, cylinders, boxes):
 // the convex hull of its support points, margin included, over a fan of
 // directions (Bullet's collision surface), flat-shaded.
