@@ -230,4 +230,8 @@ void VectorEnv::step(std::span<const double> actions) {
   }
 }
 
+void VectorEnv::for_each_env(const std::function<void(int, const Env&)>& job) {
+  workers_->run(num_envs_, [this, &job](int i) { job(i, *envs_[static_cast<size_t>(i)]); });
+}
+
 }  // namespace bsg::envs

@@ -25,6 +25,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -73,6 +74,11 @@ class VectorEnv {
   std::span<const std::uint8_t> terminated() const { return terminated_; }
   std::span<const std::uint8_t> truncated() const { return truncated_; }
   std::span<const double> cost_terms() const { return cost_terms_; }  // N x cost_term_names().size()
+
+  // Runs job(i, environment i) for every environment on the pool's threads,
+  // each environment on one thread at a time (rendering them all: render/);
+  // rethrows the first exception a job threw. Not on the step path.
+  void for_each_env(const std::function<void(int, const Env&)>& job);
 
  private:
   void check_actions(std::span<const double> actions) const;

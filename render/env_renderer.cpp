@@ -8,9 +8,14 @@
 
 namespace bsg::render {
 
+void require_valid(const RenderOptions& options) {
+  SceneRenderer::require_valid_size(options.width, options.height);
+  require_camera_name(options.camera);
+}
+
 namespace {
 const RenderOptions& checked(const RenderOptions& options) {
-  require_camera_name(options.camera);
+  require_valid(options);
   return options;
 }
 }  // namespace

@@ -23,6 +23,10 @@ struct RenderOptions {
   std::string camera = "default";
 };
 
+// Throws std::invalid_argument for a size out of [1, 8192] or an unknown
+// camera; creates nothing (for callers that create the renderer later).
+void require_valid(const RenderOptions& options);
+
 class EnvRenderer {
  public:
   // Throws std::invalid_argument for a bad size or camera name (before any

@@ -245,13 +245,17 @@ struct SceneRenderer::Gl {
   }
 };
 
-SceneRenderer::SceneRenderer(int width, int height) {
+void SceneRenderer::require_valid_size(int width, int height) {
   for (const auto& [name, value] : {std::pair{"width", width}, {"height", height}}) {
     if (value < 1 || value > kMaxSide) {
       throw std::invalid_argument(std::string("render: ") + name + " must be in [1, " +
                                   std::to_string(kMaxSide) + "], got " + std::to_string(value));
     }
   }
+}
+
+SceneRenderer::SceneRenderer(int width, int height) {
+  require_valid_size(width, height);
   gl_ = std::make_unique<Gl>();
   Gl& gl = *gl_;
   gl.width = width;

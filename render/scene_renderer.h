@@ -39,6 +39,9 @@ class SceneRenderer {
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
 
+  // Throws std::invalid_argument naming the side out of [1, kMaxSide].
+  static void require_valid_size(int width, int height);
+
   int width() const;
   int height() const;
 

@@ -7,10 +7,12 @@
 
 ``bsg.env_ids()`` lists the ids; ``bsg.VectorEnv(id, num_envs)`` steps many
 environments on a C++ thread pool; ``bsg.make(id, api="gymnasium")`` gives
-gymnasium's 5-tuple with the cost in ``info["cost"]``.
+gymnasium's 5-tuple with the cost in ``info["cost"]``. ``render_mode="rgb_array"``
+makes ``env.render()`` return frames (``bsg.rendering``).
 """
 
 from . import _core
+from . import rendering as _rendering
 from .spaces import Box, box
 from .wrappers import GymnasiumEnv
 
@@ -41,12 +43,16 @@ class Env(_core.Env):
     Options: ``box_clock="episode_phase"`` (default) or ``"simulated"``.
     """
 
-    metadata = {"render_modes": []}
+    metadata = _rendering.METADATA
     render_mode = None
 
-    def __init__(self, env_id, **options):
+    def __init__(self, env_id, render_mode=None, width=480, height=360, camera="default",
+                 **options):
         _check_options(options)
+        renderer = _rendering.make_renderer(render_mode, width, height, camera)
         super().__init__(env_id, **options)
+        self.render_mode = render_mode
+        self._renderer = renderer
         spec = self.spec
         self.observation_space = box(
             -spec.observation_bound, spec.observation_bound, (spec.observation_dim,))
@@ -57,7 +63,9 @@ class Env(_core.Env):
         return self
 
     def render(self):
-        raise NotImplementedError("bsg environments do not render")
+        """The current frame: [height, width, 3] uint8 (render_mode="rgb_array")
+        or [height, width] float32 metres ("depth_array")."""
+        return _rendering.render(self, self._renderer)
 
     def __enter__(self):
         return self
@@ -83,9 +91,16 @@ class VectorEnv(_core.VectorEnv):
     term.
     """
 
-    def __init__(self, env_id, num_envs, num_threads=0, seed=0, **options):
+    metadata = _rendering.METADATA
+    render_mode = None
+
+    def __init__(self, env_id, num_envs, num_threads=0, seed=0, render_mode=None, width=480,
+                 height=360, camera="default", **options):
         _check_options(options)
+        renderer = _rendering.make_renderer(render_mode, width, height, camera)
         super().__init__(env_id, num_envs, num_threads, seed, **options)
+        self.render_mode = render_mode
+        self._renderer = renderer
         spec = self.spec
         self.single_observation_space = box(
             -spec.observation_bound, spec.observation_bound, (spec.observation_dim,))
@@ -93,6 +108,11 @@ class VectorEnv(_core.VectorEnv):
         self.observation_space = box(
             -spec.observation_bound, spec.observation_bound, (num_envs, spec.observation_dim))
         self.action_space = box(spec.action_low, spec.action_high, (num_envs, spec.action_dim))
+
+    def render(self):
+        """Every environment's frame, rendered on the pool's threads:
+        [num_envs, height, width, 3] uint8 (or [num_envs, height, width] float32)."""
+        return _rendering.render(self, self._renderer, vector=True)
 
     def __enter__(self):
         return self
@@ -110,7 +130,9 @@ def make(env_id, *, api="safety", **options):
 
     ``api="safety"`` (default): Safety-Gymnasium's 6-tuple step;
     ``api="gymnasium"``: gymnasium's 5-tuple with the cost in ``info["cost"]``.
-    Unknown ids raise ValueError listing the valid ones.
+    ``render_mode="rgb_array"`` (or ``"depth_array"``), ``width=480``,
+    ``height=360``, ``camera="default"`` (or ``"track"``, ``"top"``) make
+    ``render()`` return frames. Unknown ids raise ValueError listing the valid ones.
     """
     if not isinstance(env_id, str):
         raise TypeError(f"env_id must be a str, got {type(env_id).__name__}")

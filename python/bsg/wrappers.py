@@ -15,11 +15,10 @@ _Base = _spaces._gymnasium.Env if _spaces._gymnasium is not None else object
 class GymnasiumEnv(_Base):
     """A bsg Env behind gymnasium's API; the cost is in ``info["cost"]``."""
 
-    metadata = {"render_modes": []}
-    render_mode = None
-
     def __init__(self, env):
         self.env = env
+        self.metadata = env.metadata
+        self.render_mode = env.render_mode
         self.observation_space = env.observation_space
         self.action_space = env.action_space
         self.spec = env.spec
@@ -33,7 +32,7 @@ class GymnasiumEnv(_Base):
         return obs, reward, terminated, truncated, info
 
     def render(self):
-        raise NotImplementedError("bsg environments do not render")
+        return self.env.render()
 
     def close(self):
         self.env.close()

@@ -7,6 +7,7 @@
 #include "bench_helpers.h"
 #include "envs/env.h"
 #include "python_env.h"
+#include "python_render.h"
 #include "python_vector_env.h"
 
 PYBIND11_MODULE(_core, module) {
@@ -15,4 +16,5 @@ PYBIND11_MODULE(_core, module) {
   bsg::python::bind_env(module);
   bsg::python::bind_vector_env(module);
   bsg::python::bind_bench_helpers(module);
+  bsg::python::bind_render(module);
 }

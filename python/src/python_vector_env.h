@@ -34,10 +34,11 @@ class PythonVectorEnv {
   const envs::EnvSpec& spec() const { return spec_; }
   int num_envs() const { return num_envs_; }
   int num_threads() const { return num_threads_; }
+  // The environments, or RuntimeError if closed (python_render.h).
+  envs::VectorEnv& vector(const char* method);
+  std::atomic<bool>& busy() { return busy_; }
 
  private:
-  envs::VectorEnv& vector(const char* method);
-
   std::unique_ptr<envs::VectorEnv> vector_;
   envs::EnvSpec spec_;
   int num_envs_;
