@@ -1,0 +1,46 @@
+// `bsg eval RUN --video --trajectories` end to end on a tiny trained run: the
+// figures are those of a plain `bsg eval`, the MP4 holds one frame per reset
+// and step of every episode, the PNG one 480×360 panel per episode.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "../cli/run_bsg.h"
+#include "../test_support.h"
+#include "render_test_support.h"
+
+namespace bsg::render {
+namespace {
+
+TEST(EvalRecording, VideoAndTrajectoriesOfTheDeterministicPolicy) {
+  BSG_RENDERER_OR_SKIP(probe, (RenderOptions{64, 48, "default"}));
+  testing::TemporaryDirectory dir;
+  const std::filesystem::path run_file = dir.path() / "run.yaml";
+  testing::write_text_file(run_file,
+                           "env_id: SafetyBallCircle-v0\nalg: lag-trpo\nseed: 3\nepochs: 1\n"
+                           "steps_per_epoch: 1000\neval_episodes: 2\n");
+  const std::string configs = std::string(" --configs ") + BSG_SOURCE_DIR + "/configs";
+  ASSERT_EQ(testing::run_bsg("train " + run_file.string() + configs + " --quiet --out " + dir.str("run")).exit_code, 0);
+
+  const testing::ProgramResult plain = testing::run_bsg("eval " + dir.str("run") + " --episodes 2");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  const std::string video = dir.str("eval.mp4"), plot = dir.str("paths.png");
+  const testing::ProgramResult recorded = testing::run_bsg(
+      "eval " + dir.str("run") + " --episodes 2 --video " + video + " --trajectories " + plot +
+      " --width 128 --height 96 --camera top");
+  ASSERT_EQ(recorded.exit_code, 0) << recorded.output;
+  // Recording changes nothing the evaluation computes.
+  EXPECT_TRUE(testing::contains(recorded.output, plain.output));
+  EXPECT_TRUE(testing::contains(recorded.output, "(502 frames, 128x96, camera top)"));
+  EXPECT_TRUE(testing::contains(recorded.output, "trajectories " + plot + " (2 episodes)"));
+
+  // SafetyBallCircle-v0 episodes run their 250 steps: 2 × (1 + 250) frames.
+  EXPECT_EQ(testing::decode_video(video).size(), 502u);
+  const Image panels = testing::read_png(plot);
+  EXPECT_EQ(panels.width, 4 + 2 * (480 + 4));
+  EXPECT_EQ(panels.height, 4 + 360 + 4);
+}
+
+}  // namespace
+}  // namespace bsg::render
