@@ -33,6 +33,7 @@ void write_png(const std::string& path, const Image& image) {
     throw std::runtime_error("cannot write PNG '" + path + "': libpng failed");
   }
   png_init_io(png, file.get());
+  png_set_compression_level(png, 9);
   png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
                static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
