@@ -1,7 +1,7 @@
 """Rendering from Python: bsg.make(id, render_mode=...) and env.render(),
 VectorEnv.render() on the pool's threads, depth, bad input, no graphics
 context without a render() call, and gymnasium's rendering wrappers
-(gymnasium installed, else ../shared/pydeps beside the repository; skipped
+(gymnasium installed, else the shared/pydeps folder beside the repository; skipped
 where neither is)."""
 
 import importlib
@@ -16,7 +16,7 @@ import pytest
 
 
 def _find_gymnasium():
-    """gymnasium if installed, else the copy in ../shared/pydeps beside the
+    """gymnasium if installed, else the copy in shared/pydeps beside the
     repository (or beside a folder above it); None if neither exists."""
     try:
         return importlib.import_module("gymnasium")
@@ -183,7 +183,7 @@ def test_no_graphics_context_until_render_and_identical_steps():
 
 def test_gymnasium_render_collection_loop():
     if GYMNASIUM is None:
-        pytest.skip("gymnasium is neither installed nor in ../shared/pydeps")
+        pytest.skip("gymnasium is neither installed nor in a shared/pydeps folder beside the repository")
     from gymnasium.wrappers import RenderCollection
     env = RenderCollection(bsg.make("SafetyDroneReach-v0", api="gymnasium",
                                     render_mode="rgb_array", width=64, height=48))
@@ -208,7 +208,7 @@ def test_gymnasium_render_collection_loop():
 
 def test_gymnasium_record_video_loop(tmp_path):
     if GYMNASIUM is None:
-        pytest.skip("gymnasium is neither installed nor in ../shared/pydeps")
+        pytest.skip("gymnasium is neither installed nor in a shared/pydeps folder beside the repository")
     try:
         importlib.import_module("moviepy")
     except ImportError:

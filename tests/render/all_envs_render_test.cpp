@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iostream>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -69,6 +70,7 @@ TEST(AllEnvsRender, ThousandFramesDoNotGrowResidentMemory) {
   render_frames(1000);
   const long after = resident_kib();
   ASSERT_GT(before, 0);
+  std::cout << "resident memory after 100 frames " << before << " KiB, after 1100 " << after << " KiB\n";
   // One frame is 57.6 kB; a leak of a frame's worth per frame would add 56 MiB.
   EXPECT_LT(after - before, 1024) << "resident memory grew from " << before << " to " << after << " KiB";
 }
