@@ -1,6 +1,7 @@
 // An H×W×3 uint8 RGB image, row 0 at the top (NumPy's and PNG's order).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -13,8 +14,8 @@ struct Image {
 
   const std::uint8_t* pixel(int x, int y) const { return &rgb[offset(x, y)]; }
   std::uint8_t* pixel(int x, int y) { return &rgb[offset(x, y)]; }
-  size_t offset(int x, int y) const {
-    return (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 3;
+  std::size_t offset(int x, int y) const {
+    return (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3;
   }
 };
 
