@@ -1,6 +1,8 @@
 #include "scene_renderer.h"
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -133,6 +135,16 @@ struct Placement {
   btVector3 scale{1, 1, 1};
 };
 
+// What tells two convex shapes apart: type, margin, local bounding box.
+using ShapeGeometry = std::array<double, 8>;
+
+ShapeGeometry geometry_of(const btConvexShape& shape) {
+  btVector3 low, high;
+  shape.getAabb(btTransform::getIdentity(), low, high);
+  return {static_cast<double>(shape.getShapeType()), shape.getMargin(), low.x(), low.y(), low.z(),
+          high.x(), high.y(), high.z()};
+}
+
 Placement at(const envs::Vec3& position, const btVector3& scale) {
   Placement placement;
   placement.transform.setOrigin(btVector3(position[0], position[1], position[2]));
@@ -152,7 +164,9 @@ struct SceneRenderer::Gl {
   GLuint program = 0;
   GLint model_view_projection = -1, model = -1, normal_matrix = -1, colour = -1, grid = -1;
   GpuMesh sphere, box, cylinder, disc;
-  std::unordered_map<const btCollisionShape*, GpuMesh> convex_meshes;
+  // Meshes of convex shapes by address and geometry: a shape of a destroyed
+  // environment may leave its address to a different shape of the next.
+  std::map<std::pair<const btCollisionShape*, ShapeGeometry>, GpuMesh> convex_meshes;
   std::unordered_map<double, GpuMesh> rings;  // by inner radius over outer
   Mat4 view_projection{};
   std::vector<std::uint8_t> rows;  // glReadPixels' bottom-up RGBA rows
@@ -207,9 +221,10 @@ struct SceneRenderer::Gl {
       placement.scale = box_shape->getHalfExtentsWithMargin();
       draw_mesh(box, placement, c, ground_grid);
     } else if (const auto* convex = dynamic_cast<const btConvexShape*>(shape)) {
-      auto found = convex_meshes.find(shape);
+      const auto key = std::pair{shape, geometry_of(*convex)};
+      auto found = convex_meshes.find(key);
       if (found == convex_meshes.end()) {
-        found = convex_meshes.emplace(shape, upload(convex_shape_mesh(*convex))).first;
+        found = convex_meshes.emplace(key, upload(convex_shape_mesh(*convex))).first;
       }
       draw_mesh(found->second, placement, c, ground_grid);
     }
