@@ -45,7 +45,7 @@ constexpr Colour kBomb{0.95f, 0.05f, 0.0f};
 constexpr Colour kCollected{0.55f, 0.55f, 0.55f};
 constexpr Colour kBoundary{0.90f, 0.08f, 0.08f};
 constexpr Colour kTrack{0.98f, 0.80f, 0.15f, 0.85f};
-constexpr Colour kPathSafe{0.10f, 0.25f, 0.95f};
+constexpr Colour kPathSafe{0.05f, 0.10f, 0.45f};  // darker than the agent
 constexpr Colour kPathCost{0.95f, 0.10f, 0.05f};
 
 constexpr const char* kVertexShader = R"(#version 330 core
