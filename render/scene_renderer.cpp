@@ -335,6 +335,10 @@ void SceneRenderer::draw(const envs::SceneView& scene, const Camera& camera, Ima
   glClearColor(kSky.r, kSky.g, kSky.b, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
+  // Every mesh is closed and wound counter-clockwise seen from outside (the
+  // flat markings face up, and cameras look from above): back faces, the
+  // ground's bottom among them, need no shading.
+  glEnable(GL_CULL_FACE);
   glDisable(GL_BLEND);
   glUseProgram(gl.program);
   const double aspect = static_cast<double>(gl.width) / gl.height;
