@@ -43,6 +43,10 @@ class GymnasiumEnv(_Base):
         self.spec = _registered_spec(env)
 
     @property
+    def unwrapped(self):
+        return self
+
+    @property
     def bsg_spec(self):
         """bsg's ``EnvSpec`` (agent, task, dimensions, episode length, cost limit)."""
         return self.env.spec
