@@ -15,12 +15,16 @@ void EpisodeHistory::step(std::span<const double> action) {
   ++steps_;
   if (!complete_) return;
   if (static_cast<std::size_t>(steps_) > kMaxSteps) {
-    complete_ = false;
-    resets_ = {};
-    actions_ = {};  // frees the memory
+    lose();
     return;
   }
   actions_.insert(actions_.end(), action.begin(), action.end());
+}
+
+void EpisodeHistory::lose() {
+  complete_ = false;
+  resets_ = {};
+  actions_ = {};  // frees the memory
 }
 
 }  // namespace bsg::python

@@ -27,8 +27,11 @@ class EpisodeHistory {
   void seeded_reset(std::uint64_t seed);
   void reset();
   void step(std::span<const double> action);
+  // The environment was stepped behind the history's back (a benchmark).
+  void lose();
 
-  // False once more than kMaxSteps steps were taken since the seeded reset.
+  // False once more than kMaxSteps steps were taken since the seeded reset,
+  // or after lose().
   bool complete() const { return complete_; }
   const std::optional<std::uint64_t>& seed() const { return seed_; }
   // Number of steps taken before each unseeded reset, in order.

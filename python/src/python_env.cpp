@@ -49,6 +49,12 @@ envs::Env& PythonEnv::env(const char* method) {
   return *env_;
 }
 
+envs::Env& PythonEnv::env_outside_history(const char* method) {
+  envs::Env& environment = env(method);
+  history_.lose();
+  return environment;
+}
+
 py::tuple PythonEnv::reset(py::handle seed, py::handle options) {
   if (!options.is_none() && !(py::isinstance<py::dict>(options) && py::len(options) == 0)) {
     throw py::value_error(spec_.id + ": reset() takes no options (got " +
@@ -112,7 +118,8 @@ py::tuple PythonEnv::history() const {
     throw std::runtime_error(
         spec_.id + ": cannot copy an environment " + std::to_string(history_.steps()) +
         " steps after its last seeded reset (copies replay at most " +
-        std::to_string(EpisodeHistory::kMaxSteps) + "); call reset(seed=...) first");
+        std::to_string(EpisodeHistory::kMaxSteps) +
+        " steps made through Python); call reset(seed=...) first");
   }
   const auto steps = static_cast<py::ssize_t>(history_.steps());
   return py::make_tuple(

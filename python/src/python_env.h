@@ -55,6 +55,9 @@ class PythonEnv {
 
   // The environment, or RuntimeError if closed.
   envs::Env& env(const char* method);
+  // The same, for stepping it from C++ (benchmarks): copies are refused afterwards
+  // until the next seeded reset, as they could not replay those steps.
+  envs::Env& env_outside_history(const char* method);
   std::atomic<bool>& busy() { return busy_; }
 
  private:

@@ -1,8 +1,9 @@
 """Finds Gymnasium for the conformance tests: an installed one first, else the
 unmodified source kept beside the repository (`../shared/pydeps` from the
 repository's root, or from the main checkout's root when this is a git
-worktree). Without either, the test file exits with code 77, which ctest
-reports as skipped (tests/CMakeLists.txt SKIP_RETURN_CODE): never a pass."""
+worktree). Without either, the test module is skipped and pytest exits with
+code 77 (conftest.py), which ctest reports as skipped (tests/CMakeLists.txt
+SKIP_RETURN_CODE): never a pass."""
 
 import importlib
 import sys
@@ -11,6 +12,7 @@ from pathlib import Path
 import pytest
 
 SKIP_RETURN_CODE = 77
+missing = False  # set when a test module was skipped for want of gymnasium
 
 
 def _candidate_folders():
@@ -23,7 +25,8 @@ def _candidate_folders():
 
 
 def import_gymnasium():
-    """gymnasium, or exits the test run as skipped."""
+    """gymnasium, or skips the calling test module."""
+    global missing
     try:
         return importlib.import_module("gymnasium")
     except ImportError:
@@ -32,5 +35,6 @@ def import_gymnasium():
         if (folder / "gymnasium" / "__init__.py").is_file():
             sys.path.insert(0, str(folder))
             return importlib.import_module("gymnasium")
-    pytest.exit("SKIPPED: gymnasium is neither installed nor in ../shared/pydeps",
-                returncode=SKIP_RETURN_CODE)
+    missing = True
+    pytest.skip("gymnasium is neither installed nor in ../shared/pydeps",
+                allow_module_level=True)
