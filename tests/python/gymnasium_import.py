@@ -1,7 +1,7 @@
 """Finds Gymnasium for the conformance tests: an installed one first, else the
-unmodified source kept beside the repository (`../shared/pydeps` from the
-repository's root, or from the main checkout's root when this is a git
-worktree). Without either, the test module is skipped and pytest exits with
+unmodified source kept beside the repository (the folder `shared/pydeps` next
+to the repository's root, or next to the main checkout's root when this is a
+git worktree). Without either, the test module is skipped and pytest exits with
 code 77 (conftest.py), which ctest reports as skipped (tests/CMakeLists.txt
 SKIP_RETURN_CODE): never a pass."""
 
@@ -36,5 +36,5 @@ def import_gymnasium():
             sys.path.insert(0, str(folder))
             return importlib.import_module("gymnasium")
     missing = True
-    pytest.skip("gymnasium is neither installed nor in ../shared/pydeps",
+    pytest.skip("gymnasium is neither installed nor in shared/pydeps beside the repository",
                 allow_module_level=True)

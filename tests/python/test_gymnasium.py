@@ -20,7 +20,7 @@ from gymnasium.utils.env_checker import check_env  # noqa: E402
 import bsg  # noqa: E402  (after gymnasium, so that bsg registers its ids)
 
 IDS = bsg.env_ids()
-# Documented (docs/python.md#gymnasium): check_env warns whenever it is given a
+# Documented (docs/python.md#the-single-environment): check_env warns whenever it is given a
 # wrapped environment, which gymnasium.make always returns.
 DOCUMENTED = ("is different from the unwrapped version",)
 
