@@ -26,17 +26,19 @@ def registered_id(env_id):
     return f"{NAMESPACE}/{env_id}"
 
 
-def make_registered_env(env_id, render_mode=None, **overrides):
-    """gymnasium.make's entry point: a ``GymnasiumEnv`` over ``bsg.Env(env_id, **overrides)``.
+def make_registered_env(env_id, **overrides):
+    """gymnasium.make's entry point: a ``GymnasiumEnv`` over ``bsg.make(env_id, **overrides)``.
 
     The environment does not truncate by itself: gymnasium.make wraps it in a
     TimeLimit of the registered length (or of its ``max_episode_steps``).
     """
-    from . import Env
+    from . import make
     from .gymnasium_env import GymnasiumEnv
-    if render_mode is not None:  # a bsg environment without renderer accepts only None
-        overrides["render_mode"] = render_mode
-    env = Env(env_id, **overrides)
+    for option in ("api", "autoreset"):
+        if option in overrides:
+            raise TypeError(f"gymnasium.make does not take bsg.make's option {option!r} (wrap "
+                            f"the environment in gymnasium.wrappers.Autoreset to reset it)")
+    env = make(env_id, **overrides)
     env._max_episode_steps = 0
     return GymnasiumEnv(env)
 

@@ -95,6 +95,9 @@ def test_make_options_reach_bsg():
     assert longer.step(np.zeros(2))[3]
     with pytest.raises(TypeError, match="unknown option"):
         gymnasium.make("bsg/SafetyBallCircle-v0", no_such_option=1)
+    with pytest.raises(TypeError, match="gymnasium.wrappers.Autoreset"):
+        # Under make's TimeLimit an inner autoreset would truncate every later step.
+        gymnasium.make("bsg/SafetyBallCircle-v0", autoreset=True)
     vector = gymnasium.make_vec("bsg/SafetyBallRun-v0", num_envs=2, box_clock="simulated")
     assert isinstance(vector, bsg.VectorEnv) and isinstance(vector, gymnasium.vector.VectorEnv)
     assert vector.spec.id == "bsg/SafetyBallRun-v0"
