@@ -30,20 +30,13 @@ import gymnasium
 import bsg
 
 
-def cpu_seconds(vector, actions):
+def seconds(vector, actions, clock):
+    """`clock` seconds for the batch steps of `actions` after a seeded reset."""
     vector.reset(seed=0)
-    start = time.process_time()
+    start = clock()
     for batch in actions:
         vector.step(batch)
-    return time.process_time() - start
-
-
-def wall_seconds(vector, actions):
-    vector.reset(seed=0)
-    start = time.perf_counter()
-    for batch in actions:
-        vector.step(batch)
-    return time.perf_counter() - start
+    return clock() - start
 
 
 def measure(env_id, num_envs, steps, rounds):
@@ -56,11 +49,11 @@ def measure(env_id, num_envs, steps, rounds):
     actions = np.random.default_rng(0).uniform(-1, 1, (steps, num_envs, act_dim))
     cpu_ratio, wall_ratio, sync_rate, ours_rate, pooled_rate = [], [], [], [], []
     for _ in range(rounds):
-        s, o = cpu_seconds(sync, actions), cpu_seconds(ours, actions)
+        s, o = seconds(sync, actions, time.process_time), seconds(ours, actions, time.process_time)
         cpu_ratio.append(s / o)
         sync_rate.append(steps * num_envs / s)
         ours_rate.append(steps * num_envs / o)
-        ws, wp = wall_seconds(sync, actions), wall_seconds(pooled, actions)
+        ws, wp = seconds(sync, actions, time.perf_counter), seconds(pooled, actions, time.perf_counter)
         wall_ratio.append(ws / wp)
         pooled_rate.append(steps * num_envs / wp)
     print(f"{env_id:22s} sync {statistics.median(sync_rate):9.0f} steps/s, bsg 1 thread "
