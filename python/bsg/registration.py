@@ -75,7 +75,11 @@ def register_all():
         )
 
 
-def gymnasium_spec(env_id, options):
-    """gymnasium's EnvSpec of ``env_id`` made with ``options``."""
+def gymnasium_spec(env_id, options, max_episode_steps=None):
+    """gymnasium's EnvSpec of ``env_id`` made with ``options`` (and another
+    episode length if ``max_episode_steps`` is given)."""
     spec = _gymnasium.spec(registered_id(env_id))
-    return dataclasses.replace(spec, kwargs={**spec.kwargs, **options})
+    changes = {"kwargs": {**spec.kwargs, **options}}
+    if max_episode_steps is not None:
+        changes["max_episode_steps"] = max_episode_steps
+    return dataclasses.replace(spec, **changes)

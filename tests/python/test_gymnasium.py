@@ -82,6 +82,15 @@ def test_same_seed_same_episode_after_any_history_through_gymnasium_make(env_id)
     assert all(np.array_equal(a, b) for a, b in zip(first, again))
 
 
+def test_direct_adapter_spec_says_its_episode_length_and_options():
+    env = bsg.make("SafetyBallRun-v0", api="gymnasium", max_episode_steps=40,
+                   box_clock="simulated")
+    assert env.spec.max_episode_steps == 40 and env.spec.kwargs["box_clock"] == "simulated"
+    remade = env.spec.make()  # gymnasium.make of the same spec
+    remade.reset(seed=0)
+    assert [remade.step(np.zeros(2))[3] for _ in range(40)] == [False] * 39 + [True]
+
+
 def test_make_options_reach_bsg():
     env = gymnasium.make("bsg/SafetyBallCircle-v0", max_episode_steps=7, render_mode=None,
                          disable_env_checker=True, box_clock="simulated")
