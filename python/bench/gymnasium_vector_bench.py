@@ -15,7 +15,8 @@ both; ratios are of process CPU time per batch step (waiting for a core is
 not counted), medians over rounds, with the load average.
 
     PYTHONPATH=build/release/python:<gymnasium> /usr/bin/python3 \\
-        python/bench/gymnasium_vector_bench.py [--ids ...] [--num-envs 16] [--steps 300] [--rounds 5]
+        python/bench/gymnasium_vector_bench.py [--ids ...] [--num-envs 16] [--steps 300] \\
+        [--rounds 5]
 """
 
 import argparse
@@ -49,11 +50,13 @@ def measure(env_id, num_envs, steps, rounds):
     actions = np.random.default_rng(0).uniform(-1, 1, (steps, num_envs, act_dim))
     cpu_ratio, wall_ratio, sync_rate, ours_rate, pooled_rate = [], [], [], [], []
     for _ in range(rounds):
-        s, o = seconds(sync, actions, time.process_time), seconds(ours, actions, time.process_time)
+        s = seconds(sync, actions, time.process_time)
+        o = seconds(ours, actions, time.process_time)
         cpu_ratio.append(s / o)
         sync_rate.append(steps * num_envs / s)
         ours_rate.append(steps * num_envs / o)
-        ws, wp = seconds(sync, actions, time.perf_counter), seconds(pooled, actions, time.perf_counter)
+        ws = seconds(sync, actions, time.perf_counter)
+        wp = seconds(pooled, actions, time.perf_counter)
         wall_ratio.append(ws / wp)
         pooled_rate.append(steps * num_envs / wp)
     print(f"{env_id:22s} sync {statistics.median(sync_rate):9.0f} steps/s, bsg 1 thread "

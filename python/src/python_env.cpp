@@ -36,8 +36,8 @@ PythonEnv::PythonEnv(const std::string& env_id, const std::string& box_clock)
 
 void PythonEnv::set_max_episode_steps(int steps) {
   if (steps < 0) {
-    throw py::value_error(spec_.id + ": max_episode_steps must be >= 1 (or 0: never truncate), got " +
-                          std::to_string(steps));
+    throw py::value_error(spec_.id + ": max_episode_steps must be >= 1 (or 0: never truncate), " +
+                          "got " + std::to_string(steps));
   }
   max_episode_steps_ = steps;
 }

@@ -108,7 +108,8 @@ def test_copy_errors_name_the_remedy():
     for _ in range(100_001):  # one more than a copy replays
         if env.step(zeros)[4]:
             env.reset()
-    with pytest.raises(RuntimeError, match=r"100001 steps after its last seeded reset.*reset\(seed"):
+    with pytest.raises(RuntimeError,
+                       match=r"100001 steps after its last seeded reset.*reset\(seed"):
         copy.deepcopy(env)
     env.reset(seed=1)
     env.step(zeros)
