@@ -13,7 +13,7 @@ importable, ``import bsg`` registers every id as ``bsg/<id>`` for
 """
 
 from . import _core
-from .spaces import Box, box
+from .spaces import Box, _gymnasium, box
 from .gymnasium_env import GymnasiumEnv
 from .wrappers import NextStepAutoreset
 
@@ -119,7 +119,8 @@ def make(env_id, *, api="safety", max_episode_steps=None, autoreset=False,
     ``api="gymnasium"``: gymnasium's 5-tuple with the cost in ``info["cost"]``.
     ``max_episode_steps``: truncation length (default: the spec's);
     ``autoreset=True``: an ended episode is reset by the next step
-    (``NextStepAutoreset``); ``disable_env_checker`` is accepted for
+    (``NextStepAutoreset``, or gymnasium's ``Autoreset`` for ``api="gymnasium"``
+    when gymnasium is importable); ``disable_env_checker`` is accepted for
     gymnasium's and Safety-Gymnasium's callers and changes nothing (bsg.make
     adds no checker). Unknown ids raise ValueError listing the valid ones.
     """
@@ -136,10 +137,11 @@ def make(env_id, *, api="safety", max_episode_steps=None, autoreset=False,
     env = Env(env_id, max_episode_steps=max_episode_steps, **options)
     if api == "gymnasium":
         env = GymnasiumEnv(env)
+        if autoreset and _gymnasium is not None:
+            return _gymnasium.wrappers.Autoreset(env)  # the same rule, as a gymnasium.Wrapper
     return NextStepAutoreset(env) if autoreset else env
 
 
-from .spaces import _gymnasium  # noqa: E402
 if _gymnasium is not None:
     from . import registration  # noqa: E402
     registration.register_all()
