@@ -114,8 +114,7 @@ class VectorEnv {
   void check_actions(std::span<const double> actions) const;
   void reset_one(int index, const std::uint64_t* seed);
   void step_one(int index, std::span<const double> actions);
-
-  void autoreset_one(int index);
+  void autoreset_one(int index);  // kNextStep: the reset that replaces a step
 
   std::function<std::unique_ptr<Env>()> make_env_;  // builds one new environment
   std::vector<std::unique_ptr<Env>> envs_;
