@@ -23,7 +23,9 @@ py::array_t<double> copy_to_array(std::span<const double> values) {
 py::array_t<double> copy_to_array(std::span<const double> values,
                                   std::vector<py::ssize_t> shape) {
   py::array_t<double> array(std::move(shape));
-  std::memcpy(array.mutable_data(), values.data(), values.size_bytes());
+  if (!values.empty()) {  // memcpy from an empty vector's null data() is undefined
+    std::memcpy(array.mutable_data(), values.data(), values.size_bytes());
+  }
   return array;
 }
 
