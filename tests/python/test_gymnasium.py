@@ -285,3 +285,18 @@ def test_vector_metadata_call_get_attr_and_render():
         with pytest.raises(NotImplementedError, match="render_mode"):
             vector.render()
     vector.close()
+
+
+def test_render_mode_rgb_array_where_the_environments_render():
+    if not core_renders():
+        pytest.skip("this build's environments do not render")
+    env = gymnasium.make("bsg/SafetyBallCircle-v0", render_mode="rgb_array")
+    env.reset(seed=0)
+    frame = env.render()
+    assert env.render_mode == "rgb_array"
+    assert frame.ndim == 3 and frame.shape[2] == 3 and frame.dtype == np.uint8
+    vector = gymnasium.make_vec("bsg/SafetyBallCircle-v0", num_envs=2, render_mode="rgb_array")
+    vector.reset(seed=0)
+    frames = vector.render()
+    assert len(frames) == 2 and all(f.shape == frame.shape for f in frames)
+    vector.close()
