@@ -142,6 +142,6 @@ def make(env_id, *, api="safety", max_episode_steps=None, autoreset=False,
     return NextStepAutoreset(env) if autoreset else env
 
 
-if _gymnasium is not None:
+if _gymnasium is not None and hasattr(_gymnasium.vector, "AutoresetMode"):  # gymnasium 1.x
     from . import registration  # noqa: E402
     registration.register_all()

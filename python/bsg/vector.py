@@ -11,7 +11,7 @@ from . import _core
 from .gymnasium_env import RENDER_FPS
 from .spaces import _gymnasium, box
 
-if _gymnasium is not None:
+if _gymnasium is not None and hasattr(_gymnasium.vector, "AutoresetMode"):  # gymnasium 1.x
     from gymnasium.vector import AutoresetMode as _AutoresetMode
     _VectorBase = _gymnasium.vector.VectorEnv
 else:
