@@ -104,7 +104,7 @@ class VectorEnv(_core.VectorEnv, _VectorBase):
         self._spec = value
 
     def reset(self, *, seed=None, options=None):
-        if _gymnasium is not None and isinstance(seed, (int, np.integer)) \
+        if _VectorBase is not object and isinstance(seed, (int, np.integer)) \
                 and not isinstance(seed, bool):
             _VectorBase.reset(self, seed=int(seed))  # seeds self.np_random
         return _core.VectorEnv.reset(self, seed=seed, options=options)
