@@ -63,14 +63,9 @@ class VectorEnv(_core.VectorEnv, _VectorBase):
         if api not in ("safety", "gymnasium"):
             raise ValueError(f"api must be 'safety' or 'gymnasium', got {api!r}")
         next_step = _next_step(autoreset_mode)
-        if max_episode_steps is not None and (isinstance(max_episode_steps, bool) or
-                                              not isinstance(max_episode_steps, int) or
-                                              max_episode_steps < 1):
-            raise ValueError(f"max_episode_steps must be an int >= 1 or None, got "
-                             f"{max_episode_steps!r}")
         if options.get("render_mode", "") is None:
             del options["render_mode"]  # gymnasium's default; a renderer-less bsg takes no mode
-        _check_options(options)
+        _check_arguments(options, max_episode_steps)
         super().__init__(env_id, num_envs, num_threads, seed, **options)
         self._configure(api == "gymnasium", next_step, max_episode_steps or 0)
         self.api = api
@@ -171,9 +166,10 @@ class VectorEnv(_core.VectorEnv, _VectorBase):
                 f"thread(s){' (closed)' if self.closed else ''}>")
 
 
-def _check_options(options):
-    from . import _check_options as check
-    check(options)
+def _check_arguments(options, max_episode_steps):
+    from . import _check_max_episode_steps, _check_options  # one check for Env and VectorEnv
+    _check_options(options)
+    _check_max_episode_steps(max_episode_steps)
 
 
 def _gymnasium_spec(env_id, options, api):
