@@ -231,3 +231,7 @@ def test_vector_env_refuses_copies_and_bad_reset_options():
             vector.reset(options={"foo": 1})
     with pytest.raises(ValueError, match="autoreset_mode"):
         bsg.VectorEnv("SafetyBallRun-v0", 2, autoreset_mode="Disabled")
+    with pytest.raises(ValueError, match="max_episode_steps must be an int >= 1"):
+        bsg.VectorEnv("SafetyBallRun-v0", 2, max_episode_steps=0)
+    with pytest.raises(ValueError, match="api must be"):
+        bsg.VectorEnv("SafetyBallRun-v0", 2, api="gym")
