@@ -120,7 +120,9 @@ py::tuple PythonVectorEnv::reset(py::handle seed, py::handle options) {
     for (size_t i = 0; i < n; ++i) {
       if (!ever_reset_[i]) seeds[i] = initial_seed_ + i;
     }
-  } else if (py::isinstance<py::list>(seed) || py::isinstance<py::tuple>(seed)) {
+  } else if (py::isinstance<py::list>(seed) || py::isinstance<py::tuple>(seed) ||
+             (py::isinstance<py::array>(seed) &&
+              py::reinterpret_borrow<py::array>(seed).ndim() == 1)) {  // one seed per env
     const auto list = py::reinterpret_borrow<py::sequence>(seed);
     if (py::len(list) != n) {
       throw py::value_error("If seeds are passed as a list the length must match num_envs=" +

@@ -164,6 +164,7 @@ def test_reset_seeds_are_fresh_starts_lists_and_masks():
         for _ in range(30):
             vector.step(np.full((3, 2), 0.7))
         again, _ = vector.reset(seed=5)      # after a history: still a fresh start
+        assert np.array_equal(vector.reset(seed=np.array([8, 6, 2]))[0][0], fresh(8))
         listed, _ = vector.reset(seed=[8, None, 2])
         vector.step(np.full((3, 2), 0.7))
         stepped = vector.step(np.full((3, 2), 0.7))[0]
