@@ -17,6 +17,7 @@ packages=(
   python3-pytest                # Python tests run by ctest: docs check, install, scripts, tests/python
   pybind11-dev python3-dev      # the bsg Python module (python/)
   python3-numpy                 # its arrays
+  python3-cloudpickle python3-typing-extensions  # Gymnasium's own needs (conformance tests against it)
   slurm-wlm munge               # bsg sweep --slurm; scripts/slurm_local.sh (a one-node cluster for the tests)
   libegl-dev libopengl-dev      # render/: headless OpenGL through EGL (GLVND)
   libegl-mesa0 libgl1-mesa-dri  # Mesa's EGL driver and llvmpipe, the software rasteriser (no GPU needed)

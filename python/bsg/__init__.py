@@ -7,14 +7,17 @@
 
 ``bsg.env_ids()`` lists the ids; ``bsg.VectorEnv(id, num_envs)`` steps many
 environments on a C++ thread pool; ``bsg.make(id, api="gymnasium")`` gives
-gymnasium's 5-tuple with the cost in ``info["cost"]``. ``render_mode="rgb_array"``
-makes ``env.render()`` return frames (``bsg.rendering``).
+gymnasium's 5-tuple with the cost in ``info["cost"]``. When gymnasium is
+importable, ``import bsg`` registers every id as ``bsg/<id>`` for
+``gymnasium.make`` and ``gymnasium.make_vec`` (docs/python.md).
+``render_mode="rgb_array"`` makes ``env.render()`` return frames (``bsg.rendering``).
 """
 
 from . import _core
 from . import rendering as _rendering
-from .spaces import Box, box
-from .wrappers import GymnasiumEnv
+from .spaces import Box, _gymnasium, box
+from .gymnasium_env import GymnasiumEnv
+from .wrappers import NextStepAutoreset
 
 __all__ = ["make", "env_ids", "Env", "VectorEnv", "EnvSpec", "GymnasiumEnv", "Box"]
 
@@ -33,26 +36,46 @@ def _check_options(options):
         raise TypeError(f"unknown option(s) {unknown}; valid options: {list(_OPTIONS)}")
 
 
+def _check_max_episode_steps(max_episode_steps):
+    if max_episode_steps is not None and (isinstance(max_episode_steps, bool) or
+                                          not isinstance(max_episode_steps, int) or
+                                          max_episode_steps < 1):
+        raise ValueError(f"max_episode_steps must be an int >= 1 or None, got "
+                         f"{max_episode_steps!r}")
+
+
 class Env(_core.Env):
     """One environment with Safety-Gymnasium's API.
 
     ``reset(seed=None, options=None) -> (obs, info)``;
     ``step(action) -> (obs, reward, cost, terminated, truncated, info)`` where
-    ``info`` maps every cost term of the task to its value. ``seed=None``
-    continues the environment's random stream (seed 0 if it was never seeded).
+    ``info`` maps every cost term of the task to its value. ``reset(seed=s)``
+    is a fresh start: the same episode for the same seed and actions whatever
+    the environment did before; ``seed=None`` continues the environment's
+    random stream (seed 0 if it was never seeded). ``max_episode_steps``
+    (default: the spec's) truncates episodes after that many steps.
     Options: ``box_clock="episode_phase"`` (default) or ``"simulated"``.
+    Actions outside [-1, 1] are clipped by the Ball, Drone and Ant and used as
+    given by the Car, as in the original; the first one warns. ``pickle`` and
+    ``copy.deepcopy`` give an independent environment in the same state.
     """
 
     metadata = _rendering.METADATA
     render_mode = None
 
-    def __init__(self, env_id, render_mode=None, width=480, height=360, camera="default",
-                 **options):
+    def __init__(self, env_id, *, max_episode_steps=None, render_mode=None, width=480,
+                 height=360, camera="default", **options):
         _check_options(options)
+        _check_max_episode_steps(max_episode_steps)
         renderer = _rendering.make_renderer(render_mode, width, height, camera)
         super().__init__(env_id, **options)
         self.render_mode = render_mode
         self._renderer = renderer
+        self._options = dict(options)
+        self._render_options = (dict(render_mode=render_mode, width=width, height=height,
+                                     camera=camera) if render_mode is not None else {})
+        if max_episode_steps is not None:
+            self._max_episode_steps = max_episode_steps
         spec = self.spec
         self.observation_space = box(
             -spec.observation_bound, spec.observation_bound, (spec.observation_dim,))
@@ -62,10 +85,22 @@ class Env(_core.Env):
     def unwrapped(self):
         return self
 
+    @property
+    def bsg_spec(self):
+        """The same as ``spec``: bsg's ``EnvSpec``."""
+        return self.spec
+
     def render(self):
         """The current frame: [height, width, 3] uint8 (render_mode="rgb_array")
         or [height, width] float32 metres ("depth_array")."""
         return _rendering.render(self, self._renderer)
+
+    def __reduce__(self):
+        # A copy replays what this environment did since its last seeded
+        # reset (python/src/episode_history.h): Bullet has no full snapshot.
+        return (_restore_env, (type(self), self.spec.id,
+                               {**self._options, **self._render_options},
+                               self._max_episode_steps, self._history()))
 
     def __enter__(self):
         return self
@@ -77,66 +112,48 @@ class Env(_core.Env):
         return f"<bsg.Env {self.spec.id}{' (closed)' if self.closed else ''}>"
 
 
-class VectorEnv(_core.VectorEnv):
-    """``num_envs`` environments of one id stepped on a C++ thread pool.
-
-    ``num_threads=0`` uses every hardware thread (at most ``num_envs``). The
-    GIL is released while the environments step. Environment ``i`` is reset
-    with ``seed + i``; results are identical whatever ``num_threads`` is.
-    ``step(actions[num_envs, act_dim])`` returns batched arrays and resets
-    every environment whose episode ended: its ``obs`` row is then the first
-    observation of the new episode and ``info["final_observation"]`` holds the
-    step's own observations (``info["_final_observation"]`` marks the rows
-    that were reset). ``info`` also holds one ``[num_envs]`` array per cost
-    term.
-    """
-
-    metadata = _rendering.METADATA
-    render_mode = None
-
-    def __init__(self, env_id, num_envs, num_threads=0, seed=0, render_mode=None, width=480,
-                 height=360, camera="default", **options):
-        _check_options(options)
-        renderer = _rendering.make_renderer(render_mode, width, height, camera)
-        super().__init__(env_id, num_envs, num_threads, seed, **options)
-        self.render_mode = render_mode
-        self._renderer = renderer
-        spec = self.spec
-        self.single_observation_space = box(
-            -spec.observation_bound, spec.observation_bound, (spec.observation_dim,))
-        self.single_action_space = box(spec.action_low, spec.action_high, (spec.action_dim,))
-        self.observation_space = box(
-            -spec.observation_bound, spec.observation_bound, (num_envs, spec.observation_dim))
-        self.action_space = box(spec.action_low, spec.action_high, (num_envs, spec.action_dim))
-
-    def render(self):
-        """Every environment's frame, rendered on the pool's threads:
-        [num_envs, height, width, 3] uint8 (or [num_envs, height, width] float32)."""
-        return _rendering.render(self, self._renderer, vector=True)
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc_info):
-        self.close()
-
-    def __repr__(self):
-        return (f"<bsg.VectorEnv {self.spec.id} x{self.num_envs} on {self.num_threads} "
-                f"thread(s){' (closed)' if self.closed else ''}>")
+def _restore_env(cls, env_id, options, max_episode_steps, history):
+    env = cls(env_id, **options)
+    env._max_episode_steps = max_episode_steps
+    env._replay(history)
+    return env
 
 
-def make(env_id, *, api="safety", **options):
+from .vector import VectorEnv  # noqa: E402  (needs Env's module to be complete)
+
+
+def make(env_id, *, api="safety", max_episode_steps=None, autoreset=False,
+         disable_env_checker=None, **options):
     """Makes environment ``env_id`` (see ``env_ids()``).
 
     ``api="safety"`` (default): Safety-Gymnasium's 6-tuple step;
     ``api="gymnasium"``: gymnasium's 5-tuple with the cost in ``info["cost"]``.
-    ``render_mode="rgb_array"`` (or ``"depth_array"``), ``width=480``,
-    ``height=360``, ``camera="default"`` (or ``"track"``, ``"top"``) make
-    ``render()`` return frames. Unknown ids raise ValueError listing the valid ones.
+    ``max_episode_steps``: truncation length (default: the spec's);
+    ``autoreset=True``: an ended episode is reset by the next step
+    (``NextStepAutoreset``, or gymnasium's ``Autoreset`` for ``api="gymnasium"``
+    when gymnasium is importable); ``disable_env_checker`` is accepted for
+    gymnasium's and Safety-Gymnasium's callers and changes nothing (bsg.make
+    adds no checker). ``render_mode="rgb_array"`` (or ``"depth_array"``),
+    ``width=480``, ``height=360``, ``camera="default"`` (or ``"track"``,
+    ``"top"``) make ``render()`` return frames. Unknown ids raise ValueError
+    listing the valid ones.
     """
     if not isinstance(env_id, str):
         raise TypeError(f"env_id must be a str, got {type(env_id).__name__}")
     if api not in ("safety", "gymnasium"):
         raise ValueError(f"api must be 'safety' or 'gymnasium', got {api!r}")
-    env = Env(env_id, **options)
-    return GymnasiumEnv(env) if api == "gymnasium" else env
+    if not isinstance(autoreset, bool):
+        raise TypeError(f"autoreset must be a bool, got {autoreset!r}")
+    if disable_env_checker is not None and not isinstance(disable_env_checker, bool):
+        raise TypeError(f"disable_env_checker must be a bool or None, got {disable_env_checker!r}")
+    env = Env(env_id, max_episode_steps=max_episode_steps, **options)
+    if api == "gymnasium":
+        env = GymnasiumEnv(env)
+        if autoreset and _gymnasium is not None:
+            return _gymnasium.wrappers.Autoreset(env)  # the same rule, as a gymnasium.Wrapper
+    return NextStepAutoreset(env) if autoreset else env
+
+
+if _gymnasium is not None and hasattr(_gymnasium.vector, "AutoresetMode"):  # gymnasium 1.x
+    from . import registration  # noqa: E402
+    registration.register_all()

@@ -12,8 +12,10 @@ own, as the original suite sets it), ``"track"`` (follows the agent) and
 from . import _core
 
 RENDER_MODES = ["rgb_array", "depth_array"]
-# One frame per environment step of 1/60 s plays in real time.
-RENDER_FPS = 60
+# One frame per environment step plays in real time: every id steps 1/60
+# simulated second (4 engine steps of 1/240 s in Circle, Run and Gather, one of
+# 1/60 s in Reach).
+RENDER_FPS = round(1.0 / _core.env_step_seconds)
 METADATA = {"render_modes": RENDER_MODES, "render_fps": RENDER_FPS}
 CAMERAS = list(_core.camera_names)
 

@@ -5,6 +5,13 @@ gymnasium can be imported, so that libraries checking ``isinstance(space,
 gymnasium.spaces.Box)`` accept bsg's environments; otherwise a ``Box`` of this
 module with the same attributes and the methods RL code uses (``sample``,
 ``contains``, ``seed``).
+
+Action spaces are ``box(-1, 1, (action_dim,))``. An action outside them is not
+an error: as in the original suite, the Ball, the Drone and the Ant clip it to
+[-1, 1] and the Car uses it as given (docs/environments.md#kept-quirks, quirk 4);
+each environment warns about the first one (``UserWarning``, once, the
+convention of gymnasium's passive environment checker). NaN and infinite
+entries raise ValueError.
 """
 
 import numpy as np

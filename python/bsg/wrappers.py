@@ -1,45 +1,43 @@
-"""gymnasium's 5-tuple API over a bsg environment.
+"""Wrappers over a bsg environment, for either API.
 
-Libraries written for gymnasium expect ``step`` to return ``(obs, reward,
-terminated, truncated, info)``; Safety-Gymnasium-style code reads the cost from
-``info["cost"]``. ``GymnasiumEnv(bsg.make(id))`` (or ``bsg.make(id,
-api="gymnasium")``) gives that view. When gymnasium is importable the wrapper is
-a ``gymnasium.Env``.
+``GymnasiumEnv`` (gymnasium_env.py) gives gymnasium's 5-tuple;
+``NextStepAutoreset`` resets an ended episode in the next step, as gymnasium
+1.x's Autoreset wrapper does, for the 6-tuple and the 5-tuple alike
+(``bsg.make(id, autoreset=True)``).
 """
 
-from . import spaces as _spaces
+from .gymnasium_env import GymnasiumEnv
 
-_Base = _spaces._gymnasium.Env if _spaces._gymnasium is not None else object
+__all__ = ["GymnasiumEnv", "NextStepAutoreset"]
 
 
-class GymnasiumEnv(_Base):
-    """A bsg Env behind gymnasium's API; the cost is in ``info["cost"]``."""
+class NextStepAutoreset:
+    """After a step that ends the episode, the next ``step`` resets instead:
+    it returns the new episode's first observation, reward 0 (and cost 0),
+    ``terminated = truncated = False`` and the reset's info."""
 
     def __init__(self, env):
         self.env = env
-        self.metadata = env.metadata
-        self.render_mode = env.render_mode
-        self.observation_space = env.observation_space
-        self.action_space = env.action_space
-        self.spec = env.spec
+        self._ended = False
+
+    def __getattr__(self, name):
+        if name == "env":  # not yet set (unpickling)
+            raise AttributeError(name)
+        return getattr(self.env, name)
 
     def reset(self, *, seed=None, options=None):
+        self._ended = False
         return self.env.reset(seed=seed, options=options)
 
     def step(self, action):
-        obs, reward, cost, terminated, truncated, info = self.env.step(action)
-        info["cost"] = cost
-        return obs, reward, terminated, truncated, info
-
-    def render(self):
-        return self.env.render()
-
-    def close(self):
-        self.env.close()
-
-    @property
-    def unwrapped(self):
-        return self.env
+        if self._ended:
+            obs, info = self.env.reset()
+            self._ended = False
+            return (obs, 0.0, False, False, info) if isinstance(self.env, GymnasiumEnv) \
+                else (obs, 0.0, 0.0, False, False, info)
+        result = self.env.step(action)
+        self._ended = bool(result[-3] or result[-2])
+        return result
 
     def __repr__(self):
-        return f"GymnasiumEnv({self.env!r})"
+        return f"NextStepAutoreset({self.env!r})"

@@ -29,7 +29,7 @@ double thread_cpu_seconds() {
 double time_cpp_steps(PythonEnv& python_env,
                       const py::array_t<double, py::array::c_style>& actions) {
   const ExclusiveUse use(python_env.busy(), python_env.spec().id);
-  envs::Env& env = python_env.env("_time_cpp_steps");
+  envs::Env& env = python_env.env_outside_history("_time_cpp_steps");
   const auto act_dim = static_cast<size_t>(python_env.spec().action_dim);
   if (actions.ndim() != 2 || static_cast<size_t>(actions.shape(1)) != act_dim) {
     throw py::value_error("_time_cpp_steps: actions must have shape (steps, " +

@@ -6,12 +6,15 @@
 
 #include "bench_helpers.h"
 #include "envs/env.h"
+#include "envs/world.h"
 #include "python_env.h"
 #include "python_render.h"
 #include "python_vector_env.h"
 
 PYBIND11_MODULE(_core, module) {
   module.doc() = "bsg environments (C++ core of the bsg package)";
+  // Simulated seconds per environment step (every id): render_fps = 1 / this.
+  module.attr("env_step_seconds") = bsg::envs::World::kEnvStepSeconds;
   module.def("env_ids", &bsg::envs::registered_ids, "Every registered environment id, sorted.");
   bsg::python::bind_env(module);
   bsg::python::bind_vector_env(module);

@@ -4,6 +4,12 @@
 // every cost term of the task to its value. Observations are fresh float64
 // arrays (the C++ buffers are reused at the next step). step() releases the
 // GIL while the C++ environment steps.
+//
+// A seeded reset is a fresh start: an environment that was used is rebuilt
+// first, so that reset(seed=s) plays the same episode whatever came before
+// (the C++ Env::reset(seed) keeps the original's history-dependent reset,
+// which training's per-epoch reseeding relies on; docs/python.md#seeds).
+// reset() without a seed continues as the C++ Env::reset() does.
 #pragma once
 
 #include <pybind11/numpy.h>
@@ -11,12 +17,14 @@
 
 #include <array>
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "envs/env.h"
+#include "episode_history.h"
 
 namespace bsg::python {
 
@@ -28,20 +36,39 @@ class PythonEnv {
   // seed None continues the environment's random stream (seed 0 before any
   // seeded reset); options must be None or empty (gymnasium's signature).
   pybind11::tuple reset(pybind11::handle seed, pybind11::handle options);
+  // (seed or None, resets, actions [steps, action_dim], warned): see
+  // EpisodeHistory; RuntimeError if closed or the history is too long.
+  pybind11::tuple history() const;
+  // Replays history() of an environment of the same id and options on this
+  // new one (ValueError if it was used or the history does not fit).
+  void replay(pybind11::handle history);
   pybind11::tuple step(pybind11::handle action);
   // Frees the C++ environment; later reset()/step() raise RuntimeError.
   // Closing twice is allowed.
   void close();
   bool closed() const { return env_ == nullptr; }
+  // Truncation after this many steps of an episode (0: never, when a wrapper
+  // such as gymnasium's TimeLimit truncates instead); spec's by default.
+  int max_episode_steps() const { return max_episode_steps_; }
+  void set_max_episode_steps(int steps);
   const envs::EnvSpec& spec() const { return spec_; }
 
   // The environment, or RuntimeError if closed.
   envs::Env& env(const char* method);
+  // The same, for stepping it from C++ (benchmarks): copies are refused afterwards
+  // until the next seeded reset, as they could not replay those steps.
+  envs::Env& env_outside_history(const char* method);
   std::atomic<bool>& busy() { return busy_; }
 
  private:
+  std::function<std::unique_ptr<envs::Env>()> make_env_;
   std::unique_ptr<envs::Env> env_;
+  bool used_ = false;  // reset or stepped since built
+  EpisodeHistory history_;
+  bool warned_out_of_range_ = false;
   envs::EnvSpec spec_;
+  int max_episode_steps_;
+  int episode_steps_ = 0;
   std::array<pybind11::ssize_t, 1> action_shape_;
   std::vector<double> scratch_;
   std::vector<pybind11::str> cost_term_keys_;  // interned at the first step

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -164,6 +165,74 @@ TEST(VectorEnv, NumThreadsZeroMeansHardwareThreadsAtMostNumEnvs) {
   VectorEnv many("SafetyBallCircle-v0", 8, 0);
   EXPECT_GE(many.num_threads(), 1);
   EXPECT_LE(many.num_threads(), 8);
+}
+
+std::vector<double> row(std::span<const double> values, int index, int width) {
+  const auto begin = values.begin() + static_cast<std::ptrdiff_t>(index) * width;
+  return {begin, begin + width};
+}
+
+std::vector<double> fresh_reset(const std::string& id, std::uint64_t seed) {
+  const auto env = make(id);
+  const std::span<const double> observation = env->reset(seed);
+  return {observation.begin(), observation.end()};
+}
+
+// Oracle: a new Env reset with the seed. The Car keeps motor targets and the
+// Reach task its first-reset draws across a plain reset(seed); a seeded
+// reset_selected() must not.
+TEST(VectorEnv, ResetSelectedWithASeedIsAFreshStartAndLeavesOthersAlone) {
+  const std::string id = "SafetyCarReach-v0";
+  VectorEnv vector(id, 3, 2);
+  vector.reset(4);
+  for (int t = 0; t < 40; ++t) vector.step(std::vector<double>(6, 0.8));
+  const int obs_dim = vector.spec().observation_dim;
+  const std::vector<double> untouched = row(vector.observations(), 1, obs_dim);
+  const std::vector<std::uint8_t> mask{1, 0, 1};
+  const std::vector<std::optional<std::uint64_t>> seeds{11, std::nullopt, std::nullopt};
+  vector.reset_selected(mask, seeds);
+  EXPECT_EQ(row(vector.observations(), 0, obs_dim), fresh_reset(id, 11));
+  EXPECT_EQ(row(vector.observations(), 1, obs_dim), untouched);
+  // Environment 2 continued its stream: a single env with the same history.
+  const auto single = make(id);
+  single->reset(6);
+  for (int t = 0; t < 40; ++t) single->step(std::vector<double>(2, 0.8));
+  const std::span<const double> continued = single->reset();
+  EXPECT_EQ(row(vector.observations(), 2, obs_dim),
+            std::vector<double>(continued.begin(), continued.end()));
+  EXPECT_THROW(vector.reset_selected(std::vector<std::uint8_t>(2, 1), {}), std::invalid_argument);
+}
+
+// Oracle: a single Env truncated after 4 steps by hand; the step after the end
+// resets it (reward 0, flags false) instead of stepping it.
+TEST(VectorEnv, NextStepAutoResetAndEpisodeLengthOverride) {
+  const std::string id = "SafetyBallCircle-v0";
+  VectorEnv vector(id, 2, 2);
+  vector.set_autoreset(AutoReset::kNextStep);
+  vector.set_max_episode_steps(4);
+  EXPECT_EQ(vector.max_episode_steps(), 4);
+  EXPECT_THROW(vector.set_max_episode_steps(-1), std::invalid_argument);
+  vector.reset(3);
+  const auto single = make(id);
+  single->reset(3);
+  const int obs_dim = vector.spec().observation_dim;
+  for (int t = 1; t <= 4; ++t) {
+    vector.step(std::vector<double>(4, 0.5));
+    const StepResult r = single->step(std::vector<double>(2, 0.5));
+    EXPECT_EQ(row(vector.observations(), 0, obs_dim),
+              std::vector<double>(r.observation.begin(), r.observation.end()));
+    EXPECT_EQ(vector.rewards()[0], r.reward);
+    EXPECT_EQ(vector.truncated()[0], t == 4) << "step " << t;
+    EXPECT_EQ(vector.autoreset_envs()[0], 0);
+  }
+  vector.step(std::vector<double>(4, 0.5));
+  const std::span<const double> next = single->reset();
+  EXPECT_EQ(row(vector.observations(), 0, obs_dim), std::vector<double>(next.begin(), next.end()));
+  EXPECT_EQ(vector.rewards()[0], 0.0);
+  EXPECT_EQ(vector.truncated()[0], 0);
+  EXPECT_EQ(vector.autoreset_envs()[0], 1);
+  vector.step(std::vector<double>(4, 0.5));
+  EXPECT_EQ(vector.autoreset_envs()[0], 0);
 }
 
 }  // namespace

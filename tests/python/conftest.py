@@ -2,6 +2,7 @@
 
 import os
 import shutil
+import sys
 
 import pytest
 
@@ -23,3 +24,10 @@ def bsg_binary():
 def trajectory_recorder():
     """tests/python/trajectory_recorder.cpp: C++ rollouts through envs/env.h."""
     return _program("BSG_TRAJECTORY_RECORDER")
+
+
+def pytest_sessionfinish(session):
+    """Exit code 77 (ctest: skipped) when gymnasium was missing for a test module."""
+    finder = sys.modules.get("gymnasium_import")
+    if finder is not None and finder.missing:
+        session.exitstatus = finder.SKIP_RETURN_CODE

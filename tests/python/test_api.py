@@ -104,7 +104,8 @@ def test_same_seed_same_episode_and_seedless_reset_continues_the_stream():
 def test_gymnasium_wrapper_returns_five_tuple_with_cost_in_info():
     safety = bsg.make("SafetyBallGather-v0")
     gym = bsg.make("SafetyBallGather-v0", api="gymnasium")
-    assert isinstance(gym, bsg.GymnasiumEnv) and gym.unwrapped.spec.id == "SafetyBallGather-v0"
+    assert isinstance(gym, bsg.GymnasiumEnv) and gym.unwrapped is gym
+    assert gym.bsg_spec.id == "SafetyBallGather-v0"
     assert gym.observation_space == safety.observation_space
     obs_a, _ = safety.reset(seed=5)
     obs_b, _ = gym.reset(seed=5)
