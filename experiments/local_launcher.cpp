@@ -281,9 +281,14 @@ void SweepRunner::reconcile_earlier_sweep(std::vector<std::size_t>& queue) {
       wait_for(index);
       continue;
     }
+    const bool queued = std::find(queue.begin(), queue.end(), index) != queue.end();
     run.state = run_state(RunDirectory(run.dir));
     if (run.state == RunState::finished) {
       events_.record("done", run.run.relative_dir(), "finished after the sweep that started it ended");
+      if (queued) {  // finished between the plan and now
+        std::erase(queue, index);
+        ++finished_;
+      }
     } else {
       events_.record("interrupted", run.run.relative_dir(),
                      "the sweep that started it ended while it ran; " +
