@@ -115,20 +115,15 @@ TrainingMemoryEstimate estimate_training_memory(const RunConfig& config, int obs
   };
   const double policy = parameters(action_dim) + action_dim;
   const double value = parameters(1);
-  // Policy: parameters, gradient, CG's four vectors, the step, line-search
-  // copies (~10); each value net: parameters, gradient, two Adam moments (~5).
-  const double parameter_values = 10 * policy + 2 * 5 * value;
-  // Activations (pre and post) of every hidden layer over the batch: the
-  // policy's forward, backward and Fisher-vector passes (~4), the value nets'
-  // full-batch losses (~2 each); the weight-sized Jacobian products add
-  // another pass over the widest layer pair.
-  const double activation_values = 8 * batch * hidden_sum;
+  const double parameter_values = 8 * (policy + 2 * value);
+  const double activation_values = 2 * batch * hidden_sum;
   // The rollout buffer: raw and normalised observations, actions, means,
   // log-probabilities, rewards, costs, values, advantages and returns.
   const double buffer_values = batch * (2.0 * observation_dim + 2.0 * action_dim + 12.0);
+  constexpr double kProgramBytes = 64.0 * 1024 * 1024;
   TrainingMemoryEstimate estimate;
   estimate.network_bytes = 8 * (parameter_values + activation_values);
-  estimate.batch_bytes = 8 * buffer_values;
+  estimate.batch_bytes = 8 * buffer_values + kProgramBytes;
   estimate.bytes = estimate.network_bytes + estimate.batch_bytes;
   return estimate;
 }

@@ -45,12 +45,13 @@ inline constexpr int kMaxEpochs = 10'000'000;
 inline constexpr int kMaxEvalEpisodes = 1'000'000;
 
 // Bytes one rank's training holds at its peak, estimated from the arrays it
-// allocates (8-byte values): the rollout buffer and normalised observations
-// (N = steps_per_epoch / ranks rows), the layer activations of the policy and
-// value nets over the batch (forward, backward and the Fisher-vector product's
-// passes), and the parameters with their gradients, Adam moments and
-// conjugate-gradient vectors. tests/common/run_config_limits_test.cpp checks it
-// against the peak resident memory measured for a few network sizes.
+// allocates (8-byte values): about 8 copies of every network parameter
+// (parameters, gradients, Adam moments, conjugate-gradient vectors, line-search
+// copies), two layer activations per hidden unit over the batch
+// (N = steps_per_epoch / ranks rows), the rollout buffer, and 64 MB for the
+// program itself. Measured peak resident memory (docs/reproducing.md#limits):
+// 319 MB for hidden_sizes [1024, 1024] and N = 4000 (estimate 384 MB), 51 MB
+// for [64, 64] and N = 64000 (estimate 206 MB): it errs on the high side.
 struct TrainingMemoryEstimate {
   double bytes = 0;
   double network_bytes = 0;  // the part that grows with hidden_sizes
