@@ -71,7 +71,7 @@ ProgressLogText read_progress_log(std::string_view text, const std::string& sour
       }
       columns = fields;
       epoch_column = column_index(columns, "epoch");
-      if (epoch_column != 0) fail(source_name, line_number, "the header's first column is not 'epoch': " + printable_excerpt(line));
+      if (columns.empty() || epoch_column != 0) fail(source_name, line_number, "the header's first column is not 'epoch': " + printable_excerpt(line));
       steps_column = column_index(columns, "total_env_steps");
       log.header = line;
       continue;

@@ -18,6 +18,7 @@ packages=(
   pybind11-dev python3-dev      # the bsg Python module (python/)
   python3-numpy                 # its arrays
   slurm-wlm munge               # bsg sweep --slurm; scripts/slurm_local.sh (a one-node cluster for the tests)
+  clang-14 libclang-rt-14-dev   # libFuzzer targets of the file readers (tests/fuzz/libfuzzer, ctest fuzz.libfuzzer_short)
 )
 
 missing=()

@@ -175,6 +175,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadLog{"epoch,total_env_steps,x\n0,100,1\n\n", "3: holds 0 fields, the header 3"},
         BadLog{"epoch,total_env_steps,x\n0,150,1\n", "2: total_env_steps 150 where this run's 100 steps per epoch give 100"},
         BadLog{"x,epoch\n1,0\n", "1: the header's first column is not 'epoch'"},
+        // Found by the libFuzzer target: an empty header and rows of no fields.
+        BadLog{"\n\n", "1: the header's first column is not 'epoch'"},
         BadLog{"epoch,epoch\n0,0\n", "1: not a progress.csv header (column epoch is empty, repeated"}),
     [](const ::testing::TestParamInfo<BadLog>& info) { return "line_" + std::to_string(info.index); });
 
