@@ -28,15 +28,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string timestamp() {
-  const std::time_t now = std::time(nullptr);
-  std::tm local{};
-  localtime_r(&now, &local);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &local);
-  return text;
-}
-
 // The child command of one run: `bsg train RUN_FILE --out DIR` for a new run,
 // `bsg train --resume DIR` for an unfinished one, under `mpirun -np K` if K > 1.
 // The run file is fully resolved; --configs only spares `bsg train` the
@@ -163,7 +154,7 @@ void SweepRunner::start(std::size_t index) {
   command.inherited_fd = lock->fd();  // the child holds the lock until it ends
   {
     std::ofstream log(command.log_file, std::ios::app);
-    log << "=== bsg sweep " << timestamp() << ": " << command_line_text(command.argv) << "\n";
+    log << "=== bsg sweep " << sweep_timestamp() << ": " << command_line_text(command.argv) << "\n";
   }
   const pid_t pid = start_child(command);
   lock->record_holder(pid);

@@ -8,9 +8,8 @@
 #include "experiments/sweep_manifest.h"
 
 namespace bsg {
-namespace {
 
-std::string timestamp() {
+std::string sweep_timestamp() {
   const std::time_t now = std::time(nullptr);
   std::tm local{};
   localtime_r(&now, &local);
@@ -18,8 +17,6 @@ std::string timestamp() {
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &local);
   return text;
 }
-
-}  // namespace
 
 SweepEventLog::SweepEventLog(const std::filesystem::path& sweep_dir) {
   const std::filesystem::path path = sweep_dir / kSweepEventsName;
@@ -32,7 +29,7 @@ SweepEventLog::SweepEventLog(const std::filesystem::path& sweep_dir) {
 void SweepEventLog::record(const std::string& event, const std::filesystem::path& run_dir, const std::string& detail) {
   // One string, one write: a crash cuts at most this line.
   const std::string line =
-      timestamp() + "," + event + "," + csv_field(run_dir.generic_string()) + "," + csv_field(detail) + "\n";
+      sweep_timestamp() + "," + event + "," + csv_field(run_dir.generic_string()) + "," + csv_field(detail) + "\n";
   file_ << line << std::flush;
 }
 

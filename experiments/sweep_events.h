@@ -24,6 +24,9 @@ class SweepEventLog {
   std::ofstream file_;
 };
 
+// Local time as 2026-11-26T09:40:19, the time column of sweep_events.csv.
+std::string sweep_timestamp();
+
 // The last (event, detail) of each run_dir in <sweep_dir>/sweep_events.csv;
 // lines that cannot be parsed (cut by a crash) are skipped.
 std::map<std::filesystem::path, std::pair<std::string, std::string>> last_sweep_events(

@@ -44,11 +44,12 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// Two TRPO runs on SafetyBallCircle-v0 (seeds 3 and 4), 8 epochs of 500 steps.
+// Two TRPO runs on SafetyBallCircle-v0 (seeds 3 and 4), 30 epochs of 500 steps: long
+// enough that neither finishes in the moment between the signal and its epoch end.
 struct TinySweep {
   TinySweep() {
     std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [3, 4]\n"
-                           "fixed: {epochs: 8, steps_per_epoch: 500, save_freq: 100, eval_episodes: 2}\n"
+                           "fixed: {epochs: 30, steps_per_epoch: 500, save_freq: 100, eval_episodes: 2}\n"
                            "algorithms: {trpo: }\n";
   }
   std::string arguments(const fs::path& out) const {
@@ -97,6 +98,13 @@ bool wait_for_epochs(pid_t sweep, const std::vector<fs::path>& runs, int epochs)
   return false;
 }
 
+// Starts the sweep into `out` and waits until each run has logged an epoch;
+// -1 if the sweep ended first.
+pid_t start_and_wait_for_first_epochs(const TinySweep& sweep, const fs::path& out, const fs::path& log) {
+  const pid_t pid = bsg::testing::start_sweep_in_own_group(sweep.arguments(out), log);
+  return wait_for_epochs(pid, sweep.run_dirs(out), 1) ? pid : -1;
+}
+
 int exit_code_of(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status); }
 
 class SweepStopSignal : public ::testing::TestWithParam<int> {};
@@ -114,8 +122,8 @@ TEST_P(SweepStopSignal, StopsChildrenWithCheckpointsAndTheRerunMatchesAnUninterr
   const std::vector<fs::path> runs = sweep.run_dirs(out);
   const fs::path log = sweep.temp.path() / "first.log";
 
-  const pid_t pid = bsg::testing::start_sweep_in_own_group(sweep.arguments(out), log);
-  ASSERT_TRUE(wait_for_epochs(pid, runs, 1)) << read_text_file(log);
+  const pid_t pid = start_and_wait_for_first_epochs(sweep, out, log);
+  ASSERT_GT(pid, 0) << read_text_file(log);
   const auto signalled = Clock::now();
   ASSERT_EQ(kill(pid, GetParam()), 0);  // the sweep alone, not its group
   int status = 0;
@@ -178,8 +186,8 @@ TEST(SweepKilled, TheRerunWaitsForChildrenStillRunningAndLogsTheirTrueState) {
   const fs::path out = sweep.temp.path() / "killed";
   const std::vector<fs::path> runs = sweep.run_dirs(out);
   const fs::path log = sweep.temp.path() / "first.log";
-  const pid_t pid = bsg::testing::start_sweep_in_own_group(sweep.arguments(out), log);
-  ASSERT_TRUE(wait_for_epochs(pid, runs, 1)) << read_text_file(log);
+  const pid_t pid = start_and_wait_for_first_epochs(sweep, out, log);
+  ASSERT_GT(pid, 0) << read_text_file(log);
   ASSERT_EQ(kill(pid, SIGKILL), 0);  // the sweep alone: its children run on
   int status = 0;
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
@@ -195,7 +203,7 @@ TEST(SweepKilled, TheRerunWaitsForChildrenStillRunningAndLogsTheirTrueState) {
     EXPECT_EQ(last[name], "done") << name << "\n" << read_text_file(out / bsg::kSweepEventsName);
     EXPECT_EQ(count(events, "failed", name), 0u) << name;
     // Finished once: by the orphan (then no resume) or by the rerun after it.
-    EXPECT_EQ(bsg::testing::progress_rows(bsg::RunDirectory(run).progress()), 8) << name;
+    EXPECT_EQ(bsg::testing::progress_rows(bsg::RunDirectory(run).progress()), 30) << name;
   }
   EXPECT_NE(rerun.output.find("waiting SafetyBallCircle-v0/trpo/default/seed="), std::string::npos) << rerun.output;
 }
@@ -206,8 +214,8 @@ TEST(SweepLock, ASecondSweepOnADirectoryInUseNamesTheFirstAndExits) {
   const fs::path out = sweep.temp.path() / "shared";
   const std::vector<fs::path> runs = sweep.run_dirs(out);
   const fs::path log = sweep.temp.path() / "first.log";
-  const pid_t pid = bsg::testing::start_sweep_in_own_group(sweep.arguments(out), log);
-  ASSERT_TRUE(wait_for_epochs(pid, runs, 1)) << read_text_file(log);
+  const pid_t pid = start_and_wait_for_first_epochs(sweep, out, log);
+  ASSERT_GT(pid, 0) << read_text_file(log);
   const auto second = run_bsg("sweep " + sweep.arguments(out));
   EXPECT_EQ(second.exit_code, 1) << second.output;
   EXPECT_NE(second.output.find("bsg: error: another bsg sweep (pid " + std::to_string(pid) + ") is using " +
@@ -219,7 +227,7 @@ TEST(SweepLock, ASecondSweepOnADirectoryInUseNamesTheFirstAndExits) {
   EXPECT_EQ(exit_code_of(status), 0) << read_text_file(log);
   for (const fs::path& run : runs) {
     EXPECT_EQ(bsg::run_state(bsg::RunDirectory(run)), bsg::RunState::finished) << run;
-    EXPECT_EQ(bsg::testing::progress_rows(bsg::RunDirectory(run).progress()), 8) << run;
+    EXPECT_EQ(bsg::testing::progress_rows(bsg::RunDirectory(run).progress()), 30) << run;
   }
 }
 

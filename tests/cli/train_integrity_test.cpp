@@ -35,6 +35,13 @@ std::string run_file(const TemporaryDirectory& dir, const std::string& name, con
 
 const std::string kBallTrpoL = "env_id: SafetyBallCircle-v0\nalg: lag-trpo\n";
 
+// Trains `file` into `out` for `epochs` epochs, stopping there with a checkpoint; its exit code.
+int train_and_stop(const std::string& file, const fs::path& out, int epochs) {
+  return run_bsg("train " + file + " --out " + out.string() + kConfigs + " --quiet --stop-after " +
+                 std::to_string(epochs))
+      .exit_code;
+}
+
 std::vector<std::size_t> field_counts(const fs::path& progress) {
   std::vector<std::size_t> counts;
   std::ifstream file(progress);
@@ -50,7 +57,7 @@ TEST(TrainIntegrity, ATornProgressRowIsRestoredAndTheRunEqualsAnUninterruptedOne
   const std::string file = run_file(dir, "run.yaml", kBallTrpoL);
   const fs::path run = dir.path() / "run";
   const fs::path oracle = dir.path() / "oracle";
-  ASSERT_EQ(run_bsg("train " + file + " --out " + run.string() + kConfigs + " --quiet --stop-after 2").exit_code, 0);
+  ASSERT_EQ(train_and_stop(file, run, 2), 0);
   const std::string whole = read_text_file(run / "progress.csv");
   ASSERT_GT(whole.size(), 300u);
   write_text_file(run / "progress.csv", whole.substr(0, whole.size() - 300));
@@ -72,14 +79,8 @@ TEST(TrainIntegrity, AProgressLogOfAnotherRunIsRefusedNamingTheFileAndLine) {
   TemporaryDirectory dir;
   const fs::path car = dir.path() / "car";
   const fs::path ball = dir.path() / "ball";
-  ASSERT_EQ(run_bsg("train " + run_file(dir, "car.yaml", "env_id: SafetyCarRun-v0\nalg: cpo\n") + " --out " +
-                    car.string() + kConfigs + " --quiet --stop-after 1")
-                .exit_code,
-            0);
-  ASSERT_EQ(run_bsg("train " + run_file(dir, "ball.yaml", kBallTrpoL) + " --out " + ball.string() + kConfigs +
-                    " --quiet --stop-after 1")
-                .exit_code,
-            0);
+  ASSERT_EQ(train_and_stop(run_file(dir, "car.yaml", "env_id: SafetyCarRun-v0\nalg: cpo\n"), car, 1), 0);
+  ASSERT_EQ(train_and_stop(run_file(dir, "ball.yaml", kBallTrpoL), ball, 1), 0);
   fs::copy_file(ball / "progress.csv", car / "progress.csv", fs::copy_options::overwrite_existing);
   const auto resumed = run_bsg("train --resume " + car.string());
   EXPECT_EQ(resumed.exit_code, 1) << resumed.output;
@@ -94,10 +95,7 @@ TEST(TrainIntegrity, AProgressLogOfAnotherRunIsRefusedNamingTheFileAndLine) {
 TEST(TrainIntegrity, RowsOutOfOrderAreRefusedNamingTheLine) {
   TemporaryDirectory dir;
   const fs::path run = dir.path() / "run";
-  ASSERT_EQ(run_bsg("train " + run_file(dir, "run.yaml", kBallTrpoL) + " --out " + run.string() + kConfigs +
-                    " --quiet --stop-after 2")
-                .exit_code,
-            0);
+  ASSERT_EQ(train_and_stop(run_file(dir, "run.yaml", kBallTrpoL), run, 2), 0);
   std::ifstream in(run / "progress.csv");
   std::string header, first, second;
   std::getline(in, header);
@@ -116,10 +114,7 @@ TEST(TrainIntegrity, RowsOutOfOrderAreRefusedNamingTheLine) {
 TEST(TrainIntegrity, ACheckpointThatIsADirectoryIsCalledOne) {
   TemporaryDirectory dir;
   const fs::path run = dir.path() / "run";
-  ASSERT_EQ(run_bsg("train " + run_file(dir, "run.yaml", kBallTrpoL) + " --out " + run.string() + kConfigs +
-                    " --quiet --stop-after 1")
-                .exit_code,
-            0);
+  ASSERT_EQ(train_and_stop(run_file(dir, "run.yaml", kBallTrpoL), run, 1), 0);
   fs::remove(run / "checkpoint.bin");
   fs::create_directory(run / "checkpoint.bin");
   const auto resumed = run_bsg("train --resume " + run.string());
