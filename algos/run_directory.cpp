@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/file_reading.h"
+
 namespace bsg {
 
 std::filesystem::path default_run_directory(const RunConfig& config) {
@@ -17,9 +19,10 @@ void check_is_run_directory(const RunDirectory& directory) {
     throw std::runtime_error("run directory " + directory.root.string() + " does not exist");
   }
   for (const std::filesystem::path& file : {directory.config(), directory.checkpoint()}) {
-    if (!std::filesystem::is_regular_file(file)) {
+    const std::string kind = file_kind(file);
+    if (kind != "a regular file") {
       throw std::runtime_error(directory.root.string() + " is not a run directory: " + file.filename().string() +
-                               " is missing");
+                               " is " + kind + (kind == "missing" ? "" : ", not a file"));
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <ctime>
 #include <iostream>
 #include <limits>
+#include <new>
 #include <ostream>
 
 #include "algos/epoch_log.h"
@@ -94,7 +95,11 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
     progress_.epochs_completed = saved.epochs_completed;
     progress_.elapsed_seconds = saved.elapsed_seconds;
     checkpoint_epochs_ = saved.epochs_completed;
-    if (mpi_.is_root()) progress_csv_.emplace(ProgressCsv::resume(directory_.progress(), saved.epochs_completed));
+    if (mpi_.is_root()) {
+      progress_csv_.emplace(ProgressCsv::resume(
+          directory_.progress(), ProgressResume{saved.epochs_completed, saved.progress_log, config_.steps_per_epoch,
+                                                options_.log != nullptr ? options_.log : &std::cerr}));
+    }
   } else {
     actor_critic_->broadcast_from_root(mpi_);  // docs/algorithms.md#set-up, step 5
     if (mpi_.is_root()) {
@@ -109,7 +114,10 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
 OnPolicyTrainer::~OnPolicyTrainer() = default;
 
 void OnPolicyTrainer::save_checkpoint() {
-  if (mpi_.is_root()) save_training_checkpoint(directory_.checkpoint(), config_, progress_, *actor_critic_, *algorithm_);
+  if (mpi_.is_root()) {
+    progress_.progress_log = progress_csv_->contents();  // docs/reproducing.md#run-directory: rows restorable
+    save_training_checkpoint(directory_.checkpoint(), config_, progress_, *actor_critic_, *algorithm_);
+  }
   checkpoint_epochs_ = progress_.epochs_completed;
 }
 
@@ -275,6 +283,9 @@ TrainingOutcome OnPolicyTrainer::run() {
       run_epoch(epoch);
     } catch (const NonFiniteError&) {
       throw;
+    } catch (const std::bad_alloc&) {
+      throw std::runtime_error("epoch " + std::to_string(epoch) +
+                               ": out of memory (std::bad_alloc) during the epoch's rollout, update or value fits");
     } catch (const std::exception& e) {
       throw std::runtime_error("epoch " + std::to_string(epoch) + ": " + e.what());
     }

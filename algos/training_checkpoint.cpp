@@ -1,11 +1,44 @@
 #include "algos/training_checkpoint.h"
 
+#include <cmath>
 #include <stdexcept>
 
-#include "common/checkpoint_file.h"
+#include "algos/progress_csv.h"
+#include "algos/progress_csv_reader.h"
 #include "common/run_config_yaml.h"
 
 namespace bsg {
+namespace {
+
+// The recorded log must hold exactly the completed epochs' rows, with this
+// run's step counts, and its last time_s is the checkpoint's elapsed time
+// (both are written from the same number at the end of that epoch).
+void check_progress_log(const BinaryReader& reader, const std::string& text, const TrainingProgress& progress,
+                        const RunConfig& config) {
+  ProgressLogText log;
+  try {
+    log = read_progress_log(text, "its progress log", config.steps_per_epoch);
+  } catch (const ProgressLogError& e) {
+    reader.fail(e.what());
+  }
+  if (!log.torn_tail.empty() || log.rows.size() != static_cast<std::size_t>(progress.epochs_completed) ||
+      (progress.epochs_completed > 0) == log.header.empty()) {
+    reader.fail("its progress log holds " + std::to_string(log.rows.size()) + " rows" +
+                (log.torn_tail.empty() ? "" : " and a cut-off line") + " for " +
+                std::to_string(progress.epochs_completed) + " completed epochs");
+  }
+  if (log.rows.empty()) return;
+  const std::vector<std::string> columns = split_csv_line(log.header);
+  const std::vector<std::string> last = split_csv_line(log.rows.back());
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    if (columns[i] == "time_s" && last[i] != format_csv_number(progress.elapsed_seconds)) {
+      reader.fail("its progress log's last time_s " + last[i] + " differs from its elapsed seconds " +
+                  format_csv_number(progress.elapsed_seconds));
+    }
+  }
+}
+
+}  // namespace
 
 std::string encode_training_checkpoint(const RunConfig& config, const TrainingProgress& progress,
                                        const ActorCritic& actor_critic, const TrustRegionAlgorithm& algorithm) {
@@ -16,6 +49,7 @@ std::string encode_training_checkpoint(const RunConfig& config, const TrainingPr
   writer.write_section("progress");
   writer.write_i64(progress.epochs_completed);
   writer.write_f64(progress.elapsed_seconds);
+  writer.write_string(progress.progress_log.value_or(""));
   actor_critic.save(writer);
   writer.write_section("algorithm");
   writer.write_string(algorithm.name());
@@ -36,14 +70,19 @@ void save_training_checkpoint(const std::filesystem::path& path, const RunConfig
 
 TrainingProgress decode_training_checkpoint(std::string_view payload, const std::string& source_name,
                                             const RunConfig& config, ActorCritic& actor_critic,
-                                            TrustRegionAlgorithm& algorithm) {
+                                            TrustRegionAlgorithm& algorithm, std::uint32_t format_version) {
   BinaryReader reader(payload, source_name);
   TrainingProgress progress;
   reader.expect_section("run");
   if (reader.read_string("config") != to_yaml(config)) {
     reader.fail("it was written for a different configuration than the run directory's config.yaml");
   }
-  progress.num_ranks = static_cast<int>(reader.read_i64("rank count"));
+  const std::int64_t num_ranks = reader.read_i64("rank count");
+  if (num_ranks < 1 || num_ranks > kMaxCheckpointRanks) {
+    reader.fail("rank count " + std::to_string(num_ranks) + " lies outside [1, " +
+                std::to_string(kMaxCheckpointRanks) + "]");
+  }
+  progress.num_ranks = static_cast<int>(num_ranks);
   reader.expect_section("progress");
   const std::int64_t epochs_completed = reader.read_i64("epochs completed");
   if (epochs_completed < 0 || epochs_completed > config.epochs) {
@@ -52,6 +91,14 @@ TrainingProgress decode_training_checkpoint(std::string_view payload, const std:
   }
   progress.epochs_completed = static_cast<int>(epochs_completed);
   progress.elapsed_seconds = reader.read_f64("elapsed seconds");
+  if (!std::isfinite(progress.elapsed_seconds) || progress.elapsed_seconds < 0) {
+    reader.fail("elapsed seconds " + format_csv_number(progress.elapsed_seconds) +
+                " is not a finite non-negative time");
+  }
+  if (format_version >= 2) {
+    progress.progress_log = reader.read_string("progress log");
+    check_progress_log(reader, *progress.progress_log, progress, config);
+  }
   actor_critic.load(reader);
   reader.expect_section("algorithm");
   const std::string name = reader.read_string("algorithm name");
@@ -78,7 +125,9 @@ TrainingProgress decode_training_checkpoint(std::string_view payload, const std:
 
 TrainingProgress load_training_checkpoint(const std::filesystem::path& path, const RunConfig& config,
                                           ActorCritic& actor_critic, TrustRegionAlgorithm& algorithm) {
-  return decode_training_checkpoint(read_checkpoint_file(path), path.string(), config, actor_critic, algorithm);
+  const CheckpointContents contents = read_checkpoint_contents(path);
+  return decode_training_checkpoint(contents.payload, path.string(), config, actor_critic, algorithm,
+                                    contents.format_version);
 }
 
 }  // namespace bsg

@@ -3,22 +3,30 @@
 // run by the local launcher (experiments/local_launcher.h) or, with --slurm,
 // submitted as a Slurm job array (experiments/slurm_launcher.h); the sweep
 // directory's layout is in experiments/sweep_manifest.h. Exit code of a
-// local sweep: 0 iff every run has finished; of --slurm: 0 iff submitted.
+// local sweep: 0 iff every run has finished, 75 if SIGTERM, SIGINT or SIGHUP
+// stopped it (its running runs stop with a checkpoint; run it again to
+// resume); of --slurm: 0 iff submitted. One sweep at a time holds a sweep
+// directory (<dir>/sweep.lock); a second one names the first's pid and exits 1.
 // `bsg sweep --status DIR` reports a sweep of either kind
 // (experiments/sweep_status.h).
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <unistd.h>
+
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include "commands.h"
 #include "configs_search.h"
 #include "experiments/child_process.h"
 #include "experiments/local_launcher.h"
+#include "experiments/run_lock.h"
 #include "experiments/slurm_launcher.h"
 #include "experiments/sweep_plan.h"
 #include "experiments/sweep_status.h"
+#include "stop_signals.h"
 
 namespace bsg::cli {
 
@@ -38,6 +46,20 @@ struct SweepOptions {
   std::string status_dir;
 };
 
+// One sweep per directory: the lock names its holder to whoever finds it taken.
+RunLock lock_sweep_directory(const std::filesystem::path& out_dir) {
+  std::filesystem::create_directories(out_dir);
+  const std::filesystem::path lock_file = out_dir / kSweepLockName;
+  std::optional<RunLock> lock = RunLock::try_acquire_file(lock_file);
+  if (!lock) {
+    throw std::runtime_error("another bsg sweep (" + describe_lock_holder(lock_file) + ") is using " +
+                             out_dir.string() + " (it holds " + lock_file.string() +
+                             "); wait for it to end or choose another --out");
+  }
+  lock->record_holder(::getpid());
+  return std::move(*lock);
+}
+
 int run_sweep(SweepOptions options) {
   const std::filesystem::path grid_file(options.grid_file);
   SweepPlanRequest request;
@@ -53,6 +75,13 @@ int run_sweep(SweepOptions options) {
     options.jobs = static_cast<int>(std::max(1u, cores / static_cast<unsigned>(options.ranks_per_run)));
   }
 
+  if (options.dry_run && !options.slurm) {
+    std::cout << "bsg sweep --dry-run " << grid_file.string() << " -> " << request.out_dir.string() << "\n"
+              << dry_run_listing(make_sweep_plan(request));
+    return 0;
+  }
+  const std::optional<RunLock> sweep_lock =
+      options.dry_run ? std::nullopt : std::optional<RunLock>(lock_sweep_directory(request.out_dir));
   SweepPlan plan = make_sweep_plan(request);
   if (options.slurm) {
     SlurmLaunchOptions launch;
@@ -64,17 +93,15 @@ int run_sweep(SweepOptions options) {
     if (!options.dry_run) prepare_sweep_directory(request, plan);
     return submit_sweep_to_slurm(plan, request.out_dir, launch, std::cout);
   }
-  if (options.dry_run) {
-    std::cout << "bsg sweep --dry-run " << grid_file.string() << " -> " << request.out_dir.string() << "\n"
-              << dry_run_listing(plan);
-    return 0;
-  }
   prepare_sweep_directory(request, plan);
+  // Blocked before the first child starts (children unblock them, experiments/child_process.h).
+  const StopSignals stop_signals;
   LocalLaunchOptions launch;
   launch.jobs = options.jobs;
   launch.ranks_per_run = options.ranks_per_run;
   launch.configs_dir = request.configs_dir;
   launch.bsg_program = current_executable();
+  launch.take_stop_signal = [&stop_signals] { return stop_signals.take_pending(); };
   return run_sweep_locally(std::move(plan), request.out_dir, launch);
 }
 

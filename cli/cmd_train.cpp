@@ -4,7 +4,8 @@
 //   bsg train --resume DIR
 // Under `mpirun -np N` the batch is split over the N ranks (the same code runs
 // with one process and no MPI).
-// SIGTERM, SIGINT or SIGUSR1 (scancel, a preemption, Ctrl-C) stops the run at
+// --print-config runs every check training runs before it (check_before_training).
+// SIGTERM, SIGINT, SIGHUP or SIGUSR1 (scancel, a preemption, Ctrl-C, a closed terminal) stops the run at
 // the end of the current epoch with a checkpoint and exit code 75
 // (stop_signals.h); under mpirun a signal reaching any rank stops all of them
 // at the same epoch (send mpirun SIGUSR1: it forwards that one at once).
@@ -12,6 +13,8 @@
 
 #include <iostream>
 #include <memory>
+#include <new>
+#include <stdexcept>
 #include <optional>
 #include <string>
 #include <utility>
@@ -64,9 +67,42 @@ ResolvedTrainConfig resolve_config(const TrainArguments& args) {
   return resolved;
 }
 
+// Every check a run must pass before it trains, also run by --print-config:
+// the batch split over the ranks, the environment with its physics model, and
+// the memory estimate against the memory available.
+void check_before_training(const RunConfig& config, int num_ranks) {
+  check_run_config_for_ranks(config, num_ranks);
+  std::unique_ptr<envs::Env> env;
+  try {
+    env = envs::make(config.env_id, {.physics = envs::parse_physics_model(to_string(config.physics))});
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError("physics = " + std::string(to_string(config.physics)) + ": " + e.what());
+  }
+  check_training_memory(config, env->spec().observation_dim, env->spec().action_dim, num_ranks, available_memory());
+}
+
+// The trainer allocates its networks and buffers up front: running out of
+// memory there is reported with what was being allocated and the estimate.
+std::unique_ptr<OnPolicyTrainer> make_trainer(const RunConfig& config, const RunDirectory& directory,
+                                              const MpiContext& mpi, const TrainerOptions& options) {
+  try {
+    return std::make_unique<OnPolicyTrainer>(config, directory, mpi, options);
+  } catch (const std::bad_alloc&) {
+    const std::unique_ptr<envs::Env> env =
+        envs::make(config.env_id, {.physics = envs::parse_physics_model(to_string(config.physics))});
+    const TrainingMemoryEstimate estimate =
+        estimate_training_memory(config, env->spec().observation_dim, env->spec().action_dim, mpi.size());
+    throw std::runtime_error("out of memory while allocating the networks (hidden_sizes) and the rollout buffer (" +
+                             std::to_string(config.steps_per_epoch / mpi.size()) +
+                             " steps per rank): the estimate is " + format_bytes(estimate.bytes) + " per rank of " +
+                             available_memory().description);
+  }
+}
+
 int train(const TrainArguments& args) {
   if (args.print_config) {
     const ResolvedTrainConfig resolved = resolve_config(args);
+    check_before_training(resolved.config, 1);
     // A YAML comment, so that the output stays a valid run file.
     std::cout << "# " << describe_configs(resolved.configs) << "\n" << to_yaml(resolved.config);
     return 0;
@@ -89,7 +125,7 @@ int train(const TrainArguments& args) {
       configs = std::move(resolved.configs);
       directory.emplace(args.out_dir.empty() ? default_run_directory(config) : std::filesystem::path(args.out_dir));
     }
-    check_run_config_for_ranks(config, mpi.size());
+    check_before_training(config, mpi.size());
 
     TrainerOptions options;
     options.resume = resume;
@@ -106,8 +142,8 @@ int train(const TrainArguments& args) {
                 << directory->root.string() << std::endl;
       if (configs) std::cout << describe_configs(*configs) << std::endl;
     }
-    OnPolicyTrainer trainer(config, *directory, mpi, options);
-    const TrainingOutcome outcome = trainer.run();
+    const std::unique_ptr<OnPolicyTrainer> trainer = make_trainer(config, *directory, mpi, options);
+    const TrainingOutcome outcome = trainer->run();
     if (mpi.is_root() && !outcome.finished) {
       (outcome.stop_requested ? std::cerr : std::cout)
           << (outcome.stop_requested ? "bsg train: stop signal received: " : "") << "stopped after "
@@ -123,7 +159,7 @@ int train(const TrainArguments& args) {
 void add_train_command(CLI::App& app, Action& run) {
   CLI::App* command = app.add_subcommand("train", "Train a policy: bsg train CONFIG [--set key=value]... [--out DIR]");
   command->footer(
-      "SIGTERM, SIGINT or SIGUSR1 stops training at the end of the current epoch, after a checkpoint, with "
+      "SIGTERM, SIGINT, SIGHUP or SIGUSR1 stops training at the end of the current epoch, after a checkpoint, with "
       "exit code 75 (all ranks if any rank gets it; under mpirun send SIGUSR1, which mpirun forwards at once); "
       "continue with --resume DIR.");
   auto args = std::make_shared<TrainArguments>();

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "common/message_text.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"bsg: Bullet-Safety-Gym in C++ - safe-RL environments and learners", "bsg"};
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
   try {
     return run();
   } catch (const std::exception& e) {
-    std::cerr << "bsg: error: " << e.what() << "\n";
+    std::cerr << "bsg: error: " << bsg::printable_message(e.what()) << "\n";
     return 1;
   }
 }

@@ -8,6 +8,7 @@
 #include <exception>
 #include <iostream>
 
+#include "common/message_text.h"
 #include "common/mpi_context.h"
 
 namespace bsg::cli {
@@ -18,7 +19,7 @@ int run_or_abort_job(const MpiContext& mpi, Body&& body) {
   try {
     return body();
   } catch (const std::exception& e) {
-    std::cerr << "bsg: error on MPI rank " << mpi.rank() << " of " << mpi.size() << ": " << e.what()
+    std::cerr << "bsg: error on MPI rank " << mpi.rank() << " of " << mpi.size() << ": " << printable_message(e.what())
               << "\nbsg: aborting all ranks" << std::endl;
     MPI_Abort(MPI_COMM_WORLD, 1);
     return 1;

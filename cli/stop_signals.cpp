@@ -15,6 +15,7 @@ sigset_t stop_set() {
   sigemptyset(&set);
   sigaddset(&set, SIGTERM);
   sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGHUP);
   sigaddset(&set, SIGUSR1);
   return set;
 }
@@ -24,7 +25,9 @@ sigset_t stop_set() {
 StopSignals::StopSignals() {
   const sigset_t set = stop_set();
   const int error = pthread_sigmask(SIG_BLOCK, &set, &previous_mask_);
-  if (error != 0) throw std::runtime_error(std::string("cannot block SIGTERM/SIGINT/SIGUSR1: ") + std::strerror(error));
+  if (error != 0) {
+    throw std::runtime_error(std::string("cannot block SIGTERM/SIGINT/SIGHUP/SIGUSR1: ") + std::strerror(error));
+  }
 }
 
 StopSignals::~StopSignals() {
@@ -37,8 +40,16 @@ int StopSignals::stop_pending() const {
   if (sigpending(&pending) != 0) return 0;
   if (sigismember(&pending, SIGTERM) == 1) return SIGTERM;
   if (sigismember(&pending, SIGINT) == 1) return SIGINT;
+  if (sigismember(&pending, SIGHUP) == 1) return SIGHUP;
   if (sigismember(&pending, SIGUSR1) == 1) return SIGUSR1;
   return 0;
+}
+
+int StopSignals::take_pending() const {
+  const sigset_t set = stop_set();
+  const timespec no_wait{0, 0};
+  const int signal = sigtimedwait(&set, nullptr, &no_wait);
+  return signal > 0 ? signal : 0;
 }
 
 }  // namespace bsg::cli

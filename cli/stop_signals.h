@@ -1,4 +1,4 @@
-// SIGTERM, SIGINT and SIGUSR1 as a request to stop at the next safe point
+// SIGTERM, SIGINT, SIGHUP and SIGUSR1 as a request to stop at the next safe point
 // instead of an immediate death: the constructor blocks these signals (before MPI starts
 // its threads, which inherit the mask, so no thread can take the default
 // action); a signal sent then stays pending, and stop_pending() reads it with
@@ -9,6 +9,9 @@
 // rank, but on SIGTERM or SIGINT it only sends SIGCONT, then SIGTERM after
 // odls_base_sigkill_timeout seconds (default 1) and SIGKILL after as many
 // again - too soon to finish an epoch unless that MCA parameter is raised.
+//
+// SIGHUP because closing a terminal sends it to the programs started there
+// (a `bsg sweep` and the `bsg train` children it runs): they stop as on SIGTERM.
 //
 // `bsg train` builds one before anything else; the exit code of a run that
 // stopped this way is kExitStoppedBySignal (its checkpoint and progress.csv
@@ -32,8 +35,11 @@ class StopSignals {
   StopSignals(const StopSignals&) = delete;
   StopSignals& operator=(const StopSignals&) = delete;
 
-  // The pending stop signal (SIGTERM, SIGINT or SIGUSR1), or 0.
+  // The pending stop signal (SIGTERM, SIGINT, SIGHUP or SIGUSR1), or 0.
   int stop_pending() const;
+  // The same, taken out of the pending set (sigtimedwait), so that the next
+  // call sees only a signal sent after this one.
+  int take_pending() const;
 
  private:
   sigset_t previous_mask_;

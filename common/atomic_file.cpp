@@ -1,9 +1,11 @@
 #include "common/atomic_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -37,17 +39,20 @@ class FileDescriptor {
 
 }  // namespace
 
-std::filesystem::path atomic_temporary_path(const std::filesystem::path& path) {
-  std::filesystem::path temporary = path;
-  temporary += ".tmp";
-  return temporary;
+std::filesystem::path atomic_temporary_prefix(const std::filesystem::path& path) {
+  std::filesystem::path prefix = path;
+  prefix += ".tmp.";
+  return prefix;
 }
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
-  const std::filesystem::path temporary = atomic_temporary_path(path);
+  std::string name = atomic_temporary_prefix(path).string() + std::to_string(::getpid()) + ".XXXXXX";
+  const int fd = ::mkostemp(name.data(), O_CLOEXEC);
+  if (fd < 0) fail(path, "cannot create a temporary " + name, errno);
+  const std::filesystem::path temporary = name;
   {
-    FileDescriptor file(::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
-    if (file.get() < 0) fail(path, "cannot create " + temporary.string(), errno);
+    FileDescriptor file(fd);
+    ::fchmod(file.get(), 0644);  // as open(0644) under the usual umask; mkostemp makes 0600
     std::size_t written = 0;
     while (written < contents.size()) {
       const ssize_t n = ::write(file.get(), contents.data() + written, contents.size() - written);

@@ -16,13 +16,16 @@
 #include <string>
 #include <string_view>
 
+#include "common/message_text.h"
+
 namespace bsg {
 
 // A checkpoint that cannot be written, read or understood. The message names
 // the file and what was wrong.
 class CheckpointError : public std::runtime_error {
  public:
-  explicit CheckpointError(const std::string& message) : std::runtime_error(message) {}
+  // Made printable and bounded (message_text.h): it may quote the file's bytes.
+  explicit CheckpointError(const std::string& message) : std::runtime_error(printable_message(message)) {}
 };
 
 class BinaryWriter {

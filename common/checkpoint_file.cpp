@@ -1,9 +1,7 @@
 #include "common/checkpoint_file.h"
 
-#include <fstream>
-#include <sstream>
-
 #include "common/atomic_file.h"
+#include "common/file_reading.h"
 
 namespace bsg {
 namespace {
@@ -37,14 +35,18 @@ std::string encode_checkpoint_file(std::string_view payload) {
 }
 
 std::string decode_checkpoint_file(std::string_view file_bytes, const std::string& source_name) {
+  return decode_checkpoint_contents(file_bytes, source_name).payload;
+}
+
+CheckpointContents decode_checkpoint_contents(std::string_view file_bytes, const std::string& source_name) {
   if (file_bytes.size() < kCheckpointMagic.size() || file_bytes.substr(0, kCheckpointMagic.size()) != kCheckpointMagic) {
     fail(source_name, "not a bsg checkpoint (bad magic header)");
   }
   BinaryReader header(file_bytes.substr(kCheckpointMagic.size()), source_name);
   const std::uint32_t version = header.read_u32("format version");
-  if (version != kCheckpointFormatVersion) {
-    fail(source_name, "format version " + std::to_string(version) + " is not supported (this bsg reads version " +
-         std::to_string(kCheckpointFormatVersion) + ")");
+  if (version < kOldestCheckpointFormatVersion || version > kCheckpointFormatVersion) {
+    fail(source_name, "format version " + std::to_string(version) + " is not supported (this bsg reads versions " +
+         std::to_string(kOldestCheckpointFormatVersion) + " to " + std::to_string(kCheckpointFormatVersion) + ")");
   }
   const std::uint64_t payload_size = header.read_u64("payload size");
   const std::size_t header_size = kCheckpointMagic.size() + 4 + 8;
@@ -57,20 +59,23 @@ std::string decode_checkpoint_file(std::string_view file_bytes, const std::strin
   BinaryReader trailer(file_bytes.substr(header_size + payload_size), source_name);
   const std::uint64_t stored_checksum = trailer.read_u64("checksum");
   if (stored_checksum != fnv1a64(payload)) fail(source_name, "corrupt: checksum mismatch");
-  return std::string(payload);
+  return CheckpointContents{version, std::string(payload)};
 }
 
 void write_checkpoint_file(const std::filesystem::path& path, std::string_view payload) {
   write_file_atomically(path, encode_checkpoint_file(payload));
 }
 
-std::string read_checkpoint_file(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw CheckpointError("checkpoint " + path.string() + ": cannot be opened (missing?)");
-  std::ostringstream contents;
-  contents << file.rdbuf();
-  if (file.bad()) throw CheckpointError("checkpoint " + path.string() + ": read error");
-  return decode_checkpoint_file(contents.str(), path.string());
+std::string read_checkpoint_file(const std::filesystem::path& path) { return read_checkpoint_contents(path).payload; }
+
+CheckpointContents read_checkpoint_contents(const std::filesystem::path& path) {
+  std::string bytes;
+  try {
+    bytes = read_regular_file(path, "checkpoint");
+  } catch (const std::runtime_error& e) {
+    throw CheckpointError(e.what());
+  }
+  return decode_checkpoint_contents(bytes, path.string());
 }
 
 }  // namespace bsg

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "common/config_error.h"
+#include "common/message_text.h"
 #include "common/run_config_schema.h"
 
 namespace bsg {
@@ -19,7 +20,7 @@ std::string location(const std::string& source_name, const YAML::Mark& mark) {
 }
 
 [[noreturn]] void throw_unknown_key(const std::string& key, const std::string& where) {
-  std::string message = where + ": unknown key '" + key + "'";
+  std::string message = where + ": unknown key '" + printable_excerpt(key) + "'";
   const std::string suggestion = closest_config_key(key);
   if (!suggestion.empty()) message += " (did you mean '" + suggestion + "'?)";
   message += "; valid keys: " + config_key_list();
@@ -65,7 +66,7 @@ std::vector<ConfigEntry> read_config_entries(const YAML::Node& document,
     if (find_config_key(key) == nullptr) throw_unknown_key(key, where);
     const auto [it, inserted] = first_seen.emplace(key, where);
     if (!inserted) {
-      throw ConfigError(where + ": key '" + key + "' appears twice (first at " + it->second + ")");
+      throw ConfigError(where + ": key '" + printable_excerpt(key) + "' appears twice (first at " + it->second + ")");
     }
     entries.push_back({key, pair.second, where});
   }
@@ -77,7 +78,7 @@ std::vector<ConfigEntry> read_config_file(const std::filesystem::path& path) {
 }
 
 ConfigEntry parse_set_argument(std::string_view argument) {
-  const std::string origin = "--set " + std::string(argument);
+  const std::string origin = "--set " + printable_excerpt(argument);
   const std::size_t equals = argument.find('=');
   if (equals == std::string_view::npos) {
     throw ConfigError(origin + ": expected key=value (e.g. --set target_kl=0.001)");

@@ -6,11 +6,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/message_text.h"
+
 namespace bsg {
 
 class ConfigError : public std::runtime_error {
  public:
-  explicit ConfigError(const std::string& message) : std::runtime_error(message) {}
+  // Untrusted text in the message (a value, a key, a file's bytes) is made
+  // printable and the whole bounded (message_text.h).
+  explicit ConfigError(const std::string& message) : std::runtime_error(printable_message(message)) {}
 };
 
 }  // namespace bsg

@@ -1,5 +1,12 @@
 #include "common/run_config_checks.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+
 #include "common/config_error.h"
 #include "common/run_config_schema.h"
 
@@ -64,6 +71,95 @@ void check_run_config_relations(const RunConfig& config, const ConfigOrigins& or
                       origin_of(origins, "steps_per_epoch") +
                       "): every epoch must complete at least one episode");
   }
+  if (config.hidden_sizes.size() > kMaxHiddenLayers) {
+    throw ConfigError("hidden_sizes (" + origin_of(origins, "hidden_sizes") + ") lists " +
+                      std::to_string(config.hidden_sizes.size()) + " hidden layers; at most " +
+                      std::to_string(kMaxHiddenLayers) + " are allowed");
+  }
+  const auto check_at_most = [&](const char* key, long long value, long long limit) {
+    if (value > limit) {
+      throw ConfigError(std::string(key) + " = " + std::to_string(value) + " (" + origin_of(origins, key) +
+                        ") exceeds the limit " + std::to_string(limit));
+    }
+  };
+  check_at_most("steps_per_epoch", config.steps_per_epoch, kMaxStepsPerEpoch);
+  check_at_most("epochs", config.epochs, kMaxEpochs);
+  check_at_most("eval_episodes", config.eval_episodes, kMaxEvalEpisodes);
+}
+
+std::string format_bytes(double bytes) {
+  const char* units[] = {"bytes", "kB", "MB", "GB", "TB", "PB"};
+  int unit = 0;
+  while (bytes >= 1024.0 && unit < 5) {
+    bytes /= 1024.0;
+    ++unit;
+  }
+  char text[48];
+  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.2f %s", bytes, units[unit]);
+  return text;
+}
+
+TrainingMemoryEstimate estimate_training_memory(const RunConfig& config, int observation_dim, int action_dim,
+                                                int num_ranks) {
+  const double batch = static_cast<double>(config.steps_per_epoch) / std::max(num_ranks, 1);
+  const double hidden_sum = std::accumulate(config.hidden_sizes.begin(), config.hidden_sizes.end(), 0.0);
+  // Parameters of an MLP observation -> hidden_sizes -> outputs: weights and biases.
+  const auto parameters = [&](double outputs) {
+    double count = 0;
+    double inputs = observation_dim;
+    for (const int width : config.hidden_sizes) {
+      count += inputs * width + width;
+      inputs = width;
+    }
+    return count + inputs * outputs + outputs;
+  };
+  const double policy = parameters(action_dim) + action_dim;
+  const double value = parameters(1);
+  const double parameter_values = 8 * (policy + 2 * value);
+  const double activation_values = 2 * batch * hidden_sum;
+  // The rollout buffer: raw and normalised observations, actions, means,
+  // log-probabilities, rewards, costs, values, advantages and returns.
+  const double buffer_values = batch * (2.0 * observation_dim + 2.0 * action_dim + 12.0);
+  constexpr double kProgramBytes = 64.0 * 1024 * 1024;
+  TrainingMemoryEstimate estimate;
+  estimate.network_bytes = 8 * (parameter_values + activation_values);
+  estimate.batch_bytes = 8 * buffer_values + kProgramBytes;
+  estimate.bytes = estimate.network_bytes + estimate.batch_bytes;
+  return estimate;
+}
+
+AvailableMemory available_memory() {
+  AvailableMemory available;
+  const long pages = ::sysconf(_SC_PHYS_PAGES);
+  const long page_size = ::sysconf(_SC_PAGE_SIZE);
+  const double physical = pages > 0 && page_size > 0 ? static_cast<double>(pages) * page_size : 0.0;
+  available.bytes = physical;
+  available.description = "physical memory " + (physical > 0 ? format_bytes(physical) : std::string("unknown"));
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+    const double address_space = static_cast<double>(limit.rlim_cur);
+    available.description += ", address-space limit (ulimit -v) " + format_bytes(address_space);
+    if (available.bytes <= 0 || address_space < available.bytes) available.bytes = address_space;
+  } else {
+    available.description += ", address-space limit unlimited";
+  }
+  return available;
+}
+
+void check_training_memory(const RunConfig& config, int observation_dim, int action_dim, int num_ranks,
+                           const AvailableMemory& available) {
+  const TrainingMemoryEstimate estimate = estimate_training_memory(config, observation_dim, action_dim, num_ranks);
+  if (available.bytes <= 0 || estimate.bytes <= available.bytes) return;
+  std::string hidden;
+  for (const int width : config.hidden_sizes) hidden += (hidden.empty() ? "" : ", ") + std::to_string(width);
+  const bool network = estimate.network_bytes >= estimate.batch_bytes;
+  throw ConfigError(std::string(network ? "hidden_sizes = [" + hidden + "]" :
+                                          "steps_per_epoch = " + std::to_string(config.steps_per_epoch)) +
+                    " needs an estimated " + format_bytes(estimate.bytes) + " per rank (" +
+                    std::to_string(config.steps_per_epoch / std::max(num_ranks, 1)) +
+                    " steps per rank, hidden_sizes [" + hidden + "]), more than the " +
+                    format_bytes(available.bytes) + " available (the smaller of " + available.description +
+                    "): reduce " + (network ? "hidden_sizes" : "steps_per_epoch or run on more ranks"));
 }
 
 void check_run_config_for_ranks(const RunConfig& config, int num_ranks) {

@@ -14,6 +14,7 @@
 #include <variant>
 
 #include "common/config_error.h"
+#include "common/message_text.h"
 #include "common/config_scalar.h"
 
 namespace bsg {
@@ -224,11 +225,16 @@ const SchemaRow& row_of(const ConfigKey& key) {
 }
 
 std::string describe_node(const YAML::Node& node) {
-  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsScalar()) {
+    std::string quoted(1, '\'');
+    quoted += printable_excerpt(node.Scalar());
+    quoted += '\'';
+    return quoted;
+  }
   if (node.IsNull()) return "no value";
   YAML::Emitter out;
   out << YAML::Flow << node;
-  return std::string(node.IsSequence() ? "the sequence " : "the mapping ") + out.c_str();
+  return std::string(node.IsSequence() ? "the sequence " : "the mapping ") + printable_excerpt(out.c_str());
 }
 
 std::string expected_text(const ConfigKey& key) {
@@ -254,7 +260,7 @@ std::string expected_text(const ConfigKey& key) {
 
 [[noreturn]] void throw_range_error(const ConfigKey& key, const std::string& value_text,
                                     const std::string& origin) {
-  throw ConfigError(origin + ": key '" + std::string(key.key) + "' = " + value_text +
+  throw ConfigError(origin + ": key '" + std::string(key.key) + "' = " + printable_excerpt(value_text) +
                     " is out of range; valid: " + key.range.to_string());
 }
 
@@ -458,7 +464,7 @@ void set_config_value(RunConfig& config, const ConfigKey& key, const YAML::Node&
                                                          : std::nullopt;
             if (!parsed) throw_type_error(key, value, origin);
             if (!key.range.contains(static_cast<double>(*parsed))) {
-              throw_range_error(key, describe_node(value) + " (element " + element.Scalar() + ")",
+              throw_range_error(key, describe_node(value) + " (element " + printable_excerpt(element.Scalar()) + ")",
                                 origin);
             }
             list.push_back(static_cast<int>(*parsed));
@@ -469,7 +475,7 @@ void set_config_value(RunConfig& config, const ConfigKey& key, const YAML::Node&
           const auto found = std::find(key.choices.begin(), key.choices.end(), value.Scalar());
           if (found == key.choices.end()) {
             throw ConfigError(origin + ": key '" + std::string(key.key) + "' = '" +
-                              value.Scalar() + "' is not valid; valid values: " +
+                              printable_excerpt(value.Scalar()) + "' is not valid; valid values: " +
                               key.valid_values());
           }
           access.set(config, static_cast<int>(found - key.choices.begin()));

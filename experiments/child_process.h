@@ -1,7 +1,8 @@
 // Starting a child program with its output appended to a log file, and
 // reaping children without blocking (POSIX fork/exec/waitpid). Children stay
 // in the parent's process group, so that a signal to the group (Ctrl-C, or
-// kill -- -PGID) reaches them too.
+// kill -- -PGID) reaches them too. A child starts with no signal blocked,
+// whatever the parent blocks (a sweep blocks its stop signals).
 #pragma once
 
 #include <sys/types.h>
@@ -34,6 +35,9 @@ struct ChildExit {
 
 // One child that has exited, if any (never blocks).
 std::optional<ChildExit> reap_exited_child();
+
+// "SIGTERM", "SIGINT", ... ("signal N" if it has no name).
+std::string signal_name(int signal);
 
 // "exit code 3", "killed by signal 9 (Killed)".
 std::string describe(const ChildExit& exit);

@@ -1,5 +1,6 @@
 #include "experiments/local_launcher.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <ctime>
 #include <fstream>
 #include <iostream>
+#include <cstring>
 #include <map>
 #include <thread>
 
@@ -16,6 +18,7 @@
 #include "common/csv_text.h"
 #include "experiments/child_process.h"
 #include "experiments/run_lock.h"
+#include "experiments/sweep_events.h"
 #include "experiments/sweep_manifest.h"
 #include "experiments/sweep_progress.h"
 
@@ -24,32 +27,6 @@ namespace bsg {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::string timestamp() {
-  const std::time_t now = std::time(nullptr);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", std::localtime(&now));
-  return text;
-}
-
-// sweep_events.csv: one line per scheduling event, appended and flushed.
-class EventLog {
- public:
-  explicit EventLog(const std::filesystem::path& path) {
-    const bool is_new = !std::filesystem::exists(path);
-    file_.open(path, std::ios::app);
-    if (!file_) throw std::runtime_error("cannot write " + path.string());
-    if (is_new) file_ << "time,event,run_dir,detail\n" << std::flush;
-  }
-  void record(const std::string& event, const std::filesystem::path& run_dir, const std::string& detail) {
-    file_ << timestamp() << "," << event << "," << csv_field(run_dir.generic_string()) << ","
-          << csv_field(detail) << "\n"
-          << std::flush;
-  }
-
- private:
-  std::ofstream file_;
-};
 
 // The child command of one run: `bsg train RUN_FILE --out DIR` for a new run,
 // `bsg train --resume DIR` for an unfinished one, under `mpirun -np K` if K > 1.
@@ -101,7 +78,7 @@ class SweepRunner {
         out_dir_(std::move(out_dir)),
         configs_dir_(std::filesystem::absolute(options.configs_dir)),
         bsg_program_(options.bsg_program),
-        events_(out_dir_ / kSweepEventsName),
+        events_(out_dir_),
         interactive_(::isatty(STDERR_FILENO) != 0) {}
 
   int run();
@@ -114,6 +91,11 @@ class SweepRunner {
 
   void start(std::size_t index);
   void finish(const ChildExit& exit);
+  void reconcile_earlier_sweep(std::vector<std::size_t>& queue);
+  void wait_for(std::size_t index);
+  void check_waiting(std::vector<std::size_t>& queue, std::size_t& next);
+  void forward_stop_signal();
+  int stopped_summary() const;
   void show_progress(bool force);
   double steps_done_now() const;
 
@@ -122,10 +104,15 @@ class SweepRunner {
   std::filesystem::path out_dir_;
   std::filesystem::path configs_dir_;
   std::filesystem::path bsg_program_;
-  EventLog events_;
+  SweepEventLog events_;
   bool interactive_;
   std::map<pid_t, Running> running_;
+  std::vector<std::size_t> waiting_;  // runs whose lock another process holds
   std::vector<std::size_t> failed_;
+  std::vector<std::size_t> stopped_;  // stopped by a forwarded stop signal (exit 75)
+  int stop_signal_ = 0;
+  std::size_t not_started_ = 0;  // left in the queue by a stop signal
+  Clock::time_point last_waiting_check_{};
   std::size_t finished_ = 0;
   double steps_done_at_start_ = 0;
   double steps_total_ = 0;
@@ -151,8 +138,8 @@ void SweepRunner::start(std::size_t index) {
   std::filesystem::create_directories(run.dir);
   const std::optional<RunLock> lock = RunLock::try_acquire(run.dir);
   if (!lock) {
-    throw std::runtime_error("another process is running it (it holds " + (run.dir / kRunLockName).string() +
-                             "); run the sweep again once it has ended");
+    wait_for(index);
+    return;
   }
   const RunDirectory directory(run.dir);
   run.state = run_state(directory);
@@ -167,9 +154,10 @@ void SweepRunner::start(std::size_t index) {
   command.inherited_fd = lock->fd();  // the child holds the lock until it ends
   {
     std::ofstream log(command.log_file, std::ios::app);
-    log << "=== bsg sweep " << timestamp() << ": " << command_line_text(command.argv) << "\n";
+    log << "=== bsg sweep " << sweep_timestamp() << ": " << command_line_text(command.argv) << "\n";
   }
   const pid_t pid = start_child(command);
+  lock->record_holder(pid);
   running_[pid] = Running{index, Clock::now()};
   events_.record(run.state == RunState::resumable ? "resume" : "start", run.run.relative_dir(),
                  command_line_text(command.argv));
@@ -196,6 +184,16 @@ void SweepRunner::finish(const ChildExit& exit) {
     }
     return;
   }
+  if (exit.exit_code == kSweepExitStopped && run.state == RunState::resumable) {
+    stopped_.push_back(index);
+    const std::string detail = "stop signal: checkpoint after " +
+                               std::to_string(std::min(logged_epochs(RunDirectory(run.dir)), run.config.epochs)) +
+                               " of " + std::to_string(run.config.epochs) + " epochs";
+    events_.record("stopped", run.run.relative_dir(), detail);
+    if (interactive_) std::cerr << "\r\033[K";
+    std::cerr << "stopped " << run.run.relative_dir().string() << " (" << detail << ")\n";
+    return;
+  }
   failed_.push_back(index);
   const std::string why = exit.exit_code == 0 ? "exit code 0 but no " + RunDirectory(run.dir).evaluation().filename().string()
                                               : describe(exit);
@@ -210,7 +208,7 @@ void SweepRunner::show_progress(bool force) {
   last_shown_ = now;
   const double done = steps_done_now();
   const double elapsed = std::chrono::duration<double>(now - started_).count();
-  const SweepCounts counts{plan_.runs.size(), finished_, running_.size(), failed_.size()};
+  const SweepCounts counts{plan_.runs.size(), finished_, running_.size() + waiting_.size(), failed_.size()};
   const std::string line =
       progress_line(counts, estimate_seconds_left(done - steps_done_at_start_, elapsed, steps_total_ - done));
   if (interactive_) {
@@ -218,6 +216,98 @@ void SweepRunner::show_progress(bool force) {
   } else {
     std::cerr << line << "\n";
   }
+}
+
+// A run another process holds (its lock is taken): wait for it, do not fail it.
+void SweepRunner::wait_for(std::size_t index) {
+  const PlannedRun& run = plan_.runs[index];
+  const std::filesystem::path lock = run.dir / kRunLockName;
+  const std::string holder = describe_lock_holder(lock);
+  waiting_.push_back(index);
+  events_.record("waiting", run.run.relative_dir(), "still running in another process (" + holder + ", in " +
+                                                        lock.string() + ")");
+  if (interactive_) std::cerr << "\r\033[K";
+  std::cerr << "waiting " << run.run.relative_dir().string() << ": another process (" << holder
+            << ") still runs it, started by an earlier sweep; this sweep waits for it to end\n";
+}
+
+// Once a waited-for run's lock is free: done if that process finished it,
+// else it joins the queue (started or resumed here).
+void SweepRunner::check_waiting(std::vector<std::size_t>& queue, std::size_t& next) {
+  if (waiting_.empty() || Clock::now() - last_waiting_check_ < std::chrono::seconds(1)) return;
+  last_waiting_check_ = Clock::now();
+  for (auto it = waiting_.begin(); it != waiting_.end();) {
+    PlannedRun& run = plan_.runs[*it];
+    if (!RunLock::try_acquire(run.dir)) {
+      ++it;
+      continue;
+    }
+    run.state = run_state(RunDirectory(run.dir));
+    if (run.state == RunState::finished) {
+      ++finished_;
+      events_.record("done", run.run.relative_dir(), "finished by the process this sweep waited for");
+      std::cerr << "done   " << run.run.relative_dir().string() << " (by the process this sweep waited for)\n";
+    } else {
+      events_.record("interrupted", run.run.relative_dir(),
+                     "the process this sweep waited for ended without finishing it");
+      queue.insert(queue.begin() + static_cast<std::ptrdiff_t>(next), *it);
+    }
+    it = waiting_.erase(it);
+  }
+}
+
+// Runs the log shows as started by an earlier sweep but never ended (that
+// sweep was killed): record what became of them, so the log ends with each
+// run's true state.
+void SweepRunner::reconcile_earlier_sweep(std::vector<std::size_t>& queue) {
+  const auto events = last_sweep_events(out_dir_);
+  for (std::size_t index = 0; index < plan_.runs.size(); ++index) {
+    PlannedRun& run = plan_.runs[index];
+    const auto event = events.find(run.run.relative_dir());
+    if (event == events.end()) continue;
+    const std::string& last = event->second.first;
+    if (last != "start" && last != "resume" && last != "waiting") continue;
+    if (!RunLock::try_acquire(run.dir)) {
+      std::erase(queue, index);
+      wait_for(index);
+      continue;
+    }
+    const bool queued = std::find(queue.begin(), queue.end(), index) != queue.end();
+    run.state = run_state(RunDirectory(run.dir));
+    if (run.state == RunState::finished) {
+      events_.record("done", run.run.relative_dir(), "finished after the sweep that started it ended");
+      if (queued) {  // finished between the plan and now
+        std::erase(queue, index);
+        ++finished_;
+      }
+    } else {
+      events_.record("interrupted", run.run.relative_dir(),
+                     "the sweep that started it ended while it ran; " +
+                         std::to_string(std::min(logged_epochs(RunDirectory(run.dir)), run.config.epochs)) +
+                         " epochs logged");
+    }
+  }
+}
+
+// As is to `bsg train`; SIGUSR1 to mpirun, the one signal it forwards to its ranks at once.
+void SweepRunner::forward_stop_signal() {
+  for (const auto& [pid, running] : running_) {
+    ::kill(pid, options_.ranks_per_run > 1 ? SIGUSR1 : stop_signal_);
+  }
+}
+
+int SweepRunner::stopped_summary() const {
+  std::cerr << "bsg sweep: stopped by " << signal_name(stop_signal_) << ": " << stopped_.size()
+            << " runs stopped with a checkpoint, " << not_started_ << " not started, " << finished_ << " of "
+            << plan_.runs.size() << " finished";
+  if (!failed_.empty()) std::cerr << ", " << failed_.size() << " failed";
+  if (!waiting_.empty()) std::cerr << ", " << waiting_.size() << " still running in other processes";
+  std::cerr << "; run the same bsg sweep command again to resume\n";
+  for (const std::size_t index : failed_) {
+    const PlannedRun& run = plan_.runs[index];
+    std::cerr << "  failed: " << run.dir.string() << "  log: " << (run.dir / kSweepRunLogName).string() << "\n";
+  }
+  return kSweepExitStopped;
 }
 
 int SweepRunner::run() {
@@ -237,9 +327,20 @@ int SweepRunner::run() {
             << (options_.ranks_per_run > 1 ? " with " + std::to_string(options_.ranks_per_run) + " ranks each" : "")
             << "\n";
 
+  reconcile_earlier_sweep(queue);
   std::size_t next = 0;
-  while (next < queue.size() || !running_.empty()) {
-    while (next < queue.size() && running_.size() < static_cast<std::size_t>(jobs)) {
+  while (next < queue.size() || !running_.empty() || (!waiting_.empty() && stop_signal_ == 0)) {
+    if (const int signal = options_.take_stop_signal(); signal != 0) {
+      const bool first = stop_signal_ == 0;
+      stop_signal_ = signal;
+      if (interactive_) std::cerr << "\r\033[K";
+      std::cerr << "bsg sweep: " << signal_name(signal) << " received" << (first ? "" : " again")
+                << ": no new run starts; asking the " << running_.size()
+                << " running runs to stop at the end of their epoch with a checkpoint, then waiting for them\n";
+      forward_stop_signal();
+    }
+    while (stop_signal_ == 0 && next < queue.size() &&
+           running_.size() + waiting_.size() < static_cast<std::size_t>(jobs)) {
       try {
         start(queue[next]);
       } catch (const std::exception& e) {
@@ -251,6 +352,11 @@ int SweepRunner::run() {
       ++next;
       if (interactive_) show_progress(true);
     }
+    if (stop_signal_ != 0) {
+      not_started_ += queue.size() - next;
+      next = queue.size();
+    }
+    check_waiting(queue, next);
     bool reaped = false;
     while (const std::optional<ChildExit> exit = reap_exited_child()) {
       finish(*exit);
@@ -263,6 +369,7 @@ int SweepRunner::run() {
     show_progress(true);
     std::cerr << "\n";
   }
+  if (stop_signal_ != 0) return stopped_summary();
 
   if (failed_.empty()) {
     std::cerr << "bsg sweep: all " << plan_.runs.size() << " runs finished; 'bsg table " << out_dir_.string()

@@ -6,12 +6,16 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <stdexcept>
 
 namespace bsg {
 
 std::optional<RunLock> RunLock::try_acquire(const std::filesystem::path& run_dir) {
-  const std::filesystem::path path = run_dir / kRunLockName;
+  return try_acquire_file(run_dir / kRunLockName);
+}
+
+std::optional<RunLock> RunLock::try_acquire_file(const std::filesystem::path& path) {
   const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd < 0) throw std::runtime_error("cannot open lock file " + path.string() + ": " + std::strerror(errno));
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
@@ -21,6 +25,25 @@ std::optional<RunLock> RunLock::try_acquire(const std::filesystem::path& run_dir
     throw std::runtime_error("cannot lock " + path.string() + ": " + std::strerror(error));
   }
   return RunLock(fd);
+}
+
+void RunLock::record_holder(pid_t pid) const {
+  const std::string text = std::to_string(pid) + "\n";
+  if (::ftruncate(fd_, 0) == 0) {
+    [[maybe_unused]] const ssize_t written = ::pwrite(fd_, text.data(), text.size(), 0);
+  }
+}
+
+std::optional<long> recorded_lock_holder(const std::filesystem::path& lock_file) {
+  std::ifstream file(lock_file);
+  long pid = 0;
+  if (file >> pid && pid > 0) return pid;
+  return std::nullopt;
+}
+
+std::string describe_lock_holder(const std::filesystem::path& lock_file) {
+  const std::optional<long> pid = recorded_lock_holder(lock_file);
+  return pid ? "pid " + std::to_string(*pid) : std::string("an unknown process");
 }
 
 RunLock::RunLock(RunLock&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }

@@ -8,6 +8,7 @@
 
 #include "algos/run_directory.h"
 #include "common/atomic_file.h"
+#include "common/file_reading.h"
 #include "common/config_error.h"
 #include "common/run_config_checks.h"
 #include "common/run_config_yaml.h"
@@ -118,8 +119,8 @@ SweepPlan make_sweep_plan(const SweepPlanRequest& request) {
 
 void prepare_sweep_directory(const SweepPlanRequest& request, const SweepPlan& plan) {
   std::filesystem::create_directories(request.out_dir);
-  std::filesystem::copy_file(request.grid_file, request.out_dir / kSweepGridCopyName,
-                             std::filesystem::copy_options::overwrite_existing);
+  // Atomic, as every file of the sweep directory (common/atomic_file.h).
+  write_file_atomically(request.out_dir / kSweepGridCopyName, read_regular_file(request.grid_file, "grid file"));
   write_sweep_manifest(request.out_dir, plan.all_runs);
 }
 

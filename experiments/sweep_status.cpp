@@ -12,6 +12,7 @@
 #include "common/run_config_yaml.h"
 #include "experiments/captured_program.h"
 #include "experiments/run_lock.h"
+#include "experiments/sweep_events.h"
 #include "experiments/run_results.h"
 #include "experiments/slurm_jobs.h"
 #include "experiments/sweep_manifest.h"
@@ -46,28 +47,6 @@ std::optional<double> measured_seconds_per_epoch(const RunDirectory& directory) 
   } catch (const std::exception&) {
     return std::nullopt;
   }
-}
-
-// The last event of each run in sweep_events.csv (a local sweep's log).
-std::map<std::filesystem::path, std::pair<std::string, std::string>> last_events(const std::filesystem::path& sweep_dir) {
-  std::map<std::filesystem::path, std::pair<std::string, std::string>> events;
-  std::ifstream file(sweep_dir / kSweepEventsName);
-  std::string line;
-  bool header = true;
-  while (std::getline(file, line)) {
-    if (header) {
-      header = false;
-      continue;
-    }
-    std::vector<std::string> fields;
-    try {
-      fields = parse_csv_fields(line);
-    } catch (const std::exception&) {
-      continue;  // a line cut by a crash: the others still count
-    }
-    if (fields.size() == 4) events[fields[2]] = {fields[1], fields[3]};
-  }
-  return events;
 }
 
 bool lock_held(const std::filesystem::path& run_dir) {
@@ -116,7 +95,7 @@ SweepStatus read_sweep_status(const std::filesystem::path& sweep_dir) {
     }
   }
   const auto latest = latest_record_per_run(records);
-  const auto events = last_events(sweep_dir);
+  const auto events = last_sweep_events(sweep_dir);
 
   for (const GridRun& run : manifest) {
     SweepRunReport report;

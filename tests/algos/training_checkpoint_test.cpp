@@ -4,11 +4,15 @@
 // damaged file is an error naming the file.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <cmath>
 #include <filesystem>
 
 #include "../test_support.h"
 #include "algos/actor_critic.h"
 #include "algos/make_algorithm.h"
+#include "algos/progress_csv.h"
 #include "algos/training_checkpoint.h"
 #include "common/binary_io.h"
 #include "common/checkpoint_file.h"
@@ -61,6 +65,23 @@ void expect_same(const bsg::ActorCritic& a, const bsg::ActorCritic& b) {
   EXPECT_EQ(a.return_normalizer.count(), b.return_normalizer.count());
 }
 
+// A progress log of `epochs` rows as the trainer writes it (epoch, total_env_steps = (k + 1) B, a
+// value, time_s), the last time_s being `elapsed`; the text a checkpoint records.
+std::string progress_log(int epochs, double elapsed, const bsg::RunConfig& config) {
+  if (epochs == 0) return "";
+  std::string text = "epoch,total_env_steps,x,time_s\n";
+  for (int k = 0; k < epochs; ++k) {
+    const double time = k == epochs - 1 ? elapsed : elapsed * (k + 1) / (epochs + 1);
+    text += std::to_string(k) + "," + std::to_string(static_cast<long long>(k + 1) * config.steps_per_epoch) + ",0.5," +
+            bsg::format_csv_number(time) + "\n";
+  }
+  return text;
+}
+
+bsg::TrainingProgress progress_of(int epochs, double elapsed, int ranks, const bsg::RunConfig& config) {
+  return bsg::TrainingProgress{epochs, elapsed, ranks, progress_log(epochs, elapsed, config)};
+}
+
 std::string error_of(const std::function<void()>& action) {
   try {
     action();
@@ -96,7 +117,7 @@ TEST_P(TrainingCheckpointOfEveryMultiplier, SaveThenLoadRestoresEverythingExactl
   auto algorithm = bsg::make_algorithm(config);
   ASSERT_FALSE(algorithm->state().empty()) << "TRPO-L has lambda to save";
   advance(saved, *algorithm, rng_a);
-  const bsg::TrainingProgress progress{7, 12.5, 2};
+  const bsg::TrainingProgress progress = progress_of(7, 12.5, 2, config);
   const fs::path path = dir.path() / "checkpoint.bin";
   bsg::save_training_checkpoint(path, config, progress, saved, *algorithm);
 
@@ -108,6 +129,7 @@ TEST_P(TrainingCheckpointOfEveryMultiplier, SaveThenLoadRestoresEverythingExactl
   EXPECT_EQ(loaded_progress.epochs_completed, 7);
   EXPECT_EQ(loaded_progress.elapsed_seconds, 12.5);
   EXPECT_EQ(loaded_progress.num_ranks, 2);
+  EXPECT_EQ(loaded_progress.progress_log, progress.progress_log);
   expect_same(saved, loaded);
   EXPECT_EQ(algorithm->state(), loaded_algorithm->state());
   EXPECT_EQ(algorithm->state().size(), config.lambda_optimizer == bsg::LambdaOptimizer::pid ? 1u + 3u + 3u : 1u);
@@ -161,4 +183,102 @@ TEST(TrainingCheckpoint, NetworksOfAnotherShapeAreRejected) {
   const std::string message =
       error_of([&] { bsg::decode_training_checkpoint(payload, "ckpt", config, wider, *algorithm); });
   EXPECT_NE(message.find("policy parameters"), std::string::npos) << message;
+}
+
+// The error of saving then loading `progress` with a TRPO-L actor-critic ("" if none).
+std::string round_trip_error(const bsg::TrainingProgress& progress) {
+  const bsg::RunConfig config = lag_trpo_config();
+  bsg::Rng rng(1);
+  bsg::ActorCritic ac(5, 2, config, rng);
+  auto algorithm = bsg::make_algorithm(config);
+  return error_of([&] {
+    bsg::decode_training_checkpoint(bsg::encode_training_checkpoint(config, progress, ac, *algorithm), "ckpt", config,
+                                    ac, *algorithm);
+  });
+}
+
+// Issue 25, reproduction 2: fields out of range were accepted.
+class CheckpointFieldOutOfRange : public ::testing::TestWithParam<std::pair<bsg::TrainingProgress, std::string>> {};
+
+bsg::TrainingProgress with_ranks(int ranks) { return progress_of(2, 3.0, ranks, lag_trpo_config()); }
+bsg::TrainingProgress with_elapsed(double elapsed) {
+  bsg::TrainingProgress progress = progress_of(2, 3.0, 1, lag_trpo_config());
+  progress.elapsed_seconds = elapsed;
+  return progress;
+}
+bsg::TrainingProgress with_log_rows(int epochs, int rows) {
+  bsg::TrainingProgress progress = progress_of(epochs, 3.0, 1, lag_trpo_config());
+  progress.progress_log = progress_log(rows, 3.0, lag_trpo_config());
+  return progress;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    RanksTimesAndEpochs, CheckpointFieldOutOfRange,
+    ::testing::Values(std::pair{with_ranks(0), std::string("rank count 0 lies outside [1, 1048576]")},
+                      std::pair{with_ranks(-1), std::string("rank count -1 lies outside")},
+                      std::pair{with_elapsed(std::nan("")), std::string("elapsed seconds nan is not a finite")},
+                      std::pair{with_elapsed(-1.0), std::string("elapsed seconds -1 is not a finite non-negative")},
+                      std::pair{with_elapsed(HUGE_VAL), std::string("elapsed seconds inf")},
+                      std::pair{with_log_rows(3, 2), std::string("holds 2 rows for 3 completed epochs")},
+                      std::pair{with_log_rows(1, 2), std::string("holds 2 rows for 1 completed epochs")},
+                      std::pair{with_log_rows(2, 0), std::string("holds 0 rows for 2 completed epochs")}),
+    [](const auto& info) { return "field_" + std::to_string(info.index); });
+
+TEST_P(CheckpointFieldOutOfRange, IsAnErrorNamingTheFieldAndTheFile) {
+  const std::string message = round_trip_error(GetParam().first);
+  EXPECT_NE(message.find("ckpt: "), std::string::npos) << message;
+  EXPECT_NE(message.find(GetParam().second), std::string::npos) << message;
+}
+
+TEST(TrainingCheckpoint, ALogWhoseLastTimeIsNotTheElapsedTimeIsRejected) {
+  bsg::TrainingProgress progress = progress_of(2, 3.0, 1, lag_trpo_config());
+  progress.elapsed_seconds = 4.0;
+  const std::string message = round_trip_error(progress);
+  EXPECT_NE(message.find("last time_s 3 differs from its elapsed seconds 4"), std::string::npos) << message;
+}
+
+TEST(TrainingCheckpoint, ALogWithStepCountsOfAnotherBatchIsRejected) {
+  bsg::RunConfig other = lag_trpo_config();
+  other.steps_per_epoch /= 2;
+  bsg::TrainingProgress progress = progress_of(2, 3.0, 1, lag_trpo_config());
+  progress.progress_log = progress_log(2, 3.0, other);
+  const std::string message = round_trip_error(progress);
+  EXPECT_NE(message.find("its progress log:2: total_env_steps"), std::string::npos) << message;
+}
+
+// Format 1 files (no progress log) written before issue 25 still load.
+TEST(TrainingCheckpoint, AFormatOnePayloadWithoutAProgressLogStillLoads) {
+  const bsg::RunConfig config = lag_trpo_config();
+  bsg::Rng rng(1);
+  bsg::ActorCritic ac(5, 2, config, rng);
+  auto algorithm = bsg::make_algorithm(config);
+  std::string payload = bsg::encode_training_checkpoint(config, bsg::TrainingProgress{4, 2.5, 1, ""}, ac, *algorithm);
+  // Format 1 is format 2 without the log's string: its 8-byte length (0) after epochs and seconds.
+  const std::size_t log_length_at = payload.find("progress") + std::string("progress").size() + 16;
+  ASSERT_EQ(payload.substr(log_length_at, 8), std::string(8, '\0'));
+  payload.erase(log_length_at, 8);
+  const bsg::TrainingProgress loaded =
+      bsg::decode_training_checkpoint(payload, "ckpt", config, ac, *algorithm, /*format_version=*/1);
+  EXPECT_EQ(loaded.epochs_completed, 4);
+  EXPECT_EQ(loaded.elapsed_seconds, 2.5);
+  EXPECT_FALSE(loaded.progress_log.has_value());
+}
+
+TEST(TrainingCheckpoint, ACheckpointThatIsADirectoryOrAFifoIsCalledWhatItIs) {
+  TemporaryDirectory dir;
+  const bsg::RunConfig config = lag_trpo_config();
+  bsg::Rng rng(1);
+  bsg::ActorCritic ac(5, 2, config, rng);
+  auto algorithm = bsg::make_algorithm(config);
+  const fs::path directory = dir.path() / "as_directory";
+  fs::create_directory(directory);
+  const fs::path fifo = dir.path() / "as_fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string as_directory = error_of([&] { bsg::load_training_checkpoint(directory, config, ac, *algorithm); });
+  EXPECT_NE(as_directory.find(directory.string() + " is a directory, not a file"), std::string::npos) << as_directory;
+  const std::string as_fifo = error_of([&] { bsg::load_training_checkpoint(fifo, config, ac, *algorithm); });
+  EXPECT_NE(as_fifo.find(fifo.string() + " is a FIFO, not a file"), std::string::npos) << as_fifo;
+  const std::string missing =
+      error_of([&] { bsg::load_training_checkpoint(dir.path() / "none", config, ac, *algorithm); });
+  EXPECT_NE(missing.find("none is missing"), std::string::npos) << missing;
 }

@@ -28,11 +28,14 @@
 #include "experiments/run_results.h"
 #include "experiments/sweep_manifest.h"
 #include "run_bsg.h"
+#include "sweep_processes.h"
 
 namespace fs = std::filesystem;
 using bsg::testing::read_text_file;
 using bsg::testing::run_bsg;
 using bsg::testing::TemporaryDirectory;
+using bsg::testing::live_processes_in_group;
+using bsg::testing::start_sweep_in_own_group;
 
 namespace {
 
@@ -47,40 +50,6 @@ std::vector<std::string> lines_of(const std::string& text) {
     if (!line.empty()) lines.push_back(line);
   }
   return lines;
-}
-
-// Processes of group `group` that have not ended yet (zombies have ended: their
-// locks are released even if nobody has reaped them), from /proc/<pid>/stat.
-int live_processes_in_group(pid_t group) {
-  int live = 0;
-  for (const fs::directory_entry& entry : fs::directory_iterator("/proc")) {
-    const std::string name = entry.path().filename().string();
-    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::ifstream stat(entry.path() / "stat");
-    std::string line;
-    if (!std::getline(stat, line)) continue;  // the process ended meanwhile
-    // Fields after the ")" closing the command name: state ppid pgrp ...
-    std::istringstream fields(line.substr(line.rfind(')') + 1));
-    char state = 0;
-    long parent = 0;
-    long process_group = 0;
-    fields >> state >> parent >> process_group;
-    if (process_group == group && state != 'Z' && state != 'X') ++live;
-  }
-  return live;
-}
-
-// The sweep in its own process group, output to `log`; returns its pid.
-pid_t start_sweep_in_own_group(const std::string& arguments, const fs::path& log) {
-  const std::string command = std::string(BSG_BINARY) + " sweep " + arguments + " > '" + log.string() + "' 2>&1";
-  const pid_t pid = fork();
-  if (pid == 0) {
-    setpgid(0, 0);
-    execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  setpgid(pid, pid);  // also here, so that the kill below cannot race the child's call
-  return pid;
 }
 
 // Runs of the quick grid as the sweep names them.
@@ -385,23 +354,40 @@ TEST(Sweep, ARunDirectoryOfAnotherConfigurationIsNotTouched) {
   EXPECT_NE(result.output.find("epochs: 2"), std::string::npos) << result.output;
 }
 
-TEST(Sweep, ARunLockedByAnotherProcessIsNotStartedTwice) {
+// Issue 25, reproduction 3: a rerun reported a run that a killed sweep's
+// orphan still ran as failed and exited 1. It now waits for it.
+TEST(Sweep, ARunLockedByAnotherProcessIsWaitedForNotStartedTwice) {
   const OneRunSweep sweep;
   const fs::path& run_dir = sweep.run_dir;
-  // As a `bsg train` left running by a killed sweep would hold it.
-  const int fd = open((run_dir / "train.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  // As a `bsg train` left running by a killed sweep would hold it (not
+  // inherited by the sweep this test starts).
+  const int fd = open((run_dir / "train.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   ASSERT_GE(fd, 0);
   ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
-  const std::string command = sweep.command();
-  auto result = run_bsg(command);
-  EXPECT_EQ(result.exit_code, 1) << result.output;
-  EXPECT_NE(result.output.find("FAILED SafetyBallCircle-v0/trpo/default/seed=7: another process is running it"),
+  const std::string holder = std::to_string(getpid());
+  ASSERT_EQ(pwrite(fd, holder.data(), holder.size(), 0), static_cast<ssize_t>(holder.size()));
+  const fs::path log = sweep.temp.path() / "sweep.log";
+  const pid_t pid = start_sweep_in_own_group(sweep.command().substr(std::string("sweep ").size()), log);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (read_text_file(log).find("waiting") == std::string::npos && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_NE(read_text_file(log).find("waiting SafetyBallCircle-v0/trpo/default/seed=7: another process (pid " +
+                                     holder + ") still runs it"),
             std::string::npos)
-      << result.output;
-  EXPECT_FALSE(fs::exists(bsg::RunDirectory(run_dir).progress()));
-  close(fd);  // that process has ended: the run can start
-  result = run_bsg(command);
-  EXPECT_EQ(result.exit_code, 0) << result.output;
+      << read_text_file(log);
+  EXPECT_FALSE(fs::exists(bsg::RunDirectory(run_dir).progress())) << "not started while the lock is held";
+  close(fd);  // that process has ended, unfinished: the sweep starts the run
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read_text_file(log);
+  const auto events = events_from(sweep.out, 0);
+  const std::string name = sweep.run.relative_dir().generic_string();
+  ASSERT_EQ(events.size(), 4u) << read_text_file(sweep.out / bsg::kSweepEventsName);
+  EXPECT_EQ(events[0], std::make_pair(std::string("waiting"), name));
+  EXPECT_EQ(events[1], std::make_pair(std::string("interrupted"), name));
+  EXPECT_EQ(events[2], std::make_pair(std::string("start"), name));
+  EXPECT_EQ(events[3], std::make_pair(std::string("done"), name));
 }
 
 }  // namespace

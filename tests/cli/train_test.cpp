@@ -91,7 +91,14 @@ void expect_resume_reproduces_whole_run(const TemporaryDirectory& dir, const std
   ASSERT_EQ(first.exit_code, 0) << first.output;
   EXPECT_NE(first.output.find("--resume"), std::string::npos) << first.output;
   EXPECT_FALSE(fs::exists(dir.path() / "split" / "evaluation.json"));
-  std::ofstream(dir.path() / "split" / "progress.csv", std::ios::app) << "3,stale row of a killed process\n";
+  // The stale row is well formed (a malformed one is refused: train_integrity_test.cpp).
+  const std::vector<std::vector<std::string>> rows = read_csv_rows(dir.path() / "split" / "progress.csv");
+  std::vector<std::string> stale = rows.back();
+  stale.at(0) = "3";
+  stale.at(1) = "4000";  // total_env_steps after epoch 3 of 1000 steps
+  std::string stale_line;
+  for (const std::string& field : stale) stale_line += (stale_line.empty() ? "" : ",") + field;
+  std::ofstream(dir.path() / "split" / "progress.csv", std::ios::app) << stale_line << "\n";
 
   const auto resumed = run_bsg("train --resume " + dir.str("split"));
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;

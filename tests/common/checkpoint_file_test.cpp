@@ -5,7 +5,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <mutex>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "../test_support.h"
 #include "common/atomic_file.h"
@@ -18,6 +21,16 @@ using bsg::testing::TemporaryDirectory;
 using bsg::testing::write_text_file;
 
 namespace {
+
+// Files beside `path` whose names start with its temporary prefix.
+int temporaries_of(const fs::path& path) {
+  const std::string prefix = bsg::atomic_temporary_prefix(path).filename().string();
+  int count = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(path.parent_path())) {
+    count += entry.path().filename().string().rfind(prefix, 0) == 0 ? 1 : 0;
+  }
+  return count;
+}
 
 // The message of the CheckpointError thrown by read_checkpoint_file(path), or "" if none.
 std::string read_error(const fs::path& path) {
@@ -96,7 +109,7 @@ TEST(CheckpointFile, RoundTripReturnsThePayload) {
   const std::string payload = sample_payload();
   bsg::write_checkpoint_file(path, payload);
   EXPECT_EQ(bsg::read_checkpoint_file(path), payload);
-  EXPECT_FALSE(fs::exists(bsg::atomic_temporary_path(path)));
+  EXPECT_EQ(temporaries_of(path), 0);
   EXPECT_EQ(read_text_file(path).substr(0, 8), "BSGCKPT\n");
 }
 
@@ -155,14 +168,44 @@ TEST(AtomicFile, ReplacesTheContents) {
   EXPECT_EQ(read_text_file(path), "new contents");
 }
 
-TEST(AtomicFile, AFailedWriteKeepsTheOldFile) {
+TEST(AtomicFile, AFailedWriteKeepsTheOldContentsAndLeavesNoTemporary) {
   TemporaryDirectory dir;
   const fs::path path = dir.path() / "checkpoint.bin";
-  bsg::write_checkpoint_file(path, "good payload");
-  // The temporary file cannot be created: a directory occupies its name.
-  fs::create_directory(bsg::atomic_temporary_path(path));
+  // The rename cannot replace a non-empty directory.
+  fs::create_directories(path / "inside");
   EXPECT_THROW(bsg::write_checkpoint_file(path, "new payload"), std::runtime_error);
-  EXPECT_EQ(bsg::read_checkpoint_file(path), "good payload");
+  EXPECT_TRUE(fs::is_directory(path / "inside"));
+  EXPECT_EQ(temporaries_of(path), 0);
+}
+
+// Issue 25, reproduction 4: two sweeps writing sweep_runs.csv at once shared
+// one temporary name, and one failed renaming a temporary the other had
+// already renamed.
+TEST(AtomicFile, ConcurrentWritersOfOneFileNeverShareATemporary) {
+  TemporaryDirectory dir;
+  const fs::path path = dir.path() / "sweep_runs.csv";
+  const std::string a(100000, 'a');
+  const std::string b(100000, 'b');
+  std::vector<std::string> errors;
+  std::mutex errors_mutex;
+  auto writer = [&](const std::string& contents) {
+    for (int i = 0; i < 200; ++i) {
+      try {
+        bsg::write_file_atomically(path, contents);
+      } catch (const std::exception& e) {
+        const std::lock_guard<std::mutex> lock(errors_mutex);
+        errors.push_back(e.what());
+      }
+    }
+  };
+  std::thread first(writer, a);
+  std::thread second(writer, b);
+  first.join();
+  second.join();
+  EXPECT_TRUE(errors.empty()) << errors.front();
+  const std::string final_contents = read_text_file(path);
+  EXPECT_TRUE(final_contents == a || final_contents == b) << "a whole file, never a mix";
+  EXPECT_EQ(temporaries_of(path), 0);
 }
 
 TEST(AtomicFile, AStaleTemporaryFromAKilledWriterIsIgnoredAndReplaced) {
@@ -170,7 +213,7 @@ TEST(AtomicFile, AStaleTemporaryFromAKilledWriterIsIgnoredAndReplaced) {
   const fs::path path = dir.path() / "checkpoint.bin";
   bsg::write_checkpoint_file(path, "good payload");
   // A writer killed half-way leaves a partial temporary behind.
-  write_text_file(bsg::atomic_temporary_path(path),
+  write_text_file(fs::path(bsg::atomic_temporary_prefix(path).string() + "12345.AbCdEf"),
                   bsg::encode_checkpoint_file("new payload").substr(0, 10));
   EXPECT_EQ(bsg::read_checkpoint_file(path), "good payload");
   bsg::write_checkpoint_file(path, "next payload");

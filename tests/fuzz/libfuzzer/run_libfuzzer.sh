@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets of tests/fuzz/libfuzzer with Debian's clang
+# (the readers' sources instrumented, -fsanitize=fuzzer,address,undefined;
+# the rest linked from the project's static libraries in BUILD_DIR) and runs
+# each for SECONDS seconds from its seed corpus. Exit 77 (ctest: skipped) if
+# clang++ or its libFuzzer runtime is missing.
+# Usage: run_libfuzzer.sh SOURCE_DIR BUILD_DIR SECONDS [TARGET...]
+set -euo pipefail
+source_dir="$1"
+build_dir="$2"
+seconds="$3"
+shift 3
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(progress_log run_file checkpoint)
+
+clang="$(command -v clang++ || command -v clang++-14 || true)"
+if [ -z "$clang" ] || ! "$clang" -print-file-name=libclang_rt.fuzzer-x86_64.a | grep -q /; then
+  echo "SKIPPED: clang++ with libFuzzer (clang, libclang-rt-14-dev) is not installed"
+  exit 77
+fi
+runtime="$("$clang" -print-file-name=libclang_rt.fuzzer-x86_64.a)"
+if [ ! -f "$runtime" ] && [ ! -f "$(dirname "$("$clang" -print-libgcc-file-name)")/libclang_rt.fuzzer-x86_64.a" ]; then
+  echo "SKIPPED: libFuzzer's runtime is missing (libclang-rt-14-dev)"
+  exit 77
+fi
+
+work="$build_dir/libfuzzer"
+mkdir -p "$work"
+launcher=()
+command -v ccache >/dev/null && launcher=(ccache)
+# -march as the project's build (CMakeLists.txt): Eigen's inline allocation
+# must align the same in the clang objects and the libraries.
+flags=(-std=c++20 -g -O1 -march=native -mno-avx512f -DBT_USE_DOUBLE_PRECISION -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
+       -I"$source_dir" -isystem /usr/include/eigen3 $(mpicxx --showme:compile) $(pkg-config --cflags bullet)
+       -DBSG_CONFIGS_DIR="\"$source_dir/configs\"")
+# The readers, instrumented for coverage; the rest comes from the libraries.
+readers=(algos/progress_csv_reader algos/progress_csv algos/training_checkpoint common/message_text
+         common/checkpoint_file common/binary_io common/file_reading common/config_entries
+         common/run_config_schema common/run_config_resolve common/run_config_checks common/config_scalar
+         common/run_config_yaml)
+objects=()
+for reader in "${readers[@]}"; do
+  object="$work/$(echo "$reader" | tr / _).o"
+  "${launcher[@]}" "$clang" "${flags[@]}" -c "$source_dir/$reader.cpp" -o "$object"
+  objects+=("$object")
+done
+libraries=("$build_dir/libbsg_algos.a" "$build_dir/libbsg_envs.a" "$build_dir/libbsg_common.a")
+system_libraries=(-lyaml-cpp $(pkg-config --libs bullet) $(mpicxx --showme:link))
+
+status=0
+for target in "${targets[@]}"; do
+  program="$work/${target}_fuzzer"
+  "${launcher[@]}" "$clang" "${flags[@]}" -c "$source_dir/tests/fuzz/libfuzzer/${target}_fuzzer.cpp" -o "$program.o"
+  "$clang" -fsanitize=fuzzer,address,undefined "$program.o" "${objects[@]}" "${libraries[@]}" \
+    "${system_libraries[@]}" -o "$program"
+  corpus="$work/corpus_$target"
+  mkdir -p "$corpus"
+  cp -n "$source_dir/tests/fuzz/libfuzzer/corpus/$target/"* "$corpus/" 2>/dev/null || true
+  if [ "$target" = checkpoint ] && [ -x "$build_dir/tests/bsg_fuzz_tests" ]; then
+    # A valid training checkpoint payload, written by the GoogleTest fuzz test.
+    BSG_FUZZ_CHECKPOINT_SEED="$corpus/seed.bin" "$build_dir/tests/bsg_fuzz_tests" \
+      --gtest_filter='ReadersFuzz.AMutatedCheckpoint*' >/dev/null
+  fi
+  echo "== $target: $seconds s"
+  if ! ASAN_OPTIONS=detect_leaks=1 "$program" -artifact_prefix="$work/$target-" -max_total_time="$seconds" -max_len=65536 -timeout=10 \
+       -rss_limit_mb=2048 -print_final_stats=1 "$corpus" 2>&1 | tail -n 25; then
+    status=1
+  fi
+done
+exit $status
