@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "algos/constraint_costs.h"
+#include "algos/constraint_qp.h"
 #include "algos/natural_gradient.h"
 #include "algos/trpo.h"
 
@@ -134,18 +136,83 @@ CpoStep cpo_step(const LinearOperator& fisher, const Eigen::Ref<const Eigen::Vec
   return step;
 }
 
+Eigen::MatrixXd conjugate_gradient_columns(const LinearOperator& fisher, const Eigen::Ref<const Eigen::MatrixXd>& costs,
+                                           const ConjugateGradientOptions& options) {
+  Eigen::MatrixXd directions(costs.rows(), costs.cols());
+  for (Eigen::Index j = 0; j < costs.cols(); ++j) {
+    directions.col(j) = conjugate_gradient(fisher, costs.col(j), options).solution;  // p_j = CG(F, b_j)
+  }
+  return directions;
+}
+
+std::vector<std::string> constraint_multiplier_names(int constraint_count) {
+  std::vector<std::string> names;
+  for (int j = 1; j <= constraint_count; ++j) names.push_back("constraint_" + std::to_string(j) + "_nu");
+  return names;
+}
+
 Cpo::Cpo(const RunConfig& config) : TrustRegionAlgorithm(config) {}
 
 std::vector<std::string> Cpo::diagnostic_names() const {
   std::vector<std::string> names = common_diagnostic_names();
   for (std::string& name : trpo_diagnostic_names()) names.push_back(std::move(name));
-  for (std::string& name : cpo_diagnostic_names()) names.push_back(std::move(name));
+  if (constraint_count(config()) == 1) {
+    for (std::string& name : cpo_diagnostic_names()) names.push_back(std::move(name));
+    return names;
+  }
+  for (const char* name : {"Misc/cost_gradient_norm", "Misc/q", "Misc/Lambda_star", "Misc/OptimCase"}) {
+    names.emplace_back(name);
+  }
+  for (std::string& name : constraint_multiplier_names(constraint_count(config()))) names.push_back(std::move(name));
   return names;
 }
 
+PolicyUpdateResult Cpo::update_several(const PolicyUpdateInputs& inputs,
+                                       const std::vector<ConstraintEstimate>& constraints) {
+  const Eigen::VectorXd c = per_step_constraint_violations(constraints, inputs.mean_episode_length);  // c_j
+  const PolicyUpdateStart start = begin_policy_update(inputs);
+  const ConstraintGradients gradients = averaged_constraint_gradients(inputs);  // g, B
+  const int m = static_cast<int>(constraints.size());
+
+  FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
+                             fisher_vector_product_options(config()));
+  const LinearOperator fisher_operator = as_linear_operator(fisher);
+  const ConjugateGradientOptions cg = conjugate_gradient_options(config());
+  const NaturalGradientStep natural = natural_gradient_step(fisher_operator, gradients.reward, config().target_kl, cg);
+  const Eigen::MatrixXd P = conjugate_gradient_columns(fisher_operator, gradients.costs, cg);  // p_j
+  const Eigen::VectorXd r = P.transpose() * gradients.reward;                                // r_j = g^T p_j
+  const Eigen::MatrixXd S = gradients.costs.transpose() * P;                                 // S_jk = b_j^T p_k
+  const CpoDualSolution dual = solve_cpo_dual(natural.x_fisher_x, r, S, c, config().target_kl);
+  // Delta = (x - sum_j nu_j p_j) / lambda*; infeasible: -sum_j nu_j p_j scaled to the trust region.
+  const Eigen::VectorXd full_step =
+      dual.direction_scale * (dual.reward_weight * natural.direction - P * dual.nu);
+  if (!full_step.allFinite()) {
+    throw std::runtime_error("cpo: the step with " + std::to_string(m) + " constraints is not finite (q=" +
+                             std::to_string(natural.x_fisher_x) + ")");
+  }
+
+  const LineSearchResult search = constrained_line_search_all(inputs, start, full_step, c,
+                                                              static_cast<int>(dual.optim_case) >= 2, config());
+  apply_line_search_result(inputs.policy, start.theta_old, search);
+
+  PolicyUpdateResult result;
+  result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
+  append_trpo_diagnostics(result.diagnostics, search, natural.step_size, gradients.reward.norm(),
+                          natural.x_fisher_x, natural.direction.norm());
+  result.diagnostics.insert(result.diagnostics.end(), {{"Misc/cost_gradient_norm", gradients.costs.norm()},
+                                                       {"Misc/q", natural.x_fisher_x},
+                                                       {"Misc/Lambda_star", dual.lambda},
+                                                       {"Misc/OptimCase", static_cast<double>(dual.optim_case)}});
+  const std::vector<std::string> nu_names = constraint_multiplier_names(m);
+  for (int j = 0; j < m; ++j) result.diagnostics.push_back({nu_names[static_cast<std::size_t>(j)], dual.nu[j]});
+  return result;
+}
+
 PolicyUpdateResult Cpo::update(const PolicyUpdateInputs& inputs) {
-  const double c = per_step_constraint_violation(inputs.mean_episode_cost, inputs.mean_episode_length,
-                                                 config().cost_limit);  // c = (J_C - d) / (L + 1e-8)
+  const std::vector<ConstraintEstimate> constraints = constraint_estimates(inputs, config());
+  if (constraints.size() > 1) return update_several(inputs, constraints);
+  const double c = per_step_constraint_violation(constraints.front().mean_episode_cost, inputs.mean_episode_length,
+                                                 constraints.front().limit);  // c = (J_C - d) / (L + 1e-8)
   const PolicyUpdateStart start = begin_policy_update(inputs);          // l_R(theta_old), L_C(theta_old)
   const PolicyGradients gradients = averaged_policy_gradients(inputs);  // g, b
 

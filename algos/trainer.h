@@ -4,8 +4,9 @@
 //   2. collect N = B / R steps from this rank's environment (rollout.h):
 //      normalised observations, V and V_C, log-probs, GAE for reward and
 //      cost with reward scaling, bootstrap at time-outs and the epoch cut;
-//   3. pool the episode statistics over ranks (J_C, L), algorithm.update();
-//   4. fit V, and V_C if the algorithm uses it (docs/algorithms.md#value-fits schedule);
+//   3. pool the episode statistics over ranks (J_C, L; J_Ci of every
+//      constraint with `constraints:`), algorithm.update();
+//   4. fit V, and every V_Ci if the algorithm uses them (docs/algorithms.md#value-fits schedule);
 //   5. update the observation and return normalisers (last, docs/algorithms.md#the-epoch-loop);
 //   6. check that every parameter is finite (and, every check_freq epochs,
 //      that the ranks agree), log the epoch (rank 0 writes progress.csv and
@@ -132,7 +133,7 @@ class OnPolicyTrainer {
   Eigen::MatrixXd normalized_observations_;
   Eigen::MatrixXd returns_column_;
   Eigen::VectorXd advantages_;       // A_t as the update sees them (copy, optionally standardised)
-  Eigen::VectorXd cost_advantages_;  // A^C_t likewise
+  Eigen::MatrixXd cost_advantages_;  // A^Ci_t likewise, one column per constraint
   Rng noise_rng_;
   Rng shuffle_rng_;
   TrainingProgress progress_;

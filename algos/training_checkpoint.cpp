@@ -25,6 +25,7 @@ std::string encode_training_checkpoint(const RunConfig& config, const TrainingPr
     writer.write_string(entry.name);
     writer.write_f64(entry.value);
   }
+  save_training_cost(progress.training_cost, writer);
   return writer.bytes();
 }
 
@@ -67,6 +68,9 @@ TrainingProgress decode_training_checkpoint(std::string_view payload, const std:
     entry.value = reader.read_f64("algorithm state value");
     state.push_back(std::move(entry));
   }
+  const int constraints = actor_critic.constraint_count();
+  progress.training_cost = reader.remaining() > 0 ? load_training_cost(reader, constraints)
+                                                  : TrainingCost::for_constraints(constraints);
   reader.expect_end();
   try {
     algorithm.restore_state(state);

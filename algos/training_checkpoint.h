@@ -11,6 +11,8 @@
 //                    step counts, normaliser mean/std/count)
 //   "algorithm"      the algorithm's name and its named state (lambda and
 //                    its optimiser moments for TRPO-L and PDO)
+//   "training cost"  the cost incurred so far (training_cost.h); a checkpoint
+//                    written before it existed resumes with the sums at 0
 //
 // No RNG state is stored: every random stream of epoch k is seeded from
 // (run seed, stream, rank, k) at the start of the epoch (trainer.h), so
@@ -21,6 +23,7 @@
 
 #include "algos/actor_critic.h"
 #include "algos/algorithm.h"
+#include "algos/training_cost.h"
 #include "common/run_config.h"
 
 namespace bsg {
@@ -29,6 +32,7 @@ struct TrainingProgress {
   int epochs_completed = 0;      // epochs 0 .. epochs_completed - 1 are done
   double elapsed_seconds = 0.0;  // training wall time so far (progress.csv time_s)
   int num_ranks = 1;             // MPI ranks of the run that wrote the checkpoint
+  TrainingCost training_cost;    // safety during training so far
 };
 
 // The payload bytes (for tests) and the atomic write of the whole file.

@@ -32,7 +32,8 @@ void check_env_id(const std::string& env_id, const std::string& origin,
                   const std::vector<std::string>& valid_env_ids);
 
 // Relations between keys that hold for any number of ranks:
-// max_ep_len <= steps_per_epoch. Names both keys and their origins.
+// max_ep_len <= steps_per_epoch (naming both keys and their origins); at
+// most one constraint for trpo, which ignores cost.
 void check_run_config_relations(const RunConfig& config, const ConfigOrigins& origins);
 
 // The set-up checks of docs/algorithms.md#set-up, step 2 for `num_ranks` MPI processes:
