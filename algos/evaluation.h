@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "algos/actor_critic.h"
+#include "algos/constraint_costs.h"
 #include "common/mpi_context.h"
 #include "envs/env.h"
 
@@ -23,6 +24,7 @@ struct EvaluationEpisode {
   double episode_return = 0.0;  // J
   double episode_cost = 0.0;    // H
   int episode_length = 0;
+  std::vector<double> constraint_costs;  // H_i per constraint (docs/algorithms.md#several-constraints)
 };
 
 struct EvaluationSummary {
@@ -30,15 +32,19 @@ struct EvaluationSummary {
   double mean_return = 0.0;                 // J (NaN without episodes)
   double mean_cost = 0.0;                   // H
   double mean_length = 0.0;
+  std::vector<double> mean_constraint_costs;  // H_i, one per constraint (NaN without episodes)
 };
 
 // The episodes of this rank.
+// `costs` gives each episode's constraint costs (default: the one constraint on the environment's cost).
 std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, const ActorCritic& actor_critic,
-                                                       int num_episodes, std::uint64_t env_seed, int max_ep_len);
+                                                       int num_episodes, std::uint64_t env_seed, int max_ep_len,
+                                                       const StepCostSelector& costs = StepCostSelector());
 
 // floor(total_episodes / R) episodes per rank, gathered to rank 0 (others get
 // an empty summary). Collective.
 EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_critic, int total_episodes,
-                                  std::int64_t run_seed, int max_ep_len, const MpiContext& mpi);
+                                  std::int64_t run_seed, int max_ep_len, const MpiContext& mpi,
+                                  const StepCostSelector& costs = StepCostSelector());
 
 }  // namespace bsg

@@ -52,6 +52,7 @@ class RolloutCollector {
                Buffer& buffer);
 
   const RolloutOptions& options() const { return options_; }
+  const StepCostSelector& cost_selector() const { return costs_; }
 
  private:
   void copy_observation(std::span<const double> observation);

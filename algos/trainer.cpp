@@ -122,6 +122,11 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
 
 OnPolicyTrainer::~OnPolicyTrainer() = default;
 
+TrainingSafety OnPolicyTrainer::training_safety() const {
+  return TrainingSafety{effective_constraints(config_), progress_.training_cost,
+                        static_cast<long long>(progress_.epochs_completed) * config_.steps_per_epoch};
+}
+
 void OnPolicyTrainer::save_checkpoint() {
   if (mpi_.is_root()) save_training_checkpoint(directory_.checkpoint(), config_, progress_, *actor_critic_, *algorithm_);
   checkpoint_epochs_ = progress_.epochs_completed;
@@ -328,7 +333,10 @@ TrainingOutcome OnPolicyTrainer::run() {
     // and resume take that file as the mark of a finished run.
     if (mpi_.is_root()) {
       constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
-      write_evaluation_files(directory_, EvaluationSummary{{}, kNone, kNone, kNone});
+      const TrainingSafety safety = training_safety();
+      write_evaluation_files(directory_,
+                             EvaluationSummary{{}, kNone, kNone, kNone, std::vector<double>(safety.constraints.size(), kNone)},
+                             &safety);
       if (options_.log != nullptr) {
         *options_.log << "evaluation skipped (eval_episodes = " << config_.eval_episodes << " for " << mpi_.size()
                       << (mpi_.size() == 1 ? " rank" : " ranks") << "): evaluation.json records 0 episodes"
@@ -340,9 +348,10 @@ TrainingOutcome OnPolicyTrainer::run() {
 
   // Deterministic evaluation (docs/reproducing.md#evaluation) with the final statistics.
   EvaluationSummary summary = evaluate_policy(*env_, *actor_critic_, config_.eval_episodes, config_.seed,
-                                              config_.max_ep_len, mpi_);
+                                              config_.max_ep_len, mpi_, collector_.cost_selector());
   if (mpi_.is_root()) {
-    write_evaluation_files(directory_, summary);
+    const TrainingSafety safety = training_safety();
+    write_evaluation_files(directory_, summary, &safety);
     if (options_.log != nullptr) {
       *options_.log << "evaluation: " << summary.episodes.size() << " episodes  J (mean return) "
                     << format_csv_number(summary.mean_return) << "  H (mean cost) "

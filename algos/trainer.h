@@ -47,6 +47,7 @@
 #include "algos/algorithm.h"
 #include "algos/buffer.h"
 #include "algos/evaluation.h"
+#include "algos/evaluation_files.h"
 #include "algos/progress_csv.h"
 #include "algos/rollout.h"
 #include "algos/run_directory.h"
@@ -120,6 +121,7 @@ class OnPolicyTrainer {
   void check_parameters_finite(int epoch) const;
   void check_ranks_agree(int epoch) const;
   void save_checkpoint();
+  TrainingSafety training_safety() const;  // what evaluation.json reports of the training
 
   RunConfig config_;
   RunDirectory directory_;
