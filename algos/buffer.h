@@ -35,7 +35,7 @@ struct EpisodeStats {
   double episode_return = 0.0;  // EpRet
   double episode_cost = 0.0;    // EpCosts: the environment's cost
   int episode_length = 0;       // EpLen
-  std::vector<double> constraint_costs;  // J_Ci of this episode, one per constraint (m = 1: episode_cost)
+  std::vector<double> constraint_costs{};  // J_Ci of this episode, one per constraint (m = 1: episode_cost)
 };
 
 // How a path ended: a finished episode (terminal or time-out; its statistics

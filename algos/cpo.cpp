@@ -167,44 +167,60 @@ std::vector<std::string> Cpo::diagnostic_names() const {
   return names;
 }
 
+SeveralConstraintsStart begin_several_constraints_update(const PolicyUpdateInputs& inputs,
+                                                         const std::vector<ConstraintEstimate>& constraints,
+                                                         const LinearOperator& fisher, const RunConfig& config) {
+  SeveralConstraintsStart begun;
+  begun.violations = per_step_constraint_violations(constraints, inputs.mean_episode_length);  // c_j
+  begun.start = begin_policy_update(inputs);
+  begun.gradients = averaged_constraint_gradients(inputs);  // g, B
+  begun.natural = natural_gradient_step(fisher, begun.gradients.reward, config.target_kl,
+                                        conjugate_gradient_options(config));  // x, q, eta, Delta_R
+  return begun;
+}
+
+std::vector<NamedScalar> several_constraints_diagnostics(const PolicyUpdateInputs& inputs,
+                                                         const SeveralConstraintsStart& begun,
+                                                         const LineSearchResult& search,
+                                                         const std::vector<NamedScalar>& extra,
+                                                         const Eigen::VectorXd& nu) {
+  std::vector<NamedScalar> diagnostics = common_diagnostics(inputs, begun.start.before, 1.0, 0.0);
+  append_trpo_diagnostics(diagnostics, search, begun.natural.step_size, begun.gradients.reward.norm(),
+                          begun.natural.x_fisher_x, begun.natural.direction.norm());
+  diagnostics.push_back({"Misc/cost_gradient_norm", begun.gradients.costs.norm()});  // Frobenius
+  diagnostics.push_back({"Misc/q", begun.natural.x_fisher_x});
+  diagnostics.insert(diagnostics.end(), extra.begin(), extra.end());
+  const std::vector<std::string> nu_names = constraint_multiplier_names(static_cast<int>(nu.size()));
+  for (Eigen::Index j = 0; j < nu.size(); ++j) diagnostics.push_back({nu_names[static_cast<std::size_t>(j)], nu[j]});
+  return diagnostics;
+}
+
 PolicyUpdateResult Cpo::update_several(const PolicyUpdateInputs& inputs,
                                        const std::vector<ConstraintEstimate>& constraints) {
-  const Eigen::VectorXd c = per_step_constraint_violations(constraints, inputs.mean_episode_length);  // c_j
-  const PolicyUpdateStart start = begin_policy_update(inputs);
-  const ConstraintGradients gradients = averaged_constraint_gradients(inputs);  // g, B
-  const int m = static_cast<int>(constraints.size());
-
   FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
                              fisher_vector_product_options(config()));
   const LinearOperator fisher_operator = as_linear_operator(fisher);
-  const ConjugateGradientOptions cg = conjugate_gradient_options(config());
-  const NaturalGradientStep natural = natural_gradient_step(fisher_operator, gradients.reward, config().target_kl, cg);
-  const Eigen::MatrixXd P = conjugate_gradient_columns(fisher_operator, gradients.costs, cg);  // p_j
-  const Eigen::VectorXd r = P.transpose() * gradients.reward;                                // r_j = g^T p_j
-  const Eigen::MatrixXd S = gradients.costs.transpose() * P;                                 // S_jk = b_j^T p_k
-  const CpoDualSolution dual = solve_cpo_dual(natural.x_fisher_x, r, S, c, config().target_kl);
+  const SeveralConstraintsStart begun = begin_several_constraints_update(inputs, constraints, fisher_operator, config());
+  const Eigen::MatrixXd P =
+      conjugate_gradient_columns(fisher_operator, begun.gradients.costs, conjugate_gradient_options(config()));  // p_j
+  const Eigen::VectorXd r = P.transpose() * begun.gradients.reward;  // r_j = g^T p_j
+  const Eigen::MatrixXd S = begun.gradients.costs.transpose() * P;   // S_jk = b_j^T p_k
+  const CpoDualSolution dual = solve_cpo_dual(begun.natural.x_fisher_x, r, S, begun.violations, config().target_kl);
   // Delta = (x - sum_j nu_j p_j) / lambda*; infeasible: -sum_j nu_j p_j scaled to the trust region.
   const Eigen::VectorXd full_step =
-      dual.direction_scale * (dual.reward_weight * natural.direction - P * dual.nu);
+      dual.direction_scale * (dual.reward_weight * begun.natural.direction - P * dual.nu);
   if (!full_step.allFinite()) {
-    throw std::runtime_error("cpo: the step with " + std::to_string(m) + " constraints is not finite (q=" +
-                             std::to_string(natural.x_fisher_x) + ")");
+    throw std::runtime_error("cpo: the step with " + std::to_string(constraints.size()) +
+                             " constraints is not finite (q=" + std::to_string(begun.natural.x_fisher_x) + ")");
   }
-
-  const LineSearchResult search = constrained_line_search_all(inputs, start, full_step, c,
+  const LineSearchResult search = constrained_line_search_all(inputs, begun.start, full_step, begun.violations,
                                                               static_cast<int>(dual.optim_case) >= 2, config());
-  apply_line_search_result(inputs.policy, start.theta_old, search);
+  apply_line_search_result(inputs.policy, begun.start.theta_old, search);
 
   PolicyUpdateResult result;
-  result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
-  append_trpo_diagnostics(result.diagnostics, search, natural.step_size, gradients.reward.norm(),
-                          natural.x_fisher_x, natural.direction.norm());
-  result.diagnostics.insert(result.diagnostics.end(), {{"Misc/cost_gradient_norm", gradients.costs.norm()},
-                                                       {"Misc/q", natural.x_fisher_x},
-                                                       {"Misc/Lambda_star", dual.lambda},
-                                                       {"Misc/OptimCase", static_cast<double>(dual.optim_case)}});
-  const std::vector<std::string> nu_names = constraint_multiplier_names(m);
-  for (int j = 0; j < m; ++j) result.diagnostics.push_back({nu_names[static_cast<std::size_t>(j)], dual.nu[j]});
+  result.diagnostics = several_constraints_diagnostics(
+      inputs, begun, search,
+      {{"Misc/Lambda_star", dual.lambda}, {"Misc/OptimCase", static_cast<double>(dual.optim_case)}}, dual.nu);
   return result;
 }
 

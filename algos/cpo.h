@@ -31,6 +31,7 @@
 
 #include "algos/algorithm.h"
 #include "algos/conjugate_gradient.h"
+#include "algos/natural_gradient.h"
 #include "common/run_config.h"
 
 namespace bsg {
@@ -79,6 +80,26 @@ Eigen::MatrixXd conjugate_gradient_columns(const LinearOperator& fisher, const E
 
 // The per-constraint diagnostics of CPO and PCPO with m >= 2: constraint_<j>_nu, j = 1..m.
 std::vector<std::string> constraint_multiplier_names(int constraint_count);
+
+// The first steps CPO and PCPO share with m >= 2 constraints: c_j, theta_old
+// with the surrogates there, g and B, and x = CG(F, g) with q and the TRPO step.
+struct SeveralConstraintsStart {
+  Eigen::VectorXd violations;  // c_j = (J_Cj - d_j) / (L + 1e-8)
+  PolicyUpdateStart start;
+  ConstraintGradients gradients;
+  NaturalGradientStep natural;
+};
+SeveralConstraintsStart begin_several_constraints_update(const PolicyUpdateInputs& inputs,
+                                                         const std::vector<ConstraintEstimate>& constraints,
+                                                         const LinearOperator& fisher, const RunConfig& config);
+
+// Their diagnostics: the common and TRPO columns, cost_gradient_norm = |B|_F, cpo_q,
+// the algorithm's `extra` columns, then constraint_<j>_nu = nu[j].
+std::vector<NamedScalar> several_constraints_diagnostics(const PolicyUpdateInputs& inputs,
+                                                         const SeveralConstraintsStart& begun,
+                                                         const LineSearchResult& search,
+                                                         const std::vector<NamedScalar>& extra,
+                                                         const Eigen::VectorXd& nu);
 
 class Cpo final : public TrustRegionAlgorithm {
  public:

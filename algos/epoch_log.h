@@ -66,7 +66,7 @@ struct EpisodeStatistics {
   PooledStatistics episode_length;
   // J_Ci of every constraint; only when `per_constraint` was asked (with
   // `constraints:`; without, the one constraint's J_C is episode_cost).
-  std::vector<PooledStatistics> constraint_costs;
+  std::vector<PooledStatistics> constraint_costs{};
 };
 EpisodeStatistics pool_episode_statistics(const Buffer& buffer, const MpiContext& mpi, bool per_constraint = false);
 
@@ -82,7 +82,7 @@ struct EpochLogInputs {
   const ValueFitStats* cost_value_fit = nullptr;  // null if V_C is not trained
   const RunningMeanStd* return_normalizer = nullptr;
   // The per-constraint columns, only with `constraints:` (empty: none).
-  std::span<const ConstraintEstimate> constraints;
+  std::span<const ConstraintEstimate> constraints{};
   const TrainingCost* training_cost = nullptr;  // after this epoch; null: no safety columns
   double collect_seconds = 0.0;
   double update_seconds = 0.0;

@@ -63,6 +63,13 @@ std::string evaluation_json(const EvaluationSummary& summary, bool per_episode, 
             json_number(TrainingCost::rate(safety->training_cost.cumulative_cost, safety->training_steps));
     text += ",\n  \"constraints\": " + constraints_json(summary, *safety);
   }
+  if (!summary.term_names.empty()) {  // each cost term's mean episode sum
+    text += ",\n  \"cost_terms\": {";
+    for (std::size_t k = 0; k < summary.term_names.size(); ++k) {
+      text += (k ? ", " : "") + json_string(summary.term_names[k]) + ": " + json_number(summary.mean_term_costs[k]);
+    }
+    text += "}";
+  }
   if (per_episode) {
     text += ",\n  \"returns\": " + json_array(summary, [](const EvaluationEpisode& e) { return e.episode_return; });
     text += ",\n  \"costs\": " + json_array(summary, [](const EvaluationEpisode& e) { return e.episode_cost; });

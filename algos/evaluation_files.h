@@ -7,7 +7,8 @@
 //   "cumulative_cost": C, "cost_rate": C / steps,
 //   "constraints": [{"terms": [...] or "all", "limit": d_i, "mean_cost": H_i,
 //                    "holds": H_i <= d_i (null without episodes), "cumulative_cost",
-//                    "cost_rate", "epochs_over_limit"}, ...]
+//                    "cost_rate", "epochs_over_limit"}, ...],
+//   "cost_terms": {"<term>": mean episode sum, ...}  (each of the environment's cost terms)
 #pragma once
 
 #include <string>
@@ -22,8 +23,8 @@ namespace bsg {
 
 // What training adds to evaluation.json.
 struct TrainingSafety {
-  std::vector<ConstraintConfig> constraints;  // effective_constraints(config)
-  TrainingCost training_cost;
+  std::vector<ConstraintConfig> constraints{};  // effective_constraints(config)
+  TrainingCost training_cost{};
   long long training_steps = 0;               // environment steps of the whole training
 };
 

@@ -72,24 +72,21 @@ std::vector<std::string> Pcpo::diagnostic_names() const {
 
 PolicyUpdateResult Pcpo::update_several(const PolicyUpdateInputs& inputs,
                                         const std::vector<ConstraintEstimate>& constraints) {
-  const Eigen::VectorXd c = per_step_constraint_violations(constraints, inputs.mean_episode_length);  // c_j
-  const PolicyUpdateStart start = begin_policy_update(inputs);
-  const ConstraintGradients gradients = averaged_constraint_gradients(inputs);  // g, B
-  const int m = static_cast<int>(constraints.size());
-
   FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
                              fisher_vector_product_options(config()));
   const LinearOperator fisher_operator = as_linear_operator(fisher);
-  const ConjugateGradientOptions cg = conjugate_gradient_options(config());
-  const NaturalGradientStep natural = natural_gradient_step(fisher_operator, gradients.reward, config().target_kl, cg);
+  const SeveralConstraintsStart begun = begin_several_constraints_update(inputs, constraints, fisher_operator, config());
+  const Eigen::MatrixXd& B = begun.gradients.costs;
+  const Eigen::VectorXd& c = begun.violations;
+  const Eigen::Index m = B.cols();
   // L^-1 b_j: CG(F, b_j) in the KL metric, b_j itself in L2.
   const Eigen::MatrixXd directions = config().pcpo_projection == PcpoProjection::kl
-                                         ? conjugate_gradient_columns(fisher_operator, gradients.costs, cg)
-                                         : Eigen::MatrixXd(gradients.costs);
+                                         ? conjugate_gradient_columns(fisher_operator, B, conjugate_gradient_options(config()))
+                                         : B;
   // Only constraints with a usable gradient take part (the single constraint's b^T b > 1e-6 guard).
   std::vector<Eigen::Index> used;
   for (Eigen::Index j = 0; j < m; ++j) {
-    if (gradients.costs.col(j).squaredNorm() > 1e-6) used.push_back(j);
+    if (B.col(j).squaredNorm() > 1e-6) used.push_back(j);
   }
   Eigen::VectorXd mu = Eigen::VectorXd::Zero(m);
   if (!used.empty()) {
@@ -98,37 +95,31 @@ PolicyUpdateResult Pcpo::update_several(const PolicyUpdateInputs& inputs,
     Eigen::VectorXd v(k);
     for (Eigen::Index a = 0; a < k; ++a) {
       const Eigen::Index j = used[static_cast<std::size_t>(a)];
-      v[a] = c[j] + gradients.costs.col(j).dot(natural.full_step);  // v_j = c_j + b_j^T Delta_R
+      v[a] = c[j] + B.col(j).dot(begun.natural.full_step);  // v_j = c_j + b_j^T Delta_R
       for (Eigen::Index b = 0; b < k; ++b) {
-        S(a, b) = gradients.costs.col(j).dot(directions.col(used[static_cast<std::size_t>(b)]));  // b_j^T L^-1 b_k
+        S(a, b) = B.col(j).dot(directions.col(used[static_cast<std::size_t>(b)]));  // b_j^T L^-1 b_k
       }
     }
     const Eigen::VectorXd weights = nonnegative_projection_weights(S, v);
     for (Eigen::Index a = 0; a < k; ++a) mu[used[static_cast<std::size_t>(a)]] = weights[a];
   }
-  const Eigen::VectorXd full_step = natural.full_step - directions * mu;  // Delta = Delta_R - sum_j mu_j L^-1 b_j
+  const Eigen::VectorXd full_step = begun.natural.full_step - directions * mu;  // Delta = Delta_R - sum_j mu_j L^-1 b_j
   if (!full_step.allFinite()) {
     throw std::runtime_error("pcpo: the projected step with " + std::to_string(m) + " constraints is not finite");
   }
 
   LineSearchResult search;
   if (config().pcpo_line_search) {
-    search = constrained_line_search_all(inputs, start, full_step, c, (c.array() < 0.0).all(), config());
+    search = constrained_line_search_all(inputs, begun.start, full_step, c, (c.array() < 0.0).all(), config());
   } else {
-    search.step = full_step;
+    search.step = full_step;  // the paper's release: apply Delta directly
     search.acceptance_step = 1;
   }
-  apply_line_search_result(inputs.policy, start.theta_old, search);
+  apply_line_search_result(inputs.policy, begun.start.theta_old, search);
 
   PolicyUpdateResult result;
-  result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
-  append_trpo_diagnostics(result.diagnostics, search, natural.step_size, gradients.reward.norm(),
-                          natural.x_fisher_x, natural.direction.norm());
-  result.diagnostics.insert(result.diagnostics.end(), {{"Misc/cost_gradient_norm", gradients.costs.norm()},
-                                                       {"Misc/q", natural.x_fisher_x},
-                                                       {"Misc/OptimCase", (c.array() >= 0.0).any() ? 1.0 : 2.0}});
-  const std::vector<std::string> nu_names = constraint_multiplier_names(m);
-  for (int j = 0; j < m; ++j) result.diagnostics.push_back({nu_names[static_cast<std::size_t>(j)], mu[j]});
+  result.diagnostics = several_constraints_diagnostics(
+      inputs, begun, search, {{"Misc/OptimCase", (c.array() >= 0.0).any() ? 1.0 : 2.0}}, mu);
   return result;
 }
 

@@ -347,8 +347,10 @@ TrainingOutcome OnPolicyTrainer::run() {
   }
 
   // Deterministic evaluation (docs/reproducing.md#evaluation) with the final statistics.
+  // The term names for evaluation.json's per-term costs (the evaluation reseeds the environment first).
+  const std::vector<std::string> term_names = probe_cost_term_names(*env_);
   EvaluationSummary summary = evaluate_policy(*env_, *actor_critic_, config_.eval_episodes, config_.seed,
-                                              config_.max_ep_len, mpi_, collector_.cost_selector());
+                                              config_.max_ep_len, mpi_, collector_.cost_selector(), term_names);
   if (mpi_.is_root()) {
     const TrainingSafety safety = training_safety();
     write_evaluation_files(directory_, summary, &safety);

@@ -32,7 +32,7 @@ struct TrainingProgress {
   int epochs_completed = 0;      // epochs 0 .. epochs_completed - 1 are done
   double elapsed_seconds = 0.0;  // training wall time so far (progress.csv time_s)
   int num_ranks = 1;             // MPI ranks of the run that wrote the checkpoint
-  TrainingCost training_cost;    // safety during training so far
+  TrainingCost training_cost{};  // safety during training so far
 };
 
 // The payload bytes (for tests) and the atomic write of the whole file.

@@ -20,8 +20,8 @@ namespace bsg {
 
 struct TrainingCost {
   double cumulative_cost = 0.0;
-  std::vector<double> constraint_cumulative_costs;  // one per constraint
-  std::vector<long long> epochs_over_limit;         // one per constraint
+  std::vector<double> constraint_cumulative_costs{};  // one per constraint
+  std::vector<long long> epochs_over_limit{};       // one per constraint
 
   // Zeroes for m constraints.
   static TrainingCost for_constraints(int constraint_count);
