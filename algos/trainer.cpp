@@ -106,7 +106,7 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
     }
     progress_.epochs_completed = saved.epochs_completed;
     progress_.elapsed_seconds = saved.elapsed_seconds;
-    progress_.training_cost = saved.training_cost;
+    if (!saved.training_cost.constraint_cumulative_costs.empty()) progress_.training_cost = saved.training_cost;
     checkpoint_epochs_ = saved.epochs_completed;
     if (mpi_.is_root()) progress_csv_.emplace(ProgressCsv::resume(directory_.progress(), saved.epochs_completed));
   } else {

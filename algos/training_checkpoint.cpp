@@ -69,8 +69,7 @@ TrainingProgress decode_training_checkpoint(std::string_view payload, const std:
     state.push_back(std::move(entry));
   }
   const int constraints = actor_critic.constraint_count();
-  progress.training_cost = reader.remaining() > 0 ? load_training_cost(reader, constraints)
-                                                  : TrainingCost::for_constraints(constraints);
+  if (reader.remaining() > 0) progress.training_cost = load_training_cost(reader, constraints);
   reader.expect_end();
   try {
     algorithm.restore_state(state);

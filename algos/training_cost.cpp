@@ -44,11 +44,14 @@ void save_training_cost(const TrainingCost& cost, BinaryWriter& writer) {
 
 TrainingCost load_training_cost(BinaryReader& reader, int constraint_count) {
   reader.expect_section("training cost");
-  TrainingCost cost = TrainingCost::for_constraints(constraint_count);
+  TrainingCost cost;
   cost.cumulative_cost = reader.read_f64("cumulative training cost");
   if (!std::isfinite(cost.cumulative_cost)) reader.fail("the cumulative training cost is not finite");
   const std::uint64_t count = reader.read_u64("training cost constraint count");
-  if (count == 0) return cost;  // none recorded (a progress built without constraints): zeros
+  if (count == 0) return cost;  // none recorded: as saved (the trainer starts them at 0)
+  const double cumulative = cost.cumulative_cost;
+  cost = TrainingCost::for_constraints(constraint_count);
+  cost.cumulative_cost = cumulative;
   if (count != static_cast<std::uint64_t>(constraint_count)) {
     reader.fail("training cost for " + std::to_string(count) + " constraints, the run has " +
                 std::to_string(constraint_count));

@@ -39,7 +39,8 @@ struct TrainingCost {
 
 void save_training_cost(const TrainingCost& cost, BinaryWriter& writer);
 // Reads what save_training_cost wrote for `constraint_count` constraints (a
-// record without per-constraint entries gives zeros for them); fails on the reader otherwise.
+// record without per-constraint entries reads back as saved, without them);
+// fails on the reader otherwise.
 TrainingCost load_training_cost(BinaryReader& reader, int constraint_count);
 
 }  // namespace bsg

@@ -18,7 +18,7 @@ ConfigurationResults two_constraint_configuration(std::vector<std::vector<double
   ConfigurationResults config;
   config.env_id = "SafetyBallRun-v0";
   config.alg = Algorithm::cpo;
-  config.config_name = "c";
+  config.config_name = std::string("two_constraints");
   config.cost_limit = 25.0;
   config.constraint_limits = {20.0, 5.0};
   for (std::size_t s = 0; s < seed_costs.size(); ++s) {
