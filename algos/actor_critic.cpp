@@ -1,5 +1,8 @@
 #include "algos/actor_critic.h"
 
+#include <algorithm>
+#include <string>
+
 namespace bsg {
 namespace {
 
@@ -70,7 +73,14 @@ ActorCritic::ActorCritic(int observation_size, int action_size, const RunConfig&
                  value_adam_options(config)),
       observation_normalizer(observation_size, observation_normalizer_options(config)),
       return_normalizer(1, return_normalizer_options(config)),
-      standardize_observations(config.use_standardized_obs) {}
+      standardize_observations(config.use_standardized_obs) {
+  const int constraints = std::max<int>(1, static_cast<int>(config.constraints.size()));
+  extra_cost_values.reserve(static_cast<std::size_t>(constraints - 1));
+  for (int i = 1; i < constraints; ++i) {
+    extra_cost_values.emplace_back(observation_size, config.hidden_sizes, init_rng, init_options(config),
+                                   value_adam_options(config));
+  }
+}
 
 void ActorCritic::normalize_observation(const Eigen::Ref<const Eigen::VectorXd>& raw,
                                         Eigen::Ref<Eigen::VectorXd> normalized) const {
@@ -94,13 +104,16 @@ void ActorCritic::broadcast_from_root(const MpiContext& mpi) {
   mpi.broadcast_from_root(policy.mean_net().mutable_parameters());
   broadcast_value_function(value, mpi);
   broadcast_value_function(cost_value, mpi);
+  for (ValueFunction& extra : extra_cost_values) broadcast_value_function(extra, mpi);
   broadcast_normalizer(observation_normalizer, mpi);
   broadcast_normalizer(return_normalizer, mpi);
 }
 
 double ActorCritic::parameter_sum() const {
-  return policy.mean_net().parameters().sum() + value.net().parameters().sum() +
-         cost_value.net().parameters().sum();
+  double sum = policy.mean_net().parameters().sum() + value.net().parameters().sum() +
+               cost_value.net().parameters().sum();
+  for (const ValueFunction& extra : extra_cost_values) sum += extra.net().parameters().sum();
+  return sum;
 }
 
 const char* ActorCritic::first_non_finite() const {
@@ -112,6 +125,12 @@ const char* ActorCritic::first_non_finite() const {
   }
   if (!cost_value.optimizer().first_moment().allFinite() || !cost_value.optimizer().second_moment().allFinite()) {
     return "cost value-net Adam moments";
+  }
+  for (const ValueFunction& extra : extra_cost_values) {
+    if (!extra.net().parameters().allFinite()) return "cost value-net parameters (constraints 2..m)";
+    if (!extra.optimizer().first_moment().allFinite() || !extra.optimizer().second_moment().allFinite()) {
+      return "cost value-net Adam moments (constraints 2..m)";
+    }
   }
   if (!observation_normalizer.mean().allFinite() || !observation_normalizer.std().allFinite()) {
     return "observation normaliser";
@@ -131,6 +150,11 @@ void ActorCritic::save(BinaryWriter& writer) const {
   save_normalizer(observation_normalizer, writer);
   writer.write_section("return normaliser");
   save_normalizer(return_normalizer, writer);
+  // Only with several constraints, so that a one-constraint checkpoint is unchanged.
+  for (std::size_t i = 0; i < extra_cost_values.size(); ++i) {
+    writer.write_section("cost value net " + std::to_string(i + 2));
+    save_value_function(extra_cost_values[i], writer);
+  }
 }
 
 void ActorCritic::load(BinaryReader& reader) {
@@ -144,6 +168,11 @@ void ActorCritic::load(BinaryReader& reader) {
   load_normalizer(observation_normalizer, reader, "observation normaliser");
   reader.expect_section("return normaliser");
   load_normalizer(return_normalizer, reader, "return normaliser");
+  for (std::size_t i = 0; i < extra_cost_values.size(); ++i) {
+    const std::string name = "cost value net " + std::to_string(i + 2);
+    reader.expect_section(name);
+    load_value_function(extra_cost_values[i], reader, name);
+  }
 }
 
 }  // namespace bsg

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "algos/gaussian_policy.h"
 #include "algos/value_function.h"
@@ -25,18 +26,29 @@
 namespace bsg {
 
 struct ActorCritic {
-  // Draws the initial parameters of policy, V and V_C (in that order) from `init_rng`.
+  // Draws the initial parameters of policy, V and V_C (in that order), then
+  // V_C2..V_Cm, from `init_rng`; m is the config's number of constraints.
   ActorCritic(int observation_size, int action_size, const RunConfig& config, Rng& init_rng);
 
   GaussianPolicy policy;
   ValueFunction value;
-  ValueFunction cost_value;
+  ValueFunction cost_value;  // V_C, constraint 1's (the only one without `constraints:`)
+  // V_C2..V_Cm of constraints 2..m (docs/algorithms.md#several-constraints), drawn
+  // from `init_rng` after the three nets above; empty with one constraint, so
+  // that such a run's numbers and checkpoint are those of a run before they existed.
+  std::vector<ValueFunction> extra_cost_values;
   RunningMeanStd observation_normalizer;
   RunningMeanStd return_normalizer;
   bool standardize_observations = true;
 
   int observation_size() const { return policy.observation_size(); }
   int action_size() const { return policy.action_size(); }
+  int constraint_count() const { return 1 + static_cast<int>(extra_cost_values.size()); }
+  // V_Ci for i = 0..m-1 (0 is cost_value).
+  ValueFunction& cost_value_net(int i) { return i == 0 ? cost_value : extra_cost_values.at(static_cast<std::size_t>(i - 1)); }
+  const ValueFunction& cost_value_net(int i) const {
+    return i == 0 ? cost_value : extra_cost_values.at(static_cast<std::size_t>(i - 1));
+  }
 
   // s_hat = (s - m)/(std + 1e-5) (optionally clipped), or a copy if normalisation is off.
   void normalize_observation(const Eigen::Ref<const Eigen::VectorXd>& raw,

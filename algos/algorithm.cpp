@@ -78,6 +78,86 @@ double per_step_constraint_violation(double mean_episode_cost, double mean_episo
   return (mean_episode_cost - cost_limit) / (mean_episode_length + 1e-8);  // c = (J_C - d) / (L + 1e-8)
 }
 
+std::vector<ConstraintEstimate> constraint_estimates(const PolicyUpdateInputs& inputs, const RunConfig& config) {
+  if (inputs.constraints.empty()) return {ConstraintEstimate{inputs.mean_episode_cost, config.cost_limit}};
+  if (static_cast<int>(inputs.constraints.size()) != inputs.surrogate.constraint_count()) {
+    throw std::invalid_argument("constraint_estimates: " + std::to_string(inputs.constraints.size()) +
+                                " constraints, but the surrogate holds " +
+                                std::to_string(inputs.surrogate.constraint_count()) + " cost advantages");
+  }
+  for (std::size_t i = 0; i < inputs.constraints.size(); ++i) {
+    if (!std::isfinite(inputs.constraints[i].mean_episode_cost)) {
+      throw std::invalid_argument("constraint " + std::to_string(i + 1) + ": mean episode cost J_C" +
+                                  std::to_string(i + 1) + " is not finite (no episode completed this epoch?)");
+    }
+  }
+  return {inputs.constraints.begin(), inputs.constraints.end()};
+}
+
+ConstraintGradients averaged_constraint_gradients(const PolicyUpdateInputs& inputs) {
+  const Eigen::Index num_parameters = inputs.policy.mean_net().num_parameters();
+  const int m = inputs.surrogate.constraint_count();
+  Eigen::VectorXd all((1 + m) * num_parameters);
+  inputs.surrogate.gradient(inputs.policy, 1.0, 0.0, all.head(num_parameters));  // grad L_R
+  std::vector<double> weights(static_cast<std::size_t>(m), 0.0);
+  for (int j = 0; j < m; ++j) {
+    weights[static_cast<std::size_t>(j)] = 1.0;  // grad L_Cj
+    inputs.surrogate.gradient(inputs.policy, 0.0, weights, all.segment((1 + j) * num_parameters, num_parameters));
+    weights[static_cast<std::size_t>(j)] = 0.0;
+  }
+  inputs.mpi.average_in_place(all);  // one allreduce
+  ConstraintGradients gradients;
+  gradients.reward = all.head(num_parameters);
+  gradients.costs = Eigen::Map<const Eigen::MatrixXd>(all.data() + num_parameters, num_parameters, m);
+  return gradients;
+}
+
+Eigen::VectorXd per_step_constraint_violations(std::span<const ConstraintEstimate> constraints,
+                                               double mean_episode_length) {
+  Eigen::VectorXd c(static_cast<Eigen::Index>(constraints.size()));
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    c[static_cast<Eigen::Index>(i)] = per_step_constraint_violation(constraints[i].mean_episode_cost,
+                                                                    mean_episode_length, constraints[i].limit);
+  }
+  return c;
+}
+
+Eigen::VectorXd averaged_cost_surrogates(const SurrogateValues& values, int constraint_count, const MpiContext& mpi) {
+  Eigen::VectorXd averaged =
+      Eigen::Map<const Eigen::VectorXd>(values.cost_surrogates.data(), constraint_count);
+  mpi.average_in_place(averaged);
+  return averaged;
+}
+
+ConstrainedEvaluator all_constraints_evaluator(const PolicyUpdateInputs& inputs, const Eigen::VectorXd& theta_old,
+                                               Eigen::VectorXd averaged_cost_surrogates_old,
+                                               Eigen::VectorXd allowances) {
+  return [&inputs, &theta_old, old = std::move(averaged_cost_surrogates_old),
+          allowance = std::move(allowances)](const Eigen::Ref<const Eigen::VectorXd>& step) {
+    inputs.policy.mean_net().set_parameters(theta_old + step);
+    const SurrogateValues values = inputs.surrogate.evaluate(inputs.policy);
+    const Eigen::VectorXd cost = averaged_cost_surrogates(values, static_cast<int>(old.size()), inputs.mpi);
+    const double margin = (cost - old - allowance).maxCoeff();  // <= 0: every D_j <= max(-c_j, 0)
+    return ConstrainedTrial{-values.reward_surrogate, margin, values.kl};
+  };
+}
+
+LineSearchResult constrained_line_search_all(const PolicyUpdateInputs& inputs, const PolicyUpdateStart& start,
+                                             const Eigen::VectorXd& full_step, const Eigen::VectorXd& violations,
+                                             bool require_reward_improvement, const RunConfig& config) {
+  ConstrainedLineSearchInputs search_inputs;
+  search_inputs.reward_loss_old = -start.before.reward_surrogate;
+  search_inputs.cost_surrogate_old = 0.0;  // the evaluator returns the largest margin, accepted if <= 0
+  search_inputs.constraint_violation = 0.0;
+  search_inputs.require_reward_improvement = require_reward_improvement;
+  const int m = static_cast<int>(violations.size());
+  return constrained_line_search(
+      full_step, search_inputs,
+      all_constraints_evaluator(inputs, start.theta_old, averaged_cost_surrogates(start.before, m, inputs.mpi),
+                                (-violations).cwiseMax(0.0)),
+      inputs.mpi, line_search_options(config));
+}
+
 void check_mean_episode_cost(const PolicyUpdateInputs& inputs, std::string_view algorithm) {
   if (!std::isfinite(inputs.mean_episode_cost)) {
     throw std::invalid_argument(std::string(algorithm) + ": mean_episode_cost (J_C) is not finite: " +
@@ -94,16 +174,41 @@ PolicyUpdateStart begin_policy_update(const PolicyUpdateInputs& inputs) {
 }
 
 double weighted_surrogate_loss(const SurrogateValues& values, double reward_weight, double cost_weight) {
-  return -(reward_weight * values.reward_surrogate + cost_weight * values.cost_surrogate);
+  return weighted_surrogate_loss(values, reward_weight, std::span<const double>(&cost_weight, 1));
+}
+
+double weighted_surrogate_loss(const SurrogateValues& values, double reward_weight,
+                               std::span<const double> cost_weights) {
+  double weighted = reward_weight * values.reward_surrogate;
+  for (std::size_t j = 0; j < cost_weights.size(); ++j) weighted += cost_weights[j] * values.cost_surrogates[j];
+  return -weighted;
+}
+
+LossEvaluator surrogate_loss_evaluator(const PolicyUpdateInputs& inputs, const Eigen::VectorXd& theta_old,
+                                       double reward_weight, std::vector<double> cost_weights) {
+  return [&inputs, &theta_old, reward_weight, weights = std::move(cost_weights)](
+             const Eigen::Ref<const Eigen::VectorXd>& step) {
+    inputs.policy.mean_net().set_parameters(theta_old + step);
+    const SurrogateValues values = inputs.surrogate.evaluate(inputs.policy);
+    return LossAndKl{weighted_surrogate_loss(values, reward_weight, weights), values.kl};
+  };
+}
+
+std::vector<NamedScalar> common_diagnostics(const PolicyUpdateInputs& inputs, const SurrogateValues& before,
+                                            double reward_weight, std::span<const double> cost_weights) {
+  const SurrogateValues after = inputs.surrogate.evaluate(inputs.policy);
+  const double loss_before = weighted_surrogate_loss(before, reward_weight, cost_weights);
+  const double loss_after = weighted_surrogate_loss(after, reward_weight, cost_weights);
+  return {{"Loss/Pi", loss_before},
+          {"Loss/DeltaPi", loss_after - loss_before},
+          {"Entropy", inputs.policy.entropy_per_dimension()},
+          {"KL", after.kl},
+          {"PolicyRatio", after.mean_ratio}};
 }
 
 LossEvaluator surrogate_loss_evaluator(const PolicyUpdateInputs& inputs, const Eigen::VectorXd& theta_old,
                                        double reward_weight, double cost_weight) {
-  return [&inputs, &theta_old, reward_weight, cost_weight](const Eigen::Ref<const Eigen::VectorXd>& step) {
-    inputs.policy.mean_net().set_parameters(theta_old + step);  // theta_j = theta_old + 0.8^j Delta
-    const SurrogateValues values = inputs.surrogate.evaluate(inputs.policy);
-    return LossAndKl{weighted_surrogate_loss(values, reward_weight, cost_weight), values.kl};
-  };
+  return surrogate_loss_evaluator(inputs, theta_old, reward_weight, std::vector<double>{cost_weight});
 }
 
 ConstrainedEvaluator constrained_evaluator(const PolicyUpdateInputs& inputs, const Eigen::VectorXd& theta_old) {
@@ -116,14 +221,7 @@ ConstrainedEvaluator constrained_evaluator(const PolicyUpdateInputs& inputs, con
 
 std::vector<NamedScalar> common_diagnostics(const PolicyUpdateInputs& inputs, const SurrogateValues& before,
                                             double reward_weight, double cost_weight) {
-  const SurrogateValues after = inputs.surrogate.evaluate(inputs.policy);
-  const double loss_before = weighted_surrogate_loss(before, reward_weight, cost_weight);
-  const double loss_after = weighted_surrogate_loss(after, reward_weight, cost_weight);
-  return {{"Loss/Pi", loss_before},
-          {"Loss/DeltaPi", loss_after - loss_before},
-          {"Entropy", inputs.policy.entropy_per_dimension()},
-          {"KL", after.kl},
-          {"PolicyRatio", after.mean_ratio}};
+  return common_diagnostics(inputs, before, reward_weight, std::span<const double>(&cost_weight, 1));
 }
 
 void TrustRegionAlgorithm::restore_state(std::span<const NamedScalar> saved) {

@@ -39,14 +39,26 @@ struct NamedScalar {
   bool operator==(const NamedScalar&) const = default;
 };
 
+// One constraint as an update sees it (docs/algorithms.md#several-constraints).
+struct ConstraintEstimate {
+  double mean_episode_cost = 0.0;  // J_Ci: pooled mean undiscounted cost of this epoch's completed episodes
+  double limit = 0.0;              // d_i
+};
+
 // What an update needs. All references must outlive the call.
 struct PolicyUpdateInputs {
   GaussianPolicy& policy;       // theta is replaced by theta_old + accepted step
-  PolicySurrogate& surrogate;   // this rank's batch: normalised obs, actions, old log-probs, A, A^C
-  double mean_episode_cost;     // J_C: pooled mean undiscounted cost of the episodes completed this epoch
+  PolicySurrogate& surrogate;   // this rank's batch: normalised obs, actions, old log-probs, A, A^C1..A^Cm
+  double mean_episode_cost;     // J_C: constraint 1's J_Ci (the only one without `constraints:`)
   double mean_episode_length;   // L: pooled mean length of the same episodes
   const MpiContext& mpi;
+  // All m constraints in the surrogate's order; empty: the single constraint
+  // {mean_episode_cost, cost_limit}. constraint_estimates() gives them either way.
+  std::span<const ConstraintEstimate> constraints = {};
 };
+
+// The update's constraints: inputs.constraints, or the single {J_C, cost_limit}.
+std::vector<ConstraintEstimate> constraint_estimates(const PolicyUpdateInputs& inputs, const RunConfig& config);
 
 // Diagnostics of one update, in the fixed order of diagnostic_names(). The
 // first kCommonDiagnosticCount entries are the common columns every algorithm
@@ -128,6 +140,29 @@ struct PolicyGradients {
 };
 PolicyGradients averaged_policy_gradients(const PolicyUpdateInputs& inputs);
 
+// g and B = [b_1 .. b_m] (P x m, b_j = avg grad L_Cj) with one allreduce of length (1 + m) P.
+struct ConstraintGradients {
+  Eigen::VectorXd reward;  // g
+  Eigen::MatrixXd costs;   // B
+};
+ConstraintGradients averaged_constraint_gradients(const PolicyUpdateInputs& inputs);
+
+// c_i = (J_Ci - d_i) / (L + 1e-8) for every constraint (per_step_constraint_violation).
+Eigen::VectorXd per_step_constraint_violations(std::span<const ConstraintEstimate> constraints,
+                                               double mean_episode_length);
+
+// L_Cj of a surrogate evaluation averaged over ranks (m values, one allreduce).
+Eigen::VectorXd averaged_cost_surrogates(const SurrogateValues& values, int constraint_count, const MpiContext& mpi);
+
+// Line search B's callable for m constraints: l_R and KL as constrained_evaluator,
+// and in place of L_C the largest margin max_j (L_Cj(theta) - L_Cj_old - allowance_j)
+// after averaging L_Cj over ranks (collective), so that the search, given
+// cost_surrogate_old = 0 and c = 0, accepts a trial only if every constraint's
+// surrogate rose by at most its allowance max(-c_j, 0).
+ConstrainedEvaluator all_constraints_evaluator(const PolicyUpdateInputs& inputs, const Eigen::VectorXd& theta_old,
+                                               Eigen::VectorXd averaged_cost_surrogates_old,
+                                               Eigen::VectorXd allowances);
+
 // theta <- theta_old + step if the search accepted a trial, else theta <-
 // theta_old exactly (bit-identical; no "+ 0" which could flip a -0.0).
 void apply_line_search_result(GaussianPolicy& policy, const Eigen::VectorXd& theta_old,
@@ -149,6 +184,12 @@ struct PolicyUpdateStart {
 };
 PolicyUpdateStart begin_policy_update(const PolicyUpdateInputs& inputs);
 
+// Line search B over every constraint: with all_constraints_evaluator, L_Cj(theta_old)
+// from start.before and the allowances max(-c_j, 0) of the violations c.
+LineSearchResult constrained_line_search_all(const PolicyUpdateInputs& inputs, const PolicyUpdateStart& start,
+                                             const Eigen::VectorXd& full_step, const Eigen::VectorXd& violations,
+                                             bool require_reward_improvement, const RunConfig& config);
+
 // Line search A's callable for the loss l = -(reward_weight L_R + cost_weight L_C)
 // at theta_old + step (TRPO, PDO: weights (1, 0); TRPO-L: 1/(1+lambda), -lambda/(1+lambda)).
 LossEvaluator surrogate_loss_evaluator(const PolicyUpdateInputs& inputs, const Eigen::VectorXd& theta_old,
@@ -158,6 +199,15 @@ ConstrainedEvaluator constrained_evaluator(const PolicyUpdateInputs& inputs, con
 
 // The loss l = -(reward_weight L_R + cost_weight L_C) of a surrogate evaluation.
 double weighted_surrogate_loss(const SurrogateValues& values, double reward_weight, double cost_weight);
+// With one weight per constraint: l = -(w_R L_R + sum_j w_j L_Cj).
+double weighted_surrogate_loss(const SurrogateValues& values, double reward_weight,
+                               std::span<const double> cost_weights);
+// Line search A's callable for that loss.
+LossEvaluator surrogate_loss_evaluator(const PolicyUpdateInputs& inputs, const Eigen::VectorXd& theta_old,
+                                       double reward_weight, std::vector<double> cost_weights);
+// The five common columns for that loss.
+std::vector<NamedScalar> common_diagnostics(const PolicyUpdateInputs& inputs, const SurrogateValues& before,
+                                            double reward_weight, std::span<const double> cost_weights);
 
 // The five common columns, evaluated after the step has been applied: Loss/Pi
 // is the weighted loss at theta_old (`before`), Loss/DeltaPi the change at the

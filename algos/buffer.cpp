@@ -37,24 +37,58 @@ Buffer::Buffer(Eigen::Index capacity, int observation_size, int action_size, Buf
                                 std::to_string(options.gamma) + ", " + std::to_string(options.lam) + ", " +
                                 std::to_string(options.lam_c));
   }
+  if (options.constraint_count < 1) {
+    throw std::invalid_argument("Buffer: constraint_count must be at least 1, got " +
+                                std::to_string(options.constraint_count));
+  }
   observations_.setZero(capacity, observation_size);
   actions_.setZero(capacity, action_size);
-  for (Eigen::VectorXd* v : {&rewards_, &costs_, &values_, &cost_values_, &log_probs_, &advantages_,
-                             &cost_advantages_, &value_targets_, &cost_value_targets_, &discounted_returns_}) {
+  for (Eigen::VectorXd* v : {&rewards_, &values_, &log_probs_, &advantages_, &value_targets_, &discounted_returns_}) {
     v->setZero(capacity);
   }
+  for (Eigen::MatrixXd* m : {&costs_, &cost_values_, &cost_advantages_, &cost_value_targets_}) {
+    m->setZero(capacity, options.constraint_count);
+  }
+  epoch_constraint_costs_.setZero(options.constraint_count);
+  current_episode_.constraint_costs.assign(static_cast<std::size_t>(options.constraint_count), 0.0);
 }
 
 void Buffer::reset() {
   size_ = 0;
   path_start_ = 0;
-  current_episode_ = EpisodeStats{};
+  start_episode();
   episodes_.clear();
+  epoch_cost_ = 0.0;
+  epoch_constraint_costs_.setZero();
+}
+
+void Buffer::start_episode() {
+  current_episode_.episode_return = 0.0;
+  current_episode_.episode_cost = 0.0;
+  current_episode_.episode_length = 0;
+  std::fill(current_episode_.constraint_costs.begin(), current_episode_.constraint_costs.end(), 0.0);
 }
 
 void Buffer::store(const Eigen::Ref<const Eigen::VectorXd>& observation,
                    const Eigen::Ref<const Eigen::VectorXd>& action, double reward, double cost, double value,
                    double cost_value, double log_prob) {
+  check_single_constraint("store");
+  const Eigen::Matrix<double, 1, 1> costs(cost);
+  const Eigen::Matrix<double, 1, 1> cost_values(cost_value);
+  store(observation, action, reward, cost, costs, value, cost_values, log_prob);
+}
+
+void Buffer::check_single_constraint(const char* where) const {
+  if (constraint_count() != 1) {
+    throw std::invalid_argument(std::string("Buffer::") + where + ": the scalar form serves one constraint, the buffer has " +
+                                std::to_string(constraint_count()));
+  }
+}
+
+void Buffer::store(const Eigen::Ref<const Eigen::VectorXd>& observation,
+                   const Eigen::Ref<const Eigen::VectorXd>& action, double reward, double cost,
+                   const Eigen::Ref<const Eigen::VectorXd>& constraint_costs, double value,
+                   const Eigen::Ref<const Eigen::VectorXd>& cost_values, double log_prob) {
   if (full()) {
     throw std::length_error("Buffer::store: buffer is full (" + std::to_string(capacity()) + " steps)");
   }
@@ -66,21 +100,41 @@ void Buffer::store(const Eigen::Ref<const Eigen::VectorXd>& observation,
     throw std::invalid_argument("Buffer::store: action has " + std::to_string(action.size()) +
                                 " entries, expected " + std::to_string(actions_.cols()));
   }
+  if (constraint_costs.size() != costs_.cols() || cost_values.size() != costs_.cols()) {
+    throw std::invalid_argument("Buffer::store: " + std::to_string(constraint_costs.size()) + " constraint costs and " +
+                                std::to_string(cost_values.size()) + " cost values, expected " +
+                                std::to_string(costs_.cols()) + " of each");
+  }
   observations_.row(size_) = observation.transpose();
   actions_.row(size_) = action.transpose();
   rewards_[size_] = reward;
-  costs_[size_] = cost;
+  costs_.row(size_) = constraint_costs.transpose();
   values_[size_] = value;
-  cost_values_[size_] = cost_value;
+  cost_values_.row(size_) = cost_values.transpose();
   log_probs_[size_] = log_prob;
   ++size_;
   current_episode_.episode_return += reward;
   current_episode_.episode_cost += cost;
   ++current_episode_.episode_length;
+  epoch_cost_ += cost;
+  for (Eigen::Index i = 0; i < constraint_costs.size(); ++i) {
+    current_episode_.constraint_costs[static_cast<std::size_t>(i)] += constraint_costs[i];
+    epoch_constraint_costs_[i] += constraint_costs[i];
+  }
 }
 
 void Buffer::finish_path(double last_value, double last_cost_value, std::optional<double> reward_scale_std,
                          PathEnd end) {
+  check_single_constraint("finish_path");
+  finish_path(last_value, Eigen::Matrix<double, 1, 1>(last_cost_value), reward_scale_std, end);
+}
+
+void Buffer::finish_path(double last_value, const Eigen::Ref<const Eigen::VectorXd>& last_cost_values,
+                         std::optional<double> reward_scale_std, PathEnd end) {
+  if (last_cost_values.size() != costs_.cols()) {
+    throw std::invalid_argument("Buffer::finish_path: " + std::to_string(last_cost_values.size()) +
+                                " bootstrap cost values, expected " + std::to_string(costs_.cols()));
+  }
   const Eigen::Index start = path_start_;
   const Eigen::Index length = size_ - path_start_;
   if (length == 0) throw std::logic_error("Buffer::finish_path: the current path is empty");
@@ -101,10 +155,12 @@ void Buffer::finish_path(double last_value, double last_cost_value, std::optiona
                         advantages_.segment(start, length));
   value_targets_.segment(start, length) = advantages_.segment(start, length) + values_.segment(start, length);  // R_t
 
-  discounted_advantages(costs_.segment(start, length), cost_values_.segment(start, length), last_cost_value, gamma,
-                        options_.lam_c, cost_advantages_.segment(start, length));
-  cost_value_targets_.segment(start, length) =
-      cost_advantages_.segment(start, length) + cost_values_.segment(start, length);  // R^C_t
+  for (Eigen::Index i = 0; i < costs_.cols(); ++i) {  // each constraint's own GAE
+    discounted_advantages(costs_.col(i).segment(start, length), cost_values_.col(i).segment(start, length),
+                          last_cost_values[i], gamma, options_.lam_c, cost_advantages_.col(i).segment(start, length));
+    cost_value_targets_.col(i).segment(start, length) =
+        cost_advantages_.col(i).segment(start, length) + cost_values_.col(i).segment(start, length);  // R^Ci_t
+  }
 
   // G_t = sum_l gamma^l r_t+l over raw rewards followed by v_last (Q5).
   double running_return = last_value;
@@ -114,7 +170,7 @@ void Buffer::finish_path(double last_value, double last_cost_value, std::optiona
   }
 
   if (end == PathEnd::episode_end) episodes_.push_back(current_episode_);
-  current_episode_ = EpisodeStats{};
+  start_episode();
   path_start_ = size_;
 }
 

@@ -11,6 +11,10 @@
 //   gamma             0.99, discount for rewards AND costs
 //   lam               0.95, GAE lambda for rewards
 //   lam_c             0.95, GAE lambda for costs
+//   constraint_count  m, the number of constraints (docs/algorithms.md#several-constraints):
+//                     each has its own cost column c_i,t, cost values, GAE
+//                     advantages and targets; m = 1 (the default) is the
+//                     single constraint on the environment's cost
 #pragma once
 
 #include <Eigen/Core>
@@ -23,13 +27,15 @@ struct BufferOptions {
   double gamma = 0.99;
   double lam = 0.95;
   double lam_c = 0.95;
+  int constraint_count = 1;
 };
 
 // One completed episode, raw (unscaled, undiscounted) sums.
 struct EpisodeStats {
   double episode_return = 0.0;  // EpRet
-  double episode_cost = 0.0;    // EpCosts
+  double episode_cost = 0.0;    // EpCosts: the environment's cost
   int episode_length = 0;       // EpLen
+  std::vector<double> constraint_costs{};  // J_Ci of this episode, one per constraint (m = 1: episode_cost)
 };
 
 // How a path ended: a finished episode (terminal or time-out; its statistics
@@ -48,8 +54,13 @@ class Buffer {
 
   // Appends step t: raw observation, unclipped action, raw reward and cost,
   // V(s_t), V_C(s_t) and log pi(a_t|s_t). Throws when full or on size mismatch.
+  // With one constraint only: its cost is the environment's.
   void store(const Eigen::Ref<const Eigen::VectorXd>& observation, const Eigen::Ref<const Eigen::VectorXd>& action,
              double reward, double cost, double value, double cost_value, double log_prob);
+  // Any m: the environment's cost, then the m constraint costs c_i,t and values V_Ci(s_t).
+  void store(const Eigen::Ref<const Eigen::VectorXd>& observation, const Eigen::Ref<const Eigen::VectorXd>& action,
+             double reward, double cost, const Eigen::Ref<const Eigen::VectorXd>& constraint_costs, double value,
+             const Eigen::Ref<const Eigen::VectorXd>& cost_values, double log_prob);
 
   // Closes the current path with bootstrap values (v_last, c_last) (0, 0 on a
   // true terminal). If `reward_scale_std` is set, rewards are scaled as
@@ -58,6 +69,9 @@ class Buffer {
   // if `end` is episode_end.
   void finish_path(double last_value, double last_cost_value, std::optional<double> reward_scale_std,
                    PathEnd end);
+  // The same with one bootstrap cost value per constraint.
+  void finish_path(double last_value, const Eigen::Ref<const Eigen::VectorXd>& last_cost_values,
+                   std::optional<double> reward_scale_std, PathEnd end);
 
   Eigen::Index capacity() const { return observations_.rows(); }
   Eigen::Index size() const { return size_; }
@@ -73,24 +87,41 @@ class Buffer {
   const Eigen::MatrixXd& observations() const { return observations_; }    // N x d_o, raw
   const Eigen::MatrixXd& actions() const { return actions_; }              // N x d_a
   const Eigen::VectorXd& rewards() const { return rewards_; }              // raw r_t
-  const Eigen::VectorXd& costs() const { return costs_; }                  // raw c_t
   const Eigen::VectorXd& values() const { return values_; }                // V_t
-  const Eigen::VectorXd& cost_values() const { return cost_values_; }      // V_C,t
   const Eigen::VectorXd& log_probs() const { return log_probs_; }          // log pi_old
   const Eigen::VectorXd& advantages() const { return advantages_; }        // A_t
-  const Eigen::VectorXd& cost_advantages() const { return cost_advantages_; }  // A^C_t
   const Eigen::VectorXd& value_targets() const { return value_targets_; }      // R_t = A_t + V_t
-  const Eigen::VectorXd& cost_value_targets() const { return cost_value_targets_; }  // R^C_t
   const Eigen::VectorXd& discounted_returns() const { return discounted_returns_; }  // G_t
+  // Per constraint: N x m, column i for constraint i.
+  int constraint_count() const { return static_cast<int>(costs_.cols()); }
+  const Eigen::MatrixXd& constraint_costs() const { return costs_; }                    // raw c_i,t
+  const Eigen::MatrixXd& constraint_cost_values() const { return cost_values_; }        // V_Ci,t
+  const Eigen::MatrixXd& constraint_cost_advantages() const { return cost_advantages_; }  // A^Ci_t
+  const Eigen::MatrixXd& constraint_cost_value_targets() const { return cost_value_targets_; }  // R^Ci_t
+  // Constraint 0's columns (the only ones with m = 1).
+  Eigen::MatrixXd::ConstColXpr costs() const { return costs_.col(0); }                        // raw c_t
+  Eigen::MatrixXd::ConstColXpr cost_values() const { return cost_values_.col(0); }            // V_C,t
+  Eigen::MatrixXd::ConstColXpr cost_advantages() const { return cost_advantages_.col(0); }    // A^C_t
+  Eigen::MatrixXd::ConstColXpr cost_value_targets() const { return cost_value_targets_.col(0); }  // R^C_t
+  // The environment's cost summed over every step stored this epoch (complete
+  // episodes or not), and each constraint's likewise: the training cost.
+  double epoch_cost() const { return epoch_cost_; }
+  const Eigen::VectorXd& epoch_constraint_costs() const { return epoch_constraint_costs_; }
 
   const BufferOptions& options() const { return options_; }
 
  private:
+  void start_episode();  // zeroes current_episode_ (keeping its m-entry vector)
+  void check_single_constraint(const char* where) const;
+
   BufferOptions options_;
   Eigen::MatrixXd observations_;
   Eigen::MatrixXd actions_;
-  Eigen::VectorXd rewards_, costs_, values_, cost_values_, log_probs_;
-  Eigen::VectorXd advantages_, cost_advantages_, value_targets_, cost_value_targets_, discounted_returns_;
+  Eigen::VectorXd rewards_, values_, log_probs_;
+  Eigen::VectorXd advantages_, value_targets_, discounted_returns_;
+  Eigen::MatrixXd costs_, cost_values_, cost_advantages_, cost_value_targets_;  // N x m
+  double epoch_cost_ = 0.0;
+  Eigen::VectorXd epoch_constraint_costs_;
   Eigen::Index size_ = 0;
   Eigen::Index path_start_ = 0;
   EpisodeStats current_episode_;

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "algos/constraint_costs.h"
+#include "algos/constraint_qp.h"
 #include "algos/natural_gradient.h"
 #include "algos/trpo.h"
 
@@ -134,18 +136,99 @@ CpoStep cpo_step(const LinearOperator& fisher, const Eigen::Ref<const Eigen::Vec
   return step;
 }
 
+Eigen::MatrixXd conjugate_gradient_columns(const LinearOperator& fisher, const Eigen::Ref<const Eigen::MatrixXd>& costs,
+                                           const ConjugateGradientOptions& options) {
+  Eigen::MatrixXd directions(costs.rows(), costs.cols());
+  for (Eigen::Index j = 0; j < costs.cols(); ++j) {
+    directions.col(j) = conjugate_gradient(fisher, costs.col(j), options).solution;  // p_j = CG(F, b_j)
+  }
+  return directions;
+}
+
+std::vector<std::string> constraint_multiplier_names(int constraint_count) {
+  std::vector<std::string> names;
+  for (int j = 1; j <= constraint_count; ++j) names.push_back("constraint_" + std::to_string(j) + "_nu");
+  return names;
+}
+
 Cpo::Cpo(const RunConfig& config) : TrustRegionAlgorithm(config) {}
 
 std::vector<std::string> Cpo::diagnostic_names() const {
   std::vector<std::string> names = common_diagnostic_names();
   for (std::string& name : trpo_diagnostic_names()) names.push_back(std::move(name));
-  for (std::string& name : cpo_diagnostic_names()) names.push_back(std::move(name));
+  if (constraint_count(config()) == 1) {
+    for (std::string& name : cpo_diagnostic_names()) names.push_back(std::move(name));
+    return names;
+  }
+  for (const char* name : {"Misc/cost_gradient_norm", "Misc/q", "Misc/Lambda_star", "Misc/OptimCase"}) {
+    names.emplace_back(name);
+  }
+  for (std::string& name : constraint_multiplier_names(constraint_count(config()))) names.push_back(std::move(name));
   return names;
 }
 
+SeveralConstraintsStart begin_several_constraints_update(const PolicyUpdateInputs& inputs,
+                                                         const std::vector<ConstraintEstimate>& constraints,
+                                                         const LinearOperator& fisher, const RunConfig& config) {
+  SeveralConstraintsStart begun;
+  begun.violations = per_step_constraint_violations(constraints, inputs.mean_episode_length);  // c_j
+  begun.start = begin_policy_update(inputs);
+  begun.gradients = averaged_constraint_gradients(inputs);  // g, B
+  begun.natural = natural_gradient_step(fisher, begun.gradients.reward, config.target_kl,
+                                        conjugate_gradient_options(config));  // x, q, eta, Delta_R
+  return begun;
+}
+
+std::vector<NamedScalar> several_constraints_diagnostics(const PolicyUpdateInputs& inputs,
+                                                         const SeveralConstraintsStart& begun,
+                                                         const LineSearchResult& search,
+                                                         const std::vector<NamedScalar>& extra,
+                                                         const Eigen::VectorXd& nu) {
+  std::vector<NamedScalar> diagnostics = common_diagnostics(inputs, begun.start.before, 1.0, 0.0);
+  append_trpo_diagnostics(diagnostics, search, begun.natural.step_size, begun.gradients.reward.norm(),
+                          begun.natural.x_fisher_x, begun.natural.direction.norm());
+  diagnostics.push_back({"Misc/cost_gradient_norm", begun.gradients.costs.norm()});  // Frobenius
+  diagnostics.push_back({"Misc/q", begun.natural.x_fisher_x});
+  diagnostics.insert(diagnostics.end(), extra.begin(), extra.end());
+  const std::vector<std::string> nu_names = constraint_multiplier_names(static_cast<int>(nu.size()));
+  for (Eigen::Index j = 0; j < nu.size(); ++j) diagnostics.push_back({nu_names[static_cast<std::size_t>(j)], nu[j]});
+  return diagnostics;
+}
+
+PolicyUpdateResult Cpo::update_several(const PolicyUpdateInputs& inputs,
+                                       const std::vector<ConstraintEstimate>& constraints) {
+  FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
+                             fisher_vector_product_options(config()));
+  const LinearOperator fisher_operator = as_linear_operator(fisher);
+  const SeveralConstraintsStart begun = begin_several_constraints_update(inputs, constraints, fisher_operator, config());
+  const Eigen::MatrixXd P =
+      conjugate_gradient_columns(fisher_operator, begun.gradients.costs, conjugate_gradient_options(config()));  // p_j
+  const Eigen::VectorXd r = P.transpose() * begun.gradients.reward;  // r_j = g^T p_j
+  const Eigen::MatrixXd S = begun.gradients.costs.transpose() * P;   // S_jk = b_j^T p_k
+  const CpoDualSolution dual = solve_cpo_dual(begun.natural.x_fisher_x, r, S, begun.violations, config().target_kl);
+  // Delta = (x - sum_j nu_j p_j) / lambda*; infeasible: -sum_j nu_j p_j scaled to the trust region.
+  const Eigen::VectorXd full_step =
+      dual.direction_scale * (dual.reward_weight * begun.natural.direction - P * dual.nu);
+  if (!full_step.allFinite()) {
+    throw std::runtime_error("cpo: the step with " + std::to_string(constraints.size()) +
+                             " constraints is not finite (q=" + std::to_string(begun.natural.x_fisher_x) + ")");
+  }
+  const LineSearchResult search = constrained_line_search_all(inputs, begun.start, full_step, begun.violations,
+                                                              static_cast<int>(dual.optim_case) >= 2, config());
+  apply_line_search_result(inputs.policy, begun.start.theta_old, search);
+
+  PolicyUpdateResult result;
+  result.diagnostics = several_constraints_diagnostics(
+      inputs, begun, search,
+      {{"Misc/Lambda_star", dual.lambda}, {"Misc/OptimCase", static_cast<double>(dual.optim_case)}}, dual.nu);
+  return result;
+}
+
 PolicyUpdateResult Cpo::update(const PolicyUpdateInputs& inputs) {
-  const double c = per_step_constraint_violation(inputs.mean_episode_cost, inputs.mean_episode_length,
-                                                 config().cost_limit);  // c = (J_C - d) / (L + 1e-8)
+  const std::vector<ConstraintEstimate> constraints = constraint_estimates(inputs, config());
+  if (constraints.size() > 1) return update_several(inputs, constraints);
+  const double c = per_step_constraint_violation(constraints.front().mean_episode_cost, inputs.mean_episode_length,
+                                                 constraints.front().limit);  // c = (J_C - d) / (L + 1e-8)
   const PolicyUpdateStart start = begin_policy_update(inputs);          // l_R(theta_old), L_C(theta_old)
   const PolicyGradients gradients = averaged_policy_gradients(inputs);  // g, b
 

@@ -18,12 +18,20 @@
 // Parameters (RunConfig): target_kl 1e-4, cg_iters 10, cg_damping 0.1,
 // backtrack_budget 20, backtrack_decay 0.8, kl_accept_factor 1.5, cost_limit 25,
 // cpo_r_sign original, cpo_clamp_a false.
+//
+// With m >= 2 constraints (docs/algorithms.md#several-constraints) the update solves the
+// trust-region problem with every constraint through its dual in m + 1
+// variables (constraint_qp.h, the true dual: cpo_r_sign does not apply), with
+// c_j = (J_Cj - d_j) / (L + 1e-8), b_j = avg grad L_Cj and p_j = CG(F, b_j);
+// the line search accepts a trial only if every L_Cj passes the test of
+// docs/algorithms.md#constrained-line-search. With one constraint the update is the one above.
 #pragma once
 
 #include <Eigen/Core>
 
 #include "algos/algorithm.h"
 #include "algos/conjugate_gradient.h"
+#include "algos/natural_gradient.h"
 #include "common/run_config.h"
 
 namespace bsg {
@@ -66,6 +74,33 @@ CpoStep cpo_step(const LinearOperator& fisher, const Eigen::Ref<const Eigen::Vec
                  const Eigen::Ref<const Eigen::VectorXd>& cost_gradient, double constraint_violation,
                  const CpoStepOptions& options);
 
+// P = [CG(F, b_1) .. CG(F, b_m)], one column per constraint gradient.
+Eigen::MatrixXd conjugate_gradient_columns(const LinearOperator& fisher, const Eigen::Ref<const Eigen::MatrixXd>& costs,
+                                           const ConjugateGradientOptions& options);
+
+// The per-constraint diagnostics of CPO and PCPO with m >= 2: constraint_<j>_nu, j = 1..m.
+std::vector<std::string> constraint_multiplier_names(int constraint_count);
+
+// The first steps CPO and PCPO share with m >= 2 constraints: c_j, theta_old
+// with the surrogates there, g and B, and x = CG(F, g) with q and the TRPO step.
+struct SeveralConstraintsStart {
+  Eigen::VectorXd violations;  // c_j = (J_Cj - d_j) / (L + 1e-8)
+  PolicyUpdateStart start;
+  ConstraintGradients gradients;
+  NaturalGradientStep natural;
+};
+SeveralConstraintsStart begin_several_constraints_update(const PolicyUpdateInputs& inputs,
+                                                         const std::vector<ConstraintEstimate>& constraints,
+                                                         const LinearOperator& fisher, const RunConfig& config);
+
+// Their diagnostics: the common and TRPO columns, cost_gradient_norm = |B|_F, cpo_q,
+// the algorithm's `extra` columns, then constraint_<j>_nu = nu[j].
+std::vector<NamedScalar> several_constraints_diagnostics(const PolicyUpdateInputs& inputs,
+                                                         const SeveralConstraintsStart& begun,
+                                                         const LineSearchResult& search,
+                                                         const std::vector<NamedScalar>& extra,
+                                                         const Eigen::VectorXd& nu);
+
 class Cpo final : public TrustRegionAlgorithm {
  public:
   explicit Cpo(const RunConfig& config);
@@ -73,6 +108,9 @@ class Cpo final : public TrustRegionAlgorithm {
   std::string_view name() const override { return "cpo"; }
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
   std::vector<std::string> diagnostic_names() const override;
+
+ private:
+  PolicyUpdateResult update_several(const PolicyUpdateInputs& inputs, const std::vector<ConstraintEstimate>& constraints);
 };
 
 // The nine CPO columns after the TRPO set (also PCPO's), in docs/algorithms.md#logged-columns order.

@@ -26,13 +26,23 @@ Eigen::VectorXd episode_field(const Buffer& buffer, double (*field)(const Episod
 
 }  // namespace
 
-EpisodeStatistics pool_episode_statistics(const Buffer& buffer, const MpiContext& mpi) {
+EpisodeStatistics pool_episode_statistics(const Buffer& buffer, const MpiContext& mpi, bool per_constraint) {
   EpisodeStatistics stats;
   stats.episode_return =
       pool_statistics(episode_field(buffer, [](const EpisodeStats& e) { return e.episode_return; }), mpi);
   stats.episode_cost = pool_statistics(episode_field(buffer, [](const EpisodeStats& e) { return e.episode_cost; }), mpi);
   stats.episode_length = pool_statistics(
       episode_field(buffer, [](const EpisodeStats& e) { return static_cast<double>(e.episode_length); }), mpi);
+  if (per_constraint) {
+    const std::vector<EpisodeStats>& episodes = buffer.episodes();
+    Eigen::VectorXd values(static_cast<Eigen::Index>(episodes.size()));
+    for (int c = 0; c < buffer.constraint_count(); ++c) {
+      for (std::size_t i = 0; i < episodes.size(); ++i) {
+        values[static_cast<Eigen::Index>(i)] = episodes[i].constraint_costs[static_cast<std::size_t>(c)];
+      }
+      stats.constraint_costs.push_back(pool_statistics(values, mpi));
+    }
+  }
   return stats;
 }
 
@@ -114,11 +124,30 @@ std::vector<NamedScalar> make_epoch_log_row(const EpochLogInputs& in, const MpiC
     add(row, progress_column_name(diagnostics[i].name), i < common ? local_common[i] : diagnostics[i].value);
   }
 
+  if (!in.constraints.empty()) {
+    if (in.training_cost == nullptr || in.training_cost->epochs_over_limit.size() != in.constraints.size()) {
+      throw std::invalid_argument("make_epoch_log_row: the per-constraint columns need the training cost of every constraint");
+    }
+    for (std::size_t i = 0; i < in.constraints.size(); ++i) {
+      const std::string prefix = "constraint_" + std::to_string(i + 1) + "_";
+      const double cumulative = in.training_cost->constraint_cumulative_costs[i];
+      add(row, prefix + "cost", in.constraints[i].mean_episode_cost);
+      add(row, prefix + "limit", in.constraints[i].limit);
+      add(row, prefix + "cumulative_cost", cumulative);
+      add(row, prefix + "cost_rate", TrainingCost::rate(cumulative, in.total_env_steps));
+      add(row, prefix + "epochs_over_limit", static_cast<double>(in.training_cost->epochs_over_limit[i]));
+    }
+  }
+
   const double epoch_seconds = in.collect_seconds + in.update_seconds;
   add(row, "time_collect_s", in.collect_seconds);
   add(row, "time_update_s", in.update_seconds);
   add(row, "time_s", in.elapsed_seconds);
   add(row, "fps", epoch_seconds > 0 ? in.steps_per_epoch / epoch_seconds : 0.0);
+  if (in.training_cost != nullptr) {  // safety during training, trailing so that older readers keep their columns
+    add(row, "cumulative_cost", in.training_cost->cumulative_cost);
+    add(row, "cost_rate", TrainingCost::rate(in.training_cost->cumulative_cost, in.total_env_steps));
+  }
   return row;
 }
 

@@ -27,8 +27,17 @@
 //   pid_i_term = I and pid_d_term = K_D max(0, J_ema - J_ema[k - delay])
 //   after this epoch's update (lambda = max(0, their sum), pid_lagrangian.h)
 //   time_collect_s, time_update_s   this epoch's seconds on rank 0
+//   with `constraints:` (docs/algorithms.md#several-constraints), per constraint i = 1..m:
+//   constraint_<i>_cost     J_Ci, pooled mean episode cost of constraint i this epoch
+//   constraint_<i>_limit    d_i
+//   constraint_<i>_cumulative_cost, constraint_<i>_cost_rate, constraint_<i>_epochs_over_limit
+//                           its safety during training so far (training_cost.h)
+//   (the algorithm's per-constraint multipliers come with its diagnostics:
+//   constraint_<i>_lambda for TRPO-L and PDO, constraint_<i>_nu for CPO and PCPO)
 //   time_s                  seconds of training since the run started (resumes continue it)
 //   fps                     B / seconds of this epoch
+//   cumulative_cost         the environment's cost over every training step so far, all ranks
+//   cost_rate               cumulative_cost / total_env_steps (Safety Gym's cost rate)
 //
 // Rank-local quantities (losses, the common diagnostics) are averaged over
 // ranks; the original's constant columns Misc/Seed, Misc/StopIter and LR are
@@ -42,6 +51,7 @@
 #include "algos/algorithm.h"
 #include "algos/buffer.h"
 #include "algos/epoch_statistics.h"
+#include "algos/training_cost.h"
 #include "algos/value_function.h"
 #include "common/mpi_context.h"
 #include "common/running_mean_std.h"
@@ -54,8 +64,11 @@ struct EpisodeStatistics {
   PooledStatistics episode_return;
   PooledStatistics episode_cost;
   PooledStatistics episode_length;
+  // J_Ci of every constraint; only when `per_constraint` was asked (with
+  // `constraints:`; without, the one constraint's J_C is episode_cost).
+  std::vector<PooledStatistics> constraint_costs{};
 };
-EpisodeStatistics pool_episode_statistics(const Buffer& buffer, const MpiContext& mpi);
+EpisodeStatistics pool_episode_statistics(const Buffer& buffer, const MpiContext& mpi, bool per_constraint = false);
 
 struct EpochLogInputs {
   int epoch = 0;
@@ -68,6 +81,9 @@ struct EpochLogInputs {
   const ValueFitStats* value_fit = nullptr;
   const ValueFitStats* cost_value_fit = nullptr;  // null if V_C is not trained
   const RunningMeanStd* return_normalizer = nullptr;
+  // The per-constraint columns, only with `constraints:` (empty: none).
+  std::span<const ConstraintEstimate> constraints{};
+  const TrainingCost* training_cost = nullptr;  // after this epoch; null: no safety columns
   double collect_seconds = 0.0;
   double update_seconds = 0.0;
   double elapsed_seconds = 0.0;

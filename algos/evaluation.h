@@ -11,9 +11,11 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "algos/actor_critic.h"
+#include "algos/constraint_costs.h"
 #include "common/mpi_context.h"
 #include "envs/env.h"
 
@@ -23,6 +25,8 @@ struct EvaluationEpisode {
   double episode_return = 0.0;  // J
   double episode_cost = 0.0;    // H
   int episode_length = 0;
+  std::vector<double> constraint_costs{};  // H_i per constraint (docs/algorithms.md#several-constraints)
+  std::vector<double> term_costs{};        // each named cost term's episode sum (when asked for)
 };
 
 struct EvaluationSummary {
@@ -30,15 +34,24 @@ struct EvaluationSummary {
   double mean_return = 0.0;                 // J (NaN without episodes)
   double mean_cost = 0.0;                   // H
   double mean_length = 0.0;
+  std::vector<double> mean_constraint_costs{};  // H_i, one per constraint (NaN without episodes)
+  std::vector<std::string> term_names{};        // the environment's cost terms, when asked for
+  std::vector<double> mean_term_costs{};        // each term's mean episode sum
 };
 
 // The episodes of this rank.
+// `costs` gives each episode's constraint costs (default: the one constraint on the environment's cost);
+// with term_count > 0 every episode also sums each of the environment's term_count cost terms.
 std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, const ActorCritic& actor_critic,
-                                                       int num_episodes, std::uint64_t env_seed, int max_ep_len);
+                                                       int num_episodes, std::uint64_t env_seed, int max_ep_len,
+                                                       const StepCostSelector& costs = StepCostSelector(),
+                                                       std::size_t term_count = 0);
 
 // floor(total_episodes / R) episodes per rank, gathered to rank 0 (others get
 // an empty summary). Collective.
 EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_critic, int total_episodes,
-                                  std::int64_t run_seed, int max_ep_len, const MpiContext& mpi);
+                                  std::int64_t run_seed, int max_ep_len, const MpiContext& mpi,
+                                  const StepCostSelector& costs = StepCostSelector(),
+                                  const std::vector<std::string>& term_names = {});
 
 }  // namespace bsg

@@ -10,12 +10,24 @@
 namespace bsg {
 
 SurrogateWeights lagrangian_surrogate_weights(double lagrange_multiplier) {
-  if (!std::isfinite(lagrange_multiplier) || lagrange_multiplier < 0.0) {
-    throw std::invalid_argument("lagrangian_surrogate_weights: lagrange_multiplier must be finite and >= 0, got " +
-                                std::to_string(lagrange_multiplier));
+  const ConstraintSurrogateWeights weights =
+      lagrangian_surrogate_weights(std::span<const double>(&lagrange_multiplier, 1));
+  return {weights.reward, weights.costs.front()};
+}
+
+ConstraintSurrogateWeights lagrangian_surrogate_weights(std::span<const double> lagrange_multipliers) {
+  double normaliser = 1.0;  // 1 + sum_j lambda_j
+  for (double lambda : lagrange_multipliers) {
+    if (!std::isfinite(lambda) || lambda < 0.0) {
+      throw std::invalid_argument("lagrangian_surrogate_weights: lagrange_multiplier must be finite and >= 0, got " +
+                                  std::to_string(lambda));
+    }
+    normaliser += lambda;
   }
-  const double normaliser = 1.0 + lagrange_multiplier;  // 1 + lambda
-  return {1.0 / normaliser, -lagrange_multiplier / normaliser};
+  ConstraintSurrogateWeights weights;
+  weights.reward = 1.0 / normaliser;
+  for (double lambda : lagrange_multipliers) weights.costs.push_back(-lambda / normaliser);
+  return weights;
 }
 
 LagTrpo::LagTrpo(const RunConfig& config)
@@ -31,17 +43,17 @@ std::vector<std::string> LagTrpo::diagnostic_names() const {
 
 PolicyUpdateResult LagTrpo::update(const PolicyUpdateInputs& inputs) {
   check_mean_episode_cost(inputs, "lag-trpo");
-  // 1. lambda update (SGD by default: lambda <- max(0, lambda + alpha_lambda (J_C - d))), before the policy step.
-  const double lambda = multiplier_.update(inputs.mean_episode_cost, config().cost_limit);
-  const SurrogateWeights weights = lagrangian_surrogate_weights(lambda);
+  // 1. lambda_j updates (SGD by default: lambda <- max(0, lambda + alpha_lambda (J_Cj - d_j))), before the policy step.
+  const std::vector<ConstraintEstimate> constraints = constraint_estimates(inputs, config());
+  const ConstraintSurrogateWeights weights = lagrangian_surrogate_weights(multiplier_.update(constraints));
 
   const PolicyUpdateStart start = begin_policy_update(inputs);
-  const double loss_old = weighted_surrogate_loss(start.before, weights.reward, weights.cost);  // l_L(theta_old)
+  const double loss_old = weighted_surrogate_loss(start.before, weights.reward, weights.costs);  // l_L(theta_old)
 
-  // 2. g_L = -avg grad l_L = (g - lambda b) / (1 + lambda)
+  // 2. g_L = -avg grad l_L = (g - sum_j lambda_j b_j) / (1 + sum_j lambda_j)
   const Eigen::Index num_parameters = inputs.policy.mean_net().num_parameters();
   Eigen::VectorXd lagrangian_gradient(num_parameters);
-  inputs.surrogate.gradient(inputs.policy, weights.reward, weights.cost, lagrangian_gradient);
+  inputs.surrogate.gradient(inputs.policy, weights.reward, weights.costs, lagrangian_gradient);
   inputs.mpi.average_in_place(lagrangian_gradient);
 
   // 3. x = CG(F, g_L), q = x^T F x, alpha = sqrt(2 delta / (q + 1e-8)), Delta = alpha x
@@ -51,12 +63,12 @@ PolicyUpdateResult LagTrpo::update(const PolicyUpdateInputs& inputs) {
                                                          config().target_kl, conjugate_gradient_options(config()));
   // Line search A on the Lagrangian loss l_L.
   const LineSearchResult search = trpo_line_search(
-      step.full_step, loss_old, surrogate_loss_evaluator(inputs, start.theta_old, weights.reward, weights.cost),
+      step.full_step, loss_old, surrogate_loss_evaluator(inputs, start.theta_old, weights.reward, weights.costs),
       inputs.mpi, line_search_options(config()));
   apply_line_search_result(inputs.policy, start.theta_old, search);
 
   PolicyUpdateResult result;
-  result.diagnostics = common_diagnostics(inputs, start.before, weights.reward, weights.cost);
+  result.diagnostics = common_diagnostics(inputs, start.before, weights.reward, std::span<const double>(weights.costs));
   append_trpo_diagnostics(result.diagnostics, search, step.step_size, lagrangian_gradient.norm(),
                           step.x_fisher_x, step.direction.norm());
   for (NamedScalar& entry : multiplier_.diagnostics()) result.diagnostics.push_back(std::move(entry));

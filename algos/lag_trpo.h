@@ -5,6 +5,10 @@
 //   3. TRPO steps 2-4 with g_L in place of g; line search A on l_L
 // The (1 + lambda) does not change the (renormalised) step, only the logged
 // losses and the interplay with CG's 1e-6. The reward itself is not modified.
+// With m constraints (docs/algorithms.md#several-constraints) each has its own multiplier
+// lambda_j (lagrange_multipliers.h) and
+//   l_L = (-L_R + sum_j lambda_j L_Cj) / (1 + sum_j lambda_j),
+// the combined advantage A_i - sum_j lambda_j A^Cj_i over 1 + sum_j lambda_j.
 //
 // Parameters (RunConfig): those of TRPO plus cost_limit 25,
 // lagrangian_multiplier_init 0.001, lambda_optimizer SGD, lambda_lr 0.05 (or
@@ -12,7 +16,7 @@
 #pragma once
 
 #include "algos/algorithm.h"
-#include "algos/lagrange_multiplier.h"
+#include "algos/lagrange_multipliers.h"
 #include "common/run_config.h"
 
 namespace bsg {
@@ -24,6 +28,13 @@ struct SurrogateWeights {
 };
 SurrogateWeights lagrangian_surrogate_weights(double lagrange_multiplier);
 
+// With m multipliers: w_R = 1 / (1 + sum lambda), w_j = -lambda_j / (1 + sum lambda).
+struct ConstraintSurrogateWeights {
+  double reward = 1.0;
+  std::vector<double> costs;
+};
+ConstraintSurrogateWeights lagrangian_surrogate_weights(std::span<const double> lagrange_multipliers);
+
 class LagTrpo final : public TrustRegionAlgorithm {
  public:
   explicit LagTrpo(const RunConfig& config);
@@ -34,10 +45,11 @@ class LagTrpo final : public TrustRegionAlgorithm {
   std::vector<NamedScalar> state() const override { return multiplier_.state(); }
   void restore_state(std::span<const NamedScalar> saved) override { multiplier_.restore_state(saved); }
 
-  double lagrange_multiplier() const { return multiplier_.value(); }
+  double lagrange_multiplier() const { return multiplier_.value(0); }
+  const LagrangeMultipliers& multipliers() const { return multiplier_; }
 
  private:
-  LagrangeMultiplier multiplier_;
+  LagrangeMultipliers multiplier_;
 };
 
 }  // namespace bsg

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "algos/constraint_costs.h"
+#include "algos/constraint_qp.h"
 #include "algos/cpo.h"
 #include "algos/natural_gradient.h"
 #include "algos/trpo.h"
@@ -59,13 +61,73 @@ Pcpo::Pcpo(const RunConfig& config) : TrustRegionAlgorithm(config) {}
 std::vector<std::string> Pcpo::diagnostic_names() const {
   std::vector<std::string> names = common_diagnostic_names();
   for (std::string& name : trpo_diagnostic_names()) names.push_back(std::move(name));
-  for (std::string& name : cpo_diagnostic_names()) names.push_back(std::move(name));
+  if (constraint_count(config()) == 1) {
+    for (std::string& name : cpo_diagnostic_names()) names.push_back(std::move(name));
+    return names;
+  }
+  for (const char* name : {"Misc/cost_gradient_norm", "Misc/q", "Misc/OptimCase"}) names.emplace_back(name);
+  for (std::string& name : constraint_multiplier_names(constraint_count(config()))) names.push_back(std::move(name));
   return names;
 }
 
+PolicyUpdateResult Pcpo::update_several(const PolicyUpdateInputs& inputs,
+                                        const std::vector<ConstraintEstimate>& constraints) {
+  FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
+                             fisher_vector_product_options(config()));
+  const LinearOperator fisher_operator = as_linear_operator(fisher);
+  const SeveralConstraintsStart begun = begin_several_constraints_update(inputs, constraints, fisher_operator, config());
+  const Eigen::MatrixXd& B = begun.gradients.costs;
+  const Eigen::VectorXd& c = begun.violations;
+  const Eigen::Index m = B.cols();
+  // L^-1 b_j: CG(F, b_j) in the KL metric, b_j itself in L2.
+  const Eigen::MatrixXd directions = config().pcpo_projection == PcpoProjection::kl
+                                         ? conjugate_gradient_columns(fisher_operator, B, conjugate_gradient_options(config()))
+                                         : B;
+  // Only constraints with a usable gradient take part (the single constraint's b^T b > 1e-6 guard).
+  std::vector<Eigen::Index> used;
+  for (Eigen::Index j = 0; j < m; ++j) {
+    if (B.col(j).squaredNorm() > 1e-6) used.push_back(j);
+  }
+  Eigen::VectorXd mu = Eigen::VectorXd::Zero(m);
+  if (!used.empty()) {
+    const Eigen::Index k = static_cast<Eigen::Index>(used.size());
+    Eigen::MatrixXd S(k, k);
+    Eigen::VectorXd v(k);
+    for (Eigen::Index a = 0; a < k; ++a) {
+      const Eigen::Index j = used[static_cast<std::size_t>(a)];
+      v[a] = c[j] + B.col(j).dot(begun.natural.full_step);  // v_j = c_j + b_j^T Delta_R
+      for (Eigen::Index b = 0; b < k; ++b) {
+        S(a, b) = B.col(j).dot(directions.col(used[static_cast<std::size_t>(b)]));  // b_j^T L^-1 b_k
+      }
+    }
+    const Eigen::VectorXd weights = nonnegative_projection_weights(S, v);
+    for (Eigen::Index a = 0; a < k; ++a) mu[used[static_cast<std::size_t>(a)]] = weights[a];
+  }
+  const Eigen::VectorXd full_step = begun.natural.full_step - directions * mu;  // Delta = Delta_R - sum_j mu_j L^-1 b_j
+  if (!full_step.allFinite()) {
+    throw std::runtime_error("pcpo: the projected step with " + std::to_string(m) + " constraints is not finite");
+  }
+
+  LineSearchResult search;
+  if (config().pcpo_line_search) {
+    search = constrained_line_search_all(inputs, begun.start, full_step, c, (c.array() < 0.0).all(), config());
+  } else {
+    search.step = full_step;  // the paper's release: apply Delta directly
+    search.acceptance_step = 1;
+  }
+  apply_line_search_result(inputs.policy, begun.start.theta_old, search);
+
+  PolicyUpdateResult result;
+  result.diagnostics = several_constraints_diagnostics(
+      inputs, begun, search, {{"Misc/OptimCase", (c.array() >= 0.0).any() ? 1.0 : 2.0}}, mu);
+  return result;
+}
+
 PolicyUpdateResult Pcpo::update(const PolicyUpdateInputs& inputs) {
-  const double c = per_step_constraint_violation(inputs.mean_episode_cost, inputs.mean_episode_length,
-                                                 config().cost_limit);  // c = (J_C - d) / (L + 1e-8)
+  const std::vector<ConstraintEstimate> constraints = constraint_estimates(inputs, config());
+  if (constraints.size() > 1) return update_several(inputs, constraints);
+  const double c = per_step_constraint_violation(constraints.front().mean_episode_cost, inputs.mean_episode_length,
+                                                 constraints.front().limit);  // c = (J_C - d) / (L + 1e-8)
   const PolicyUpdateStart start = begin_policy_update(inputs);
   const PolicyGradients gradients = averaged_policy_gradients(inputs);  // g, b
 

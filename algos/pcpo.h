@@ -17,6 +17,14 @@
 // Parameters (RunConfig): target_kl 1e-4, cg_iters 10, cg_damping 0.1,
 // backtrack_budget 25, backtrack_decay 0.8, kl_accept_factor 1.5, cost_limit 25,
 // pcpo_projection kl, pcpo_line_search true.
+//
+// With m >= 2 constraints (docs/algorithms.md#several-constraints) step 4 projects Delta_R onto
+// the intersection of the m half-spaces {Delta : c_j + b_j^T Delta <= 0} in the
+// metric L, a small QP solved exactly (constraint_qp.h): Delta = Delta_R - sum_j mu_j L^-1 b_j
+// with mu >= 0 minimising 1/2 mu^T S mu - v^T mu, S_jk = b_j^T L^-1 b_k,
+// v_j = c_j + b_j^T Delta_R; constraints with b_j^T b_j <= 1e-6 are left out
+// (mu_j = 0) as the single constraint's guard does. The line search checks
+// every constraint; its reward test only if every c_j < 0.
 #pragma once
 
 #include <Eigen/Core>
@@ -58,6 +66,9 @@ class Pcpo final : public TrustRegionAlgorithm {
   std::string_view name() const override { return "pcpo"; }
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
   std::vector<std::string> diagnostic_names() const override;
+
+ private:
+  PolicyUpdateResult update_several(const PolicyUpdateInputs& inputs, const std::vector<ConstraintEstimate>& constraints);
 };
 
 }  // namespace bsg

@@ -33,13 +33,29 @@ std::vector<std::string> Pdo::diagnostic_names() const {
 PolicyUpdateResult Pdo::update(const PolicyUpdateInputs& inputs) {
   check_mean_episode_cost(inputs, "pdo");
   // 1. Adam (or SGD, or PID) update of lambda on J_C - d, lambda >= 0; before the policy step.
-  const double lambda = multiplier_.update(inputs.mean_episode_cost, config().cost_limit);
+  const std::vector<ConstraintEstimate> constraints = constraint_estimates(inputs, config());
+  const std::vector<double> lambdas = multiplier_.update(constraints);
 
   const PolicyUpdateStart start = begin_policy_update(inputs);
   const double loss_old = -start.before.reward_surrogate;  // l_R(theta_old), local
 
-  const PolicyGradients gradients = averaged_policy_gradients(inputs);  // g, b
-  const Eigen::VectorXd direction = pdo_search_direction(gradients.reward, gradients.cost, lambda);  // p
+  // g and b_j; p = g - sum_j lambda_j b_j
+  Eigen::VectorXd reward_gradient, direction;
+  double cost_gradient_norm = 0.0;
+  if (lambdas.size() == 1) {
+    const PolicyGradients gradients = averaged_policy_gradients(inputs);
+    direction = pdo_search_direction(gradients.reward, gradients.cost, lambdas.front());
+    reward_gradient = gradients.reward;
+    cost_gradient_norm = gradients.cost.norm();
+  } else {
+    const ConstraintGradients gradients = averaged_constraint_gradients(inputs);
+    direction = gradients.reward;
+    for (std::size_t j = 0; j < lambdas.size(); ++j) {
+      direction -= lambdas[j] * gradients.costs.col(static_cast<Eigen::Index>(j));
+    }
+    reward_gradient = gradients.reward;
+    cost_gradient_norm = gradients.costs.norm();  // Frobenius: sqrt(sum_j |b_j|^2)
+  }
 
   // x = CG(F, p), q = x^T F x, alpha = sqrt(2 delta / (q + 1e-8)), Delta = alpha x
   FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
@@ -60,9 +76,9 @@ PolicyUpdateResult Pdo::update(const PolicyUpdateInputs& inputs) {
 
   PolicyUpdateResult result;
   result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
-  append_trpo_diagnostics(result.diagnostics, search, step.step_size, gradients.reward.norm(),
+  append_trpo_diagnostics(result.diagnostics, search, step.step_size, reward_gradient.norm(),
                           step.x_fisher_x, step.direction.norm());
-  result.diagnostics.push_back({"Misc/cost_gradient_norm", gradients.cost.norm()});
+  result.diagnostics.push_back({"Misc/cost_gradient_norm", cost_gradient_norm});
   for (NamedScalar& entry : multiplier_.diagnostics()) result.diagnostics.push_back(std::move(entry));
   return result;
 }

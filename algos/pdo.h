@@ -2,6 +2,8 @@
 //   1. lambda update first, on the pooled J_C (Adam by default; moments persist)
 //   2. l_old = l_R(theta_old), g = avg grad L_R, b = avg grad L_C
 //   3. p = g - lambda b            (no 1/(1+lambda): irrelevant for the step)
+//      with m constraints p = g - sum_j lambda_j b_j, one multiplier each
+//      (lagrange_multipliers.h, docs/algorithms.md#several-constraints)
 //   4. x = CG(F, p), q = x^T F x, alpha = sqrt(2 delta / (q + 1e-8)), Delta = alpha x
 //   5. line search A on the REWARD-ONLY loss l_R (Q14), budget 15;
 //      pdo_line_search: false applies Delta directly
@@ -16,7 +18,7 @@
 #include <Eigen/Core>
 
 #include "algos/algorithm.h"
-#include "algos/lagrange_multiplier.h"
+#include "algos/lagrange_multipliers.h"
 #include "common/run_config.h"
 
 namespace bsg {
@@ -36,10 +38,11 @@ class Pdo final : public TrustRegionAlgorithm {
   std::vector<NamedScalar> state() const override { return multiplier_.state(); }
   void restore_state(std::span<const NamedScalar> saved) override { multiplier_.restore_state(saved); }
 
-  double lagrange_multiplier() const { return multiplier_.value(); }
+  double lagrange_multiplier() const { return multiplier_.value(0); }
+  const LagrangeMultipliers& multipliers() const { return multiplier_; }
 
  private:
-  LagrangeMultiplier multiplier_;
+  LagrangeMultipliers multiplier_;
 };
 
 }  // namespace bsg

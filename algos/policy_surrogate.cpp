@@ -9,7 +9,7 @@ PolicySurrogate::PolicySurrogate(const Eigen::Ref<const Eigen::MatrixXd>& observ
                                  const Eigen::Ref<const Eigen::MatrixXd>& actions,
                                  const Eigen::Ref<const Eigen::VectorXd>& old_log_probs,
                                  const Eigen::Ref<const Eigen::VectorXd>& advantages,
-                                 const Eigen::Ref<const Eigen::VectorXd>& cost_advantages)
+                                 const Eigen::Ref<const Eigen::MatrixXd>& cost_advantages)
     : observations_(observations),
       actions_(actions),
       old_log_probs_(old_log_probs),
@@ -17,12 +17,16 @@ PolicySurrogate::PolicySurrogate(const Eigen::Ref<const Eigen::MatrixXd>& observ
       cost_advantages_(cost_advantages) {
   const Eigen::Index n = observations.rows();
   if (n == 0) throw std::invalid_argument("PolicySurrogate: observations are empty");
-  if (actions.rows() != n || old_log_probs.size() != n || advantages.size() != n || cost_advantages.size() != n) {
+  if (actions.rows() != n || old_log_probs.size() != n || advantages.size() != n || cost_advantages.rows() != n) {
     throw std::invalid_argument("PolicySurrogate: observations have " + std::to_string(n) + " rows but actions " +
                                 std::to_string(actions.rows()) + ", old_log_probs " +
                                 std::to_string(old_log_probs.size()) + ", advantages " +
                                 std::to_string(advantages.size()) + ", cost_advantages " +
-                                std::to_string(cost_advantages.size()));
+                                std::to_string(cost_advantages.rows()));
+  }
+  if (cost_advantages.cols() < 1 || cost_advantages.cols() > kMaxConstraintCount) {
+    throw std::invalid_argument("PolicySurrogate: cost_advantages has " + std::to_string(cost_advantages.cols()) +
+                                " columns, expected 1.." + std::to_string(kMaxConstraintCount));
   }
   means_.resize(n, actions.cols());
   log_probs_.resize(n);
@@ -57,7 +61,11 @@ SurrogateValues PolicySurrogate::evaluate(const GaussianPolicy& policy) {
   const double n = static_cast<double>(num_samples());
   SurrogateValues values;
   values.reward_surrogate = ratios_.dot(advantages_) / n;     // L_R = mean(rho A)
-  values.cost_surrogate = ratios_.dot(cost_advantages_) / n;  // L_C = mean(rho A^C)
+  values.cost_surrogate = ratios_.dot(cost_advantages_.col(0)) / n;  // L_C = mean(rho A^C)
+  values.cost_surrogates[0] = values.cost_surrogate;
+  for (Eigen::Index j = 1; j < cost_advantages_.cols(); ++j) {
+    values.cost_surrogates[static_cast<std::size_t>(j)] = ratios_.dot(cost_advantages_.col(j)) / n;  // L_Cj
+  }
   values.mean_ratio = ratios_.mean();
   if (has_reference_means_) {
     values.kl = policy.mean_kl(reference_means_, means_);
@@ -65,13 +73,17 @@ SurrogateValues PolicySurrogate::evaluate(const GaussianPolicy& policy) {
   return values;
 }
 
-void PolicySurrogate::gradient(const GaussianPolicy& policy, double reward_weight, double cost_weight,
-                               Eigen::Ref<Eigen::VectorXd> gradient) {
+void PolicySurrogate::check_gradient(const GaussianPolicy& policy, const Eigen::Ref<Eigen::VectorXd>& gradient) const {
   check_policy(policy, "PolicySurrogate::gradient");
   if (gradient.size() != policy.mean_net().num_parameters()) {
     throw std::invalid_argument("PolicySurrogate::gradient: gradient has " + std::to_string(gradient.size()) +
                                 " entries, the policy has " + std::to_string(policy.mean_net().num_parameters()));
   }
+}
+
+template <typename SampleWeights>
+void PolicySurrogate::weighted_gradient(const GaussianPolicy& policy, const SampleWeights& sample_weights,
+                                        Eigen::Ref<Eigen::VectorXd> gradient) {
   const double sigma_squared = policy.std() * policy.std();
   const double n = static_cast<double>(num_samples());
   // One streamed pass: each chunk's means give its ratios and dL/dmu, then its backward pass.
@@ -82,13 +94,40 @@ void PolicySurrogate::gradient(const GaussianPolicy& policy, double reward_weigh
     policy.log_prob_batch(means, actions_.middleRows(first, rows), log_probs);
     auto ratios = ratios_.segment(first, rows);
     ratios = (log_probs - old_log_probs_.segment(first, rows)).array().exp().matrix();  // rho_i
-    // dL/dmu_ij = 1/N rho_i (w_R A_i + w_C A^C_i) (a_ij - mu_ij) / sigma^2
+    // dL/dmu_ij = 1/N rho_i w_i (a_ij - mu_ij) / sigma^2
     output_gradients = actions_.middleRows(first, rows) - means;
-    output_gradients.array().colwise() *= (ratios.array() * (reward_weight * advantages_.segment(first, rows).array() +
-                                                             cost_weight * cost_advantages_.segment(first, rows).array())) /
-                                          (n * sigma_squared);
+    output_gradients.array().colwise() *= (ratios.array() * sample_weights(first, rows)) / (n * sigma_squared);
   };
   policy.mean_net().gradient_batch(observations_, output_gradient, workspace_, gradient);
+}
+
+void PolicySurrogate::gradient(const GaussianPolicy& policy, double reward_weight, double cost_weight,
+                               Eigen::Ref<Eigen::VectorXd> gradient) {
+  check_gradient(policy, gradient);
+  // w_i = w_R A_i + w_C A^C_i
+  weighted_gradient(
+      policy,
+      [&](Eigen::Index first, Eigen::Index rows) {
+        return reward_weight * advantages_.segment(first, rows).array() +
+               cost_weight * cost_advantages_.col(0).segment(first, rows).array();
+      },
+      gradient);
+}
+
+void PolicySurrogate::gradient(const GaussianPolicy& policy, double reward_weight,
+                               std::span<const double> cost_weights, Eigen::Ref<Eigen::VectorXd> gradient) {
+  check_gradient(policy, gradient);
+  if (static_cast<Eigen::Index>(cost_weights.size()) != cost_advantages_.cols()) {
+    throw std::invalid_argument("PolicySurrogate::gradient: " + std::to_string(cost_weights.size()) +
+                                " cost weights for " + std::to_string(cost_advantages_.cols()) + " constraints");
+  }
+  combined_weights_ = reward_weight * advantages_;  // w_i = w_R A_i + sum_j w_j A^Cj_i
+  for (Eigen::Index j = 0; j < cost_advantages_.cols(); ++j) {
+    combined_weights_ += cost_weights[static_cast<std::size_t>(j)] * cost_advantages_.col(j);
+  }
+  weighted_gradient(
+      policy, [&](Eigen::Index first, Eigen::Index rows) { return combined_weights_.segment(first, rows).array(); },
+      gradient);
 }
 
 }  // namespace bsg

@@ -3,14 +3,21 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace bsg {
 
-RolloutCollector::RolloutCollector(int observation_size, int action_size, RolloutOptions options)
+RolloutCollector::RolloutCollector(int observation_size, int action_size, RolloutOptions options,
+                                   StepCostSelector costs)
     : options_(options),
+      costs_(std::move(costs)),
+      step_costs_(Eigen::VectorXd::Zero(costs_.count())),
+      step_cost_values_(Eigen::VectorXd::Zero(costs_.count())),
+      last_cost_values_(Eigen::VectorXd::Zero(costs_.count())),
       raw_observation_(Eigen::VectorXd::Zero(observation_size)),
       normalized_observation_(Eigen::VectorXd::Zero(observation_size)),
-      action_(Eigen::VectorXd::Zero(action_size)) {
+      action_(Eigen::VectorXd::Zero(action_size)),
+      cost_value_workspaces_(static_cast<std::size_t>(costs_.count())) {
   if (options.local_steps <= 0 || options.max_ep_len <= 0) {
     throw std::invalid_argument("RolloutCollector: local_steps (" + std::to_string(options.local_steps) +
                                 ") and max_ep_len (" + std::to_string(options.max_ep_len) + ") must be positive");
@@ -26,10 +33,13 @@ void RolloutCollector::copy_observation(std::span<const double> observation) {
   raw_observation_ = Eigen::Map<const Eigen::VectorXd>(observation.data(), raw_observation_.size());
 }
 
-void RolloutCollector::bootstrap_values(const ActorCritic& actor_critic, double& value, double& cost_value) {
-  actor_critic.normalize_observation(raw_observation_, normalized_observation_);
-  value = actor_critic.value.predict(normalized_observation_, value_workspace_);
-  cost_value = actor_critic.cost_value.predict(normalized_observation_, cost_value_workspace_);
+double RolloutCollector::predict_values(const ActorCritic& actor_critic, Eigen::VectorXd& cost_values) {
+  const double value = actor_critic.value.predict(normalized_observation_, value_workspace_);
+  for (int i = 0; i < costs_.count(); ++i) {
+    cost_values[i] = actor_critic.cost_value_net(i).predict(normalized_observation_,
+                                                            cost_value_workspaces_[static_cast<std::size_t>(i)]);
+  }
+  return value;
 }
 
 void RolloutCollector::collect(envs::Env& env, std::uint64_t epoch_env_seed, const ActorCritic& actor_critic,
@@ -37,6 +47,12 @@ void RolloutCollector::collect(envs::Env& env, std::uint64_t epoch_env_seed, con
   if (buffer.capacity() != options_.local_steps) {
     throw std::invalid_argument("RolloutCollector::collect: buffer capacity " + std::to_string(buffer.capacity()) +
                                 " differs from local_steps " + std::to_string(options_.local_steps));
+  }
+  if (buffer.constraint_count() != costs_.count() || actor_critic.constraint_count() != costs_.count()) {
+    throw std::invalid_argument("RolloutCollector::collect: " + std::to_string(costs_.count()) +
+                                " constraints, but the buffer has " + std::to_string(buffer.constraint_count()) +
+                                " cost columns and the actor-critic " + std::to_string(actor_critic.constraint_count()) +
+                                " cost value nets");
   }
   buffer.reset();
   const std::optional<double> reward_scale_std =
@@ -48,11 +64,11 @@ void RolloutCollector::collect(envs::Env& env, std::uint64_t epoch_env_seed, con
     actor_critic.normalize_observation(raw_observation_, normalized_observation_);
     const double log_prob =
         actor_critic.policy.sample_action(normalized_observation_, action_, noise_rng, policy_workspace_);
-    const double value = actor_critic.value.predict(normalized_observation_, value_workspace_);
-    const double cost_value = actor_critic.cost_value.predict(normalized_observation_, cost_value_workspace_);
+    const double value = predict_values(actor_critic, step_cost_values_);
 
     const envs::StepResult step = env.step(action_view);
-    buffer.store(raw_observation_, action_, step.reward, step.cost, value, cost_value, log_prob);
+    costs_.select(step, step_costs_);
+    buffer.store(raw_observation_, action_, step.reward, step.cost, step_costs_, value, step_cost_values_, log_prob);
     copy_observation(step.observation);  // o_t+1
 
     const bool timeout = step.truncated || buffer.current_episode().episode_length >= options_.max_ep_len;
@@ -63,9 +79,12 @@ void RolloutCollector::collect(envs::Env& env, std::uint64_t epoch_env_seed, con
     // Bootstrap with (V, V_C)(o_t+1) at a time-out or the epoch cut; a true
     // terminal on the last step is bootstrapped too (Q7: epoch_end wins).
     double last_value = 0.0;
-    double last_cost_value = 0.0;
-    if (timeout || epoch_end) bootstrap_values(actor_critic, last_value, last_cost_value);
-    buffer.finish_path(last_value, last_cost_value, reward_scale_std,
+    last_cost_values_.setZero();
+    if (timeout || epoch_end) {
+      actor_critic.normalize_observation(raw_observation_, normalized_observation_);
+      last_value = predict_values(actor_critic, last_cost_values_);
+    }
+    buffer.finish_path(last_value, last_cost_values_, reward_scale_std,
                        terminal ? PathEnd::episode_end : PathEnd::epoch_cut);
     // The original also resets after the epoch cut; the next epoch resets
     // again, so that reset is skipped here.

@@ -24,6 +24,7 @@
 
 #include "algos/actor_critic.h"
 #include "algos/buffer.h"
+#include "algos/constraint_costs.h"
 #include "common/mlp.h"
 #include "common/random.h"
 #include "envs/env.h"
@@ -38,27 +39,37 @@ struct RolloutOptions {
 
 class RolloutCollector {
  public:
-  RolloutCollector(int observation_size, int action_size, RolloutOptions options);
+  // One constraint, on the environment's cost, unless `costs` says otherwise
+  // (it must be bound to the environment if it names terms).
+  RolloutCollector(int observation_size, int action_size, RolloutOptions options,
+                   StepCostSelector costs = StepCostSelector());
 
-  // Fills `buffer` (reset first) with options.local_steps steps. Episode
+  // Fills `buffer` (reset first) with options.local_steps steps, one cost
+  // column per constraint (the buffer's and the actor-critic's m must be the
+  // selector's). Episode
   // statistics of the completed episodes end up in buffer.episodes().
   void collect(envs::Env& env, std::uint64_t epoch_env_seed, const ActorCritic& actor_critic, Rng& noise_rng,
                Buffer& buffer);
 
   const RolloutOptions& options() const { return options_; }
+  const StepCostSelector& cost_selector() const { return costs_; }
 
  private:
   void copy_observation(std::span<const double> observation);
-  // (V, V_C) of raw_observation_ (normalised into normalized_observation_).
-  void bootstrap_values(const ActorCritic& actor_critic, double& value, double& cost_value);
+  // V and every V_Ci of normalized_observation_ (normalised already).
+  double predict_values(const ActorCritic& actor_critic, Eigen::VectorXd& cost_values);
 
   RolloutOptions options_;
+  StepCostSelector costs_;
+  Eigen::VectorXd step_costs_;        // c_i,t
+  Eigen::VectorXd step_cost_values_;  // V_Ci(s_t)
+  Eigen::VectorXd last_cost_values_;  // V_Ci(s_T) at a bootstrap
   Eigen::VectorXd raw_observation_;
   Eigen::VectorXd normalized_observation_;
   Eigen::VectorXd action_;
   MlpSampleWorkspace policy_workspace_;
   MlpSampleWorkspace value_workspace_;
-  MlpSampleWorkspace cost_value_workspace_;
+  std::vector<MlpSampleWorkspace> cost_value_workspaces_;  // one per constraint
 };
 
 }  // namespace bsg

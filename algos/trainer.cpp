@@ -8,6 +8,7 @@
 #include <new>
 #include <ostream>
 
+#include "algos/constraint_costs.h"
 #include "algos/epoch_log.h"
 #include "algos/epoch_statistics.h"
 #include "algos/evaluation_files.h"
@@ -46,7 +47,17 @@ std::unique_ptr<ActorCritic> make_actor_critic(const RunConfig& config, const en
   return std::make_unique<ActorCritic>(spec.observation_dim, spec.action_dim, config, init_rng);
 }
 
-BufferOptions buffer_options(const RunConfig& config) { return BufferOptions{config.gamma, config.lam, config.lam_c}; }
+BufferOptions buffer_options(const RunConfig& config) {
+  return BufferOptions{config.gamma, config.lam, config.lam_c, constraint_count(config)};
+}
+
+// The constraints' step costs, bound to the environment's cost terms when
+// some constraint names terms (checked before the run directory is touched).
+StepCostSelector bound_cost_selector(const RunConfig& config, envs::Env& env) {
+  StepCostSelector selector(config);
+  if (selector.needs_terms()) selector.bind(probe_cost_term_names(env), env.spec().id);
+  return selector;
+}
 
 int local_steps(const RunConfig& config, const MpiContext& mpi) {
   check_run_config_for_ranks(config, mpi.size());
@@ -80,10 +91,12 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
       buffer_(local_steps(config, mpi), env_->spec().observation_dim, env_->spec().action_dim,
               buffer_options(config)),
       collector_(env_->spec().observation_dim, env_->spec().action_dim,
-                 RolloutOptions{local_steps(config, mpi), config.max_ep_len, config.use_reward_scaling}),
+                 RolloutOptions{local_steps(config, mpi), config.max_ep_len, config.use_reward_scaling},
+                 bound_cost_selector(config, *env_)),
       normalized_observations_(local_steps(config, mpi), env_->spec().observation_dim),
       returns_column_(local_steps(config, mpi), 1) {
   progress_.num_ranks = mpi_.size();
+  progress_.training_cost = TrainingCost::for_constraints(constraint_count(config_));
   if (options_.resume) {
     const TrainingProgress saved =
         load_training_checkpoint(directory_.checkpoint(), config_, *actor_critic_, *algorithm_);
@@ -94,6 +107,7 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
     }
     progress_.epochs_completed = saved.epochs_completed;
     progress_.elapsed_seconds = saved.elapsed_seconds;
+    if (!saved.training_cost.constraint_cumulative_costs.empty()) progress_.training_cost = saved.training_cost;
     checkpoint_epochs_ = saved.epochs_completed;
     if (mpi_.is_root()) {
       progress_csv_.emplace(ProgressCsv::resume(
@@ -112,6 +126,11 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
 }
 
 OnPolicyTrainer::~OnPolicyTrainer() = default;
+
+TrainingSafety OnPolicyTrainer::training_safety() const {
+  return TrainingSafety{effective_constraints(config_), progress_.training_cost,
+                        static_cast<long long>(progress_.epochs_completed) * config_.steps_per_epoch};
+}
 
 void OnPolicyTrainer::save_checkpoint() {
   if (mpi_.is_root()) {
@@ -133,7 +152,7 @@ void OnPolicyTrainer::check_finite(int epoch, const char* quantity, double value
 void OnPolicyTrainer::check_rollout_finite(int epoch) const {
   if (!buffer_.observations().allFinite()) check_finite(epoch, "observation from the environment", std::nan(""));
   if (!buffer_.rewards().allFinite()) check_finite(epoch, "reward from the environment", std::nan(""));
-  if (!buffer_.costs().allFinite()) check_finite(epoch, "cost from the environment", std::nan(""));
+  if (!buffer_.constraint_costs().allFinite()) check_finite(epoch, "cost from the environment", std::nan(""));
 }
 
 void OnPolicyTrainer::check_parameters_finite(int epoch) const {
@@ -156,9 +175,11 @@ void OnPolicyTrainer::standardize_advantages() {
   // A <- (A - mean) / (std + 1e-8) and A^C <- A^C - mean^C, with the means and
   // std pooled over ranks (what the original's disabled code would do, Q6).
   const PooledStatistics reward = pool_statistics(advantages_, mpi_);
-  const PooledStatistics cost = pool_statistics(cost_advantages_, mpi_);
   advantages_ = (advantages_.array() - reward.mean) / (reward.std + 1e-8);
-  cost_advantages_.array() -= cost.mean;
+  for (Eigen::Index i = 0; i < cost_advantages_.cols(); ++i) {
+    const PooledStatistics cost = pool_statistics(cost_advantages_.col(i), mpi_);
+    cost_advantages_.col(i).array() -= cost.mean;
+  }
 }
 
 void OnPolicyTrainer::run_epoch(int epoch) {
@@ -180,17 +201,25 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   const auto update_start = Clock::now();
   const double update_cpu_start = process_cpu_seconds();
 
-  // 3. Policy update with the pooled J_C and L.
-  const EpisodeStatistics episodes = pool_episode_statistics(buffer_, mpi_);
+  // 3. Policy update with the pooled J_C (J_Ci) and L.
+  const bool several = !config_.constraints.empty();
+  const EpisodeStatistics episodes = pool_episode_statistics(buffer_, mpi_, several);
+  std::vector<ConstraintEstimate> constraints;
+  for (int i = 0; i < buffer_.constraint_count(); ++i) {
+    const double mean_cost = several ? episodes.constraint_costs[static_cast<std::size_t>(i)].mean
+                                     : episodes.episode_cost.mean;
+    constraints.push_back({mean_cost, constraint_limit(config_, i)});
+  }
   ac.normalize_observations(buffer_.observations(), normalized_observations_);
   advantages_ = buffer_.advantages();
-  cost_advantages_ = buffer_.cost_advantages();
+  cost_advantages_ = buffer_.constraint_cost_advantages();
   if (config_.use_standardized_advantages) standardize_advantages();
   const auto policy_start = Clock::now();
   PolicySurrogate surrogate(normalized_observations_, buffer_.actions(), buffer_.log_probs(), advantages_,
                             cost_advantages_);
   const PolicyUpdateResult update = algorithm_->update(
-      PolicyUpdateInputs{ac.policy, surrogate, episodes.episode_cost.mean, episodes.episode_length.mean, mpi_});
+      PolicyUpdateInputs{ac.policy, surrogate, constraints.front().mean_episode_cost, episodes.episode_length.mean,
+                         mpi_, constraints});
   if (const auto loss = find_diagnostic(update, "Loss/Pi")) check_finite(epoch, "policy loss", *loss);
   check_parameters_finite(epoch);
 
@@ -200,7 +229,11 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   const auto value_fit_start = Clock::now();
   const ValueFitOptions fit_options{config_.train_v_iterations, config_.num_mini_batches, 16};
   std::vector<ValueFitJob> fit_jobs{{ac.value, buffer_.value_targets()}};
-  if (algorithm_->uses_cost_value_function()) fit_jobs.push_back({ac.cost_value, buffer_.cost_value_targets()});
+  if (algorithm_->uses_cost_value_function()) {
+    for (int i = 0; i < buffer_.constraint_count(); ++i) {
+      fit_jobs.push_back({ac.cost_value_net(i), buffer_.constraint_cost_value_targets().col(i)});
+    }
+  }
   const std::vector<ValueFitStats> fits =
       fit_value_functions(fit_jobs, normalized_observations_, shuffle_rng_, mpi_, fit_options);
   const ValueFitStats& value_fit = fits.front();
@@ -208,7 +241,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   check_finite(epoch, "value minibatch loss", value_fit.mean_minibatch_loss);
   std::optional<ValueFitStats> cost_value_fit;
   if (algorithm_->uses_cost_value_function()) {
-    cost_value_fit = fits.back();
+    cost_value_fit = fits[1];  // constraint 1's V_C (the others are checked by check_parameters_finite)
     check_finite(epoch, "cost value loss", cost_value_fit->loss_before);
     check_finite(epoch, "cost value minibatch loss", cost_value_fit->mean_minibatch_loss);
   }
@@ -235,6 +268,11 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   }
   progress_.epochs_completed = epoch + 1;
   progress_.elapsed_seconds += epoch_seconds;
+  // Safety during training: this epoch's cost summed over ranks, in one reduction.
+  Eigen::VectorXd epoch_costs(1 + buffer_.constraint_count());
+  epoch_costs << buffer_.epoch_cost(), buffer_.epoch_constraint_costs();
+  mpi_.sum_in_place(epoch_costs.data(), static_cast<std::size_t>(epoch_costs.size()));
+  progress_.training_cost.add_epoch(epoch_costs[0], epoch_costs.tail(buffer_.constraint_count()), constraints);
   seconds_this_process_ += epoch_seconds;
   ++epochs_this_process_;
 
@@ -252,6 +290,8 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   log_inputs.collect_seconds = collect_seconds;
   log_inputs.update_seconds = update_seconds;
   log_inputs.elapsed_seconds = progress_.elapsed_seconds;
+  if (several) log_inputs.constraints = constraints;
+  log_inputs.training_cost = &progress_.training_cost;
   const std::vector<NamedScalar> row = make_epoch_log_row(log_inputs, mpi_);
 
   if (mpi_.is_root()) {
@@ -261,8 +301,8 @@ void OnPolicyTrainer::run_epoch(int epoch) {
       line.epoch = epoch;
       line.epochs = config_.epochs;
       line.mean_return = episodes.episode_return.mean;
-      line.mean_cost = episodes.episode_cost.mean;
-      if (algorithm_->uses_cost_value_function()) line.cost_limit = config_.cost_limit;
+      line.mean_cost = constraints.front().mean_episode_cost;  // constraint 1's (the environment's without `constraints:`)
+      if (algorithm_->uses_cost_value_function()) line.cost_limit = constraints.front().limit;
       line.lagrange_multiplier = find_diagnostic(update, "LagrangeMultiplier");
       line.kl = find_diagnostic(update, "KL").value_or(std::nan(""));
       line.epoch_seconds = epoch_seconds;
@@ -304,7 +344,10 @@ TrainingOutcome OnPolicyTrainer::run() {
     // and resume take that file as the mark of a finished run.
     if (mpi_.is_root()) {
       constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
-      write_evaluation_files(directory_, EvaluationSummary{{}, kNone, kNone, kNone});
+      const TrainingSafety safety = training_safety();
+      write_evaluation_files(directory_,
+                             EvaluationSummary{{}, kNone, kNone, kNone, std::vector<double>(safety.constraints.size(), kNone)},
+                             &safety);
       if (options_.log != nullptr) {
         *options_.log << "evaluation skipped (eval_episodes = " << config_.eval_episodes << " for " << mpi_.size()
                       << (mpi_.size() == 1 ? " rank" : " ranks") << "): evaluation.json records 0 episodes"
@@ -315,10 +358,13 @@ TrainingOutcome OnPolicyTrainer::run() {
   }
 
   // Deterministic evaluation (docs/reproducing.md#evaluation) with the final statistics.
+  // The term names for evaluation.json's per-term costs (the evaluation reseeds the environment first).
+  const std::vector<std::string> term_names = probe_cost_term_names(*env_);
   EvaluationSummary summary = evaluate_policy(*env_, *actor_critic_, config_.eval_episodes, config_.seed,
-                                              config_.max_ep_len, mpi_);
+                                              config_.max_ep_len, mpi_, collector_.cost_selector(), term_names);
   if (mpi_.is_root()) {
-    write_evaluation_files(directory_, summary);
+    const TrainingSafety safety = training_safety();
+    write_evaluation_files(directory_, summary, &safety);
     if (options_.log != nullptr) {
       *options_.log << "evaluation: " << summary.episodes.size() << " episodes  J (mean return) "
                     << format_csv_number(summary.mean_return) << "  H (mean cost) "

@@ -4,8 +4,9 @@
 //   2. collect N = B / R steps from this rank's environment (rollout.h):
 //      normalised observations, V and V_C, log-probs, GAE for reward and
 //      cost with reward scaling, bootstrap at time-outs and the epoch cut;
-//   3. pool the episode statistics over ranks (J_C, L), algorithm.update();
-//   4. fit V, and V_C if the algorithm uses it (docs/algorithms.md#value-fits schedule);
+//   3. pool the episode statistics over ranks (J_C, L; J_Ci of every
+//      constraint with `constraints:`), algorithm.update();
+//   4. fit V, and every V_Ci if the algorithm uses them (docs/algorithms.md#value-fits schedule);
 //   5. update the observation and return normalisers (last, docs/algorithms.md#the-epoch-loop);
 //   6. check that every parameter is finite (and, every check_freq epochs,
 //      that the ranks agree), log the epoch (rank 0 writes progress.csv and
@@ -46,6 +47,7 @@
 #include "algos/algorithm.h"
 #include "algos/buffer.h"
 #include "algos/evaluation.h"
+#include "algos/evaluation_files.h"
 #include "algos/progress_csv.h"
 #include "algos/rollout.h"
 #include "algos/run_directory.h"
@@ -119,6 +121,7 @@ class OnPolicyTrainer {
   void check_parameters_finite(int epoch) const;
   void check_ranks_agree(int epoch) const;
   void save_checkpoint();
+  TrainingSafety training_safety() const;  // what evaluation.json reports of the training
 
   RunConfig config_;
   RunDirectory directory_;
@@ -132,7 +135,7 @@ class OnPolicyTrainer {
   Eigen::MatrixXd normalized_observations_;
   Eigen::MatrixXd returns_column_;
   Eigen::VectorXd advantages_;       // A_t as the update sees them (copy, optionally standardised)
-  Eigen::VectorXd cost_advantages_;  // A^C_t likewise
+  Eigen::MatrixXd cost_advantages_;  // A^Ci_t likewise, one column per constraint
   Rng noise_rng_;
   Rng shuffle_rng_;
   TrainingProgress progress_;

@@ -59,6 +59,7 @@ std::string encode_training_checkpoint(const RunConfig& config, const TrainingPr
     writer.write_string(entry.name);
     writer.write_f64(entry.value);
   }
+  save_training_cost(progress.training_cost, writer);
   return writer.bytes();
 }
 
@@ -114,6 +115,8 @@ TrainingProgress decode_training_checkpoint(std::string_view payload, const std:
     entry.value = reader.read_f64("algorithm state value");
     state.push_back(std::move(entry));
   }
+  // Format 2 ends with the training cost so far; format 1 files have none (it starts at 0).
+  if (format_version >= 2) progress.training_cost = load_training_cost(reader, actor_critic.constraint_count());
   reader.expect_end();
   try {
     algorithm.restore_state(state);

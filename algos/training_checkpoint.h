@@ -14,6 +14,8 @@
 //                    step counts, normaliser mean/std/count)
 //   "algorithm"      the algorithm's name and its named state (lambda and
 //                    its optimiser moments for TRPO-L and PDO)
+//   "training cost"  the cost incurred so far (training_cost.h); a checkpoint
+//                    written before it existed resumes with the sums at 0
 //
 // No RNG state is stored: every random stream of epoch k is seeded from
 // (run seed, stream, rank, k) at the start of the epoch (trainer.h), so
@@ -28,6 +30,7 @@
 #include "algos/actor_critic.h"
 #include "algos/algorithm.h"
 #include "common/checkpoint_file.h"
+#include "algos/training_cost.h"
 #include "common/run_config.h"
 
 namespace bsg {
@@ -38,6 +41,7 @@ struct TrainingProgress {
   int num_ranks = 1;             // MPI ranks of the run that wrote the checkpoint
   // progress.csv of epochs 0 .. epochs_completed - 1 (none from a format 1 file).
   std::optional<std::string> progress_log;
+  TrainingCost training_cost{};  // safety during training so far
 };
 
 // Bounds a loaded checkpoint's fields must lie in.

@@ -31,6 +31,7 @@ struct TableOptions {
   std::string output_dir;
   std::string compare;
   std::string configs_dir;
+  std::string metric = "return-cost";
 };
 
 int run_table(const TableOptions& options) {
@@ -48,7 +49,8 @@ int run_table(const TableOptions& options) {
       results.push_back(std::move(config));
     }
   }
-  const Table1 table = build_table1(results, score);
+  Table1 table = build_table1(results, score);
+  table.show_cost_rate = options.metric == "cost-rate";
 
   const std::filesystem::path out = options.output_dir.empty() ? std::filesystem::path(options.sweep_dirs.front())
                                                                : std::filesystem::path(options.output_dir);
@@ -90,6 +92,10 @@ void add_table_command(CLI::App& app, Action& run) {
       ->check(CLI::IsMember({"report"}));
   table->add_option("--configs", options->configs_dir,
                     "configs directory holding report_table1.csv (default: searched as bsg train does)");
+  table->add_option("--metric", options->metric,
+                    "return-cost: J/J_TRPO (H/d) per cell; cost-rate: also the training cost rate r (all cost "
+                    "incurred during training / steps taken, Safety Gym's definition)")
+      ->check(CLI::IsMember({"return-cost", "cost-rate"}));
   table->callback([options, &run] { run = [options] { return run_table(*options); }; });
 }
 

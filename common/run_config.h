@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/constraint_config.h"
 #include "common/dtype.h"
 
 namespace bsg {
@@ -65,6 +66,9 @@ struct RunConfig {
 
   // --- environment settings (report Table 3, docs/reproducing.md#environment-settings) ---
   double cost_limit = 25.0;        // d: limit on the undiscounted episode cost
+  // Several constraints (docs/algorithms.md#several-constraints); empty: one,
+  // the environment's cost against cost_limit.
+  std::vector<ConstraintConfig> constraints{};
   int epochs = 500;                // E
   int steps_per_epoch = 32000;     // B: env steps per epoch summed over ranks
   int max_ep_len = 250;            // episode time limit in steps

@@ -64,6 +64,12 @@ void check_env_id(const std::string& env_id, const std::string& origin,
 }
 
 void check_run_config_relations(const RunConfig& config, const ConfigOrigins& origins) {
+  if (config.alg == Algorithm::trpo && config.constraints.size() > 1) {
+    throw ConfigError(origin_of(origins, "constraints") + ": key 'constraints' lists " +
+                      std::to_string(config.constraints.size()) +
+                      " constraints, but alg 'trpo' ignores cost (it maximises the return alone); use lag-trpo, "
+                      "pdo, cpo or pcpo, or give one constraint to judge TRPO's policy by");
+  }
   if (config.max_ep_len > config.steps_per_epoch) {
     throw ConfigError("max_ep_len = " + std::to_string(config.max_ep_len) + " (" +
                       origin_of(origins, "max_ep_len") + ") exceeds steps_per_epoch = " +

@@ -33,8 +33,9 @@ void check_env_id(const std::string& env_id, const std::string& origin,
                   const std::vector<std::string>& valid_env_ids);
 
 // Relations between keys that hold for any number of ranks:
-// max_ep_len <= steps_per_epoch; and bounds no single key's range states:
-// at most kMaxHiddenLayers hidden layers, steps_per_epoch <= kMaxStepsPerEpoch,
+// max_ep_len <= steps_per_epoch; at most one constraint for trpo, which
+// ignores cost; and bounds no single key's range states: at most
+// kMaxHiddenLayers hidden layers, steps_per_epoch <= kMaxStepsPerEpoch,
 // epochs <= kMaxEpochs, eval_episodes <= kMaxEvalEpisodes. Names the keys and
 // their origins.
 void check_run_config_relations(const RunConfig& config, const ConfigOrigins& origins);

@@ -42,7 +42,7 @@ EnumAccess enum_access() {
 using FieldAccess =
     std::variant<bool RunConfig::*, int RunConfig::*, std::int64_t RunConfig::*,
                  double RunConfig::*, std::string RunConfig::*, std::vector<int> RunConfig::*,
-                 EnumAccess>;
+                 std::vector<ConstraintConfig> RunConfig::*, EnumAccess>;
 
 struct SchemaRow {
   ConfigKey info;
@@ -80,6 +80,10 @@ SchemaRow choice(std::string_view key, EnumAccess access, std::span<const std::s
                  ConfigLayer layer, AlgorithmSet used_by, std::string_view description) {
   return {{key, ConfigValueType::choice, layer, {}, names, used_by, description}, access};
 }
+SchemaRow constraint_list(std::string_view key, std::vector<ConstraintConfig> RunConfig::*member,
+                          AlgorithmSet used_by, std::string_view description) {
+  return {{key, ConfigValueType::constraint_list, ConfigLayer::run, {}, {}, used_by, description}, member};
+}
 SchemaRow integer_list(std::string_view key, std::vector<int> RunConfig::*member,
                        ConfigLayer layer, NumericRange element_range, AlgorithmSet used_by,
                        std::string_view description) {
@@ -104,6 +108,9 @@ const std::vector<SchemaRow>& schema_rows() {
          "directory under which the run directory is created"),
     choice("physics", enum_access<&R::physics>(), kPhysicsNames, L::run, all,
            "faithful (the original's model) or lean (equivalent, faster; the Ant and the Car)"),
+    constraint_list("constraints", &R::constraints, all,
+                    "several constraints, each summing named cost terms (or all) against its own limit: "
+                    "[{terms: [cost_outside_bounds], limit: 20}, ...]; absent: the cost against cost_limit"),
     // --- environment (report Table 3, docs/reproducing.md#environment-settings) ---
     real("cost_limit", &R::cost_limit, L::environment, at_least(0), all,
          "d: limit on the undiscounted episode cost"),
@@ -246,6 +253,7 @@ std::string expected_text(const ConfigKey& key) {
     case ConfigValueType::choice: return "one of " + key.valid_values();
     case ConfigValueType::integer_list:
       return "a non-empty list of integers in " + key.range.to_string() + ", e.g. [64, 64]";
+    case ConfigValueType::constraint_list: return "a list of {terms, limit}";
   }
   return "";
 }
@@ -299,6 +307,7 @@ std::string_view to_string(ConfigValueType type) {
     case ConfigValueType::text: return "string";
     case ConfigValueType::choice: return "choice";
     case ConfigValueType::integer_list: return "int list";
+    case ConfigValueType::constraint_list: return "constraint list";
   }
   return "<invalid>";
 }
@@ -332,6 +341,7 @@ std::string ConfigKey::valid_values() const {
     case ConfigValueType::integer:
     case ConfigValueType::real: return range.to_string();
     case ConfigValueType::integer_list: return "list of " + range.to_string();
+    case ConfigValueType::constraint_list: return "list of {terms: [names] or all, limit: >= 0}";
     case ConfigValueType::text: return "non-empty text";
     case ConfigValueType::choice: {
       std::string joined;
@@ -470,6 +480,8 @@ void set_config_value(RunConfig& config, const ConfigKey& key, const YAML::Node&
             list.push_back(static_cast<int>(*parsed));
           }
           config.*access = std::move(list);
+        } else if constexpr (std::is_same_v<Access, std::vector<ConstraintConfig> RunConfig::*>) {
+          config.*access = parse_constraint_list(value, origin, kMaxConstraintCount);
         } else {  // EnumAccess
           if (!value.IsScalar()) throw_type_error(key, value, origin);
           const auto found = std::find(key.choices.begin(), key.choices.end(), value.Scalar());
@@ -508,6 +520,8 @@ std::string config_value_to_yaml(const RunConfig& config, const ConfigKey& key) 
           }
           out << "]";
           return out.str();
+        } else if constexpr (std::is_same_v<Access, std::vector<ConstraintConfig> RunConfig::*>) {
+          return constraint_list_to_yaml(config.*access);
         } else {  // EnumAccess
           const int index = access.get(config);
           return std::string(key.choices[static_cast<std::size_t>(index)]);

@@ -37,6 +37,7 @@ RunConfig from_document(const YAML::Node& document, const std::string& source_na
     origins["dtype"] = source_name + " (no dtype: written before the key existed, float64)";
   }
   for (const ConfigKey& key : run_config_schema()) {
+    if (key.type == ConfigValueType::constraint_list) continue;  // absent: one constraint (cost_limit)
     if (key.applies_to(config.alg) && origins.count(std::string(key.key)) == 0) {
       throw ConfigError(source_name + ": resolved config lacks key '" + std::string(key.key) +
                         "' (" + std::string(key.description) + ")");
@@ -56,6 +57,7 @@ std::string to_yaml(const RunConfig& config) {
   bool first = true;
   for (const ConfigKey& key : run_config_schema()) {
     if (!key.applies_to(config.alg)) continue;
+    if (key.type == ConfigValueType::constraint_list && config.constraints.empty()) continue;  // as before the key
     if (first || key.default_source != section) {
       section = key.default_source;
       out << "# --- " << to_string(section) << " ---\n";

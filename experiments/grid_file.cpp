@@ -117,7 +117,8 @@ std::vector<GridSetting> parse_fixed(const YAML::Node& node, const std::string& 
       fail(location(source_name, pair.second), what + ": '" + std::string(key.key) +
                                                    "' must have a single value, not a mapping");
     }
-    if (pair.second.IsSequence() && key.type != ConfigValueType::integer_list) {
+    if (pair.second.IsSequence() && key.type != ConfigValueType::integer_list &&
+        key.type != ConfigValueType::constraint_list) {
       fail(location(source_name, pair.second),
            what + ": '" + std::string(key.key) +
                "' has a list of values; a swept key belongs under 'axes' of an algorithm");

@@ -64,6 +64,21 @@ std::optional<RunEvaluation> read_run_evaluation(const RunDirectory& directory) 
   evaluation.mean_return = number("mean_return");
   evaluation.mean_cost = number("mean_cost");
   evaluation.episodes = static_cast<long long>(number("episodes"));
+  evaluation.cost_rate = document["cost_rate"] ? number("cost_rate") : std::numeric_limits<double>::quiet_NaN();
+  if (const YAML::Node constraints = document["constraints"]) {
+    if (!constraints.IsSequence()) throw std::runtime_error(path.string() + ": \"constraints\" is not a list");
+    for (const YAML::Node& constraint : constraints) {
+      const auto field = [&](const char* key) {
+        const YAML::Node value = constraint[key];
+        if (!value.IsDefined() || value.IsNull()) return std::numeric_limits<double>::quiet_NaN();
+        const std::optional<double> parsed = value.IsScalar() ? parse_config_real(value.Scalar()) : std::nullopt;
+        if (!parsed) throw std::runtime_error(path.string() + ": a constraint's \"" + key + "\" is not a number");
+        return *parsed;
+      };
+      evaluation.constraint_costs.push_back(field("mean_cost"));
+      evaluation.constraint_limits.push_back(field("limit"));
+    }
+  }
   return evaluation;
 }
 

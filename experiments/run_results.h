@@ -20,6 +20,10 @@ struct RunEvaluation {
   double mean_return = 0.0;  // J
   double mean_cost = 0.0;    // H
   long long episodes = 0;
+  // Safety during training (absent in runs from before it: NaN / empty).
+  double cost_rate = 0.0;                // training cost / training steps
+  std::vector<double> constraint_costs{};  // H_i of the "constraints" list, in order
+  std::vector<double> constraint_limits{};  // d_i
 };
 
 // Epochs logged so far: the data rows of progress.csv (0 if it does not exist).

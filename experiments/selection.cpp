@@ -23,14 +23,32 @@ ConfigurationScore score_configuration(const ConfigurationResults& config, Selec
     throw std::invalid_argument("configuration " + name + " has no finished run to score");
   }
   ConfigurationScore result;
+  const std::size_t m = config.constraint_limits.size();
+  result.mean_constraint_costs.assign(m, 0.0);
   for (const SeedResult& seed : config.seeds) {
     result.mean_return += seed.mean_return;
     result.mean_cost += seed.mean_cost;
+    result.mean_cost_rate += seed.cost_rate;
+    if (m > 0 && seed.constraint_costs.size() != m) {
+      throw std::invalid_argument("configuration " + name + ", seed " + std::to_string(seed.seed) + ": " +
+                                  std::to_string(seed.constraint_costs.size()) + " constraint costs in its "
+                                  "evaluation, the configuration has " + std::to_string(m) + " constraints");
+    }
+    for (std::size_t i = 0; i < m; ++i) result.mean_constraint_costs[i] += seed.constraint_costs[i];
   }
   const double n = static_cast<double>(config.seeds.size());
   result.mean_return /= n;  // J: mean over seeds (report §5-6)
   result.mean_cost /= n;    // H
-  result.feasible = result.mean_cost <= config.cost_limit;
+  result.mean_cost_rate /= n;
+  if (m == 0) {
+    result.feasible = result.mean_cost <= config.cost_limit;
+  } else {  // every constraint must hold
+    result.feasible = true;
+    for (std::size_t i = 0; i < m; ++i) {
+      result.mean_constraint_costs[i] /= n;
+      result.feasible = result.feasible && result.mean_constraint_costs[i] <= config.constraint_limits[i];
+    }
+  }
 
   if (score == SelectionScore::mean_return) {
     result.score = result.mean_return;

@@ -2,7 +2,9 @@
 // of one (environment, algorithm) of a grid. Each configuration's J and H are
 // the deterministic-evaluation means, averaged over its finished seeds.
 //
-//   constrained algorithms: among configurations with H <= d, the best score;
+//   constrained algorithms: among feasible configurations, the best score;
+//     feasible: H <= d, or with several constraints (docs/reproducing.md#selection-rule)
+//     every constraint's mean H_i <= d_i;
 //     if none, the lowest H (the lowest cost violation), marked infeasible;
 //   TRPO (unconstrained): the best score, whatever the cost (it is the
 //     normaliser J_TRPO of Table 1).
@@ -35,6 +37,8 @@ struct SeedResult {
   double mean_return = 0.0;              // J, mean over its evaluation episodes
   double mean_cost = 0.0;                // H
   std::vector<double> episode_returns;   // needed only for mean_minus_std
+  double cost_rate = 0.0;                // training cost rate (NaN if the run predates it)
+  std::vector<double> constraint_costs{};  // H_i of the evaluation.json constraints list (may be empty)
 };
 
 // One configuration of one (environment, algorithm).
@@ -51,13 +55,17 @@ struct ConfigurationResults {
   // "<env_id>/<alg>/<config>" relative to the sweep (or, for a table of
   // several sweeps, prefixed with its sweep); empty: built from the fields.
   std::string config_dir;
+  // d_i of the run's `constraints:` (empty: the single constraint H <= cost_limit).
+  std::vector<double> constraint_limits{};
 };
 
 struct ConfigurationScore {
   double mean_return = 0.0;  // mean over seeds of J
   double mean_cost = 0.0;    // mean over seeds of H
   double score = 0.0;        // what the selection maximises
-  bool feasible = false;     // mean_cost <= cost_limit
+  bool feasible = false;     // mean_cost <= cost_limit, or every mean_constraint_costs[i] <= constraint_limits[i]
+  double mean_cost_rate = 0.0;               // mean over seeds of the training cost rate (NaN if unknown)
+  std::vector<double> mean_constraint_costs{};  // mean over seeds of H_i (with constraint_limits)
 };
 
 // Throws std::invalid_argument if the configuration has no finished seed, or

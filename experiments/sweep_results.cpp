@@ -143,13 +143,17 @@ std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path
       if (std::isnan(config.cost_limit) && is_run_directory(run.run_dir)) {
         if (const std::optional<RunConfig> run_config = read_run_directory_config(run.run_dir)) {
           config.cost_limit = run_config->cost_limit;
+          for (const ConstraintConfig& constraint : run_config->constraints) {
+            config.constraint_limits.push_back(constraint.limit);
+          }
           config.pid_multiplier = uses_pid_multiplier(*run_config);
         }
       }
       const std::optional<RunEvaluation> evaluation = read_run_evaluation(directory);
       // A run trained with eval_episodes: 0 is finished but has no J or H.
       if (!evaluation || evaluation->episodes == 0) continue;
-      SeedResult seed{run.seed, evaluation->mean_return, evaluation->mean_cost, {}};
+      SeedResult seed{run.seed, evaluation->mean_return, evaluation->mean_cost, {}, evaluation->cost_rate,
+                      config.constraint_limits.empty() ? std::vector<double>{} : evaluation->constraint_costs};
       if (with_episode_returns) seed.episode_returns = read_value_per_line(directory.returns());
       config.seeds.push_back(std::move(seed));
     }

@@ -61,6 +61,7 @@ struct ConfigurationSummary {
 
 struct Table1 {
   SelectionScore score = SelectionScore::mean_return;
+  bool show_cost_rate = false;  // bsg table --metric cost-rate: the training cost rate beside J and H
   // Those in the sweep, in kAlgorithmNames order, each PID column after its algorithm's.
   std::vector<Table1Column> columns;
   std::vector<Table1Row> rows;        // the report's row order, then other ids sorted

@@ -36,12 +36,13 @@ std::optional<double> normalised_cost(const Table1Row& row, const Table1Cell& ce
 
 enum class Format { markdown, latex };
 
-std::string cell_text(const Table1Row& row, const Table1Cell& cell, Format format) {
+std::string cell_text(const Table1Row& row, const Table1Cell& cell, Format format, bool show_cost_rate) {
   if (!cell.selected) return format == Format::latex ? "\\emph{missing}" : "missing";
   const std::optional<double> j = normalised_return(row, cell);
   const std::optional<double> h = normalised_cost(row, cell);
   std::string text = j ? short_number(*j) : "J=" + short_number(cell.score.mean_return);
   text += " (" + (h ? short_number(*h) : "H=" + short_number(cell.score.mean_cost)) + ")";
+  if (show_cost_rate) text += " r=" + short_number(cell.score.mean_cost_rate);  // Safety Gym's cost rate
   if (cell.alg != Algorithm::trpo && !cell.constraint_met) {
     text += format == Format::latex ? "$^\\dagger$" : "\u2020";
   }
@@ -58,7 +59,9 @@ std::string legend(const Table1& table) {
   return "J/J_TRPO with H/d in parentheses (deterministic evaluation, mean over seeds); bold: the "
          "best constrained algorithm; \u2020: no configuration met the cost limit d, the lowest "
          "violation is shown; [k/n]: k of n seeds finished; missing: no finished run. Selection "
-         "score: " + std::string(to_string(table.score)) + ".";
+         "score: " + std::string(to_string(table.score)) + "." +
+         (table.show_cost_rate ? " r: the training cost rate (all training cost / training steps, mean over seeds)."
+                               : "");
 }
 
 }  // namespace
@@ -74,7 +77,7 @@ std::string table1_markdown(const Table1& table) {
   for (const Table1Row& row : table.rows) {
     text.append("| ").append(table1_row_label(row.env_id)).append(" |");
     for (const Table1Cell& cell : row.cells) {
-      text.append(" ").append(cell_text(row, cell, Format::markdown)).append(" |");
+      text.append(" ").append(cell_text(row, cell, Format::markdown, table.show_cost_rate)).append(" |");
     }
     text += "\n";
   }
@@ -95,7 +98,7 @@ std::string table1_latex(const Table1& table) {
           " \\\\\n\\midrule\n";
   for (const Table1Row& row : table.rows) {
     text += table1_row_label(row.env_id);
-    for (const Table1Cell& cell : row.cells) text += " & " + cell_text(row, cell, Format::latex);
+    for (const Table1Cell& cell : row.cells) text += " & " + cell_text(row, cell, Format::latex, table.show_cost_rate);
     text += " \\\\\n";
   }
   return text + "\\bottomrule\n\\end{tabular}\n";
