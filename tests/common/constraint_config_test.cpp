@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../test_support.h"
+#include "shipped_request.h"
 #include "common/config_error.h"
 #include "common/run_config_resolve.h"
 #include "common/run_config_yaml.h"
@@ -23,22 +24,10 @@ const char* const kTwoConstraints =
     "constraints=[{terms: [cost_outside_bounds], limit: 20}, {terms: [cost_velocity_violation], limit: 5}]";
 
 RunConfigRequest shipped(const std::string& alg, std::vector<std::string> sets) {
-  RunConfigRequest request;
-  request.configs_dir = fs::path(BSG_SOURCE_DIR) / "configs";
-  request.set_arguments = {"env_id=SafetyBallRun-v0", "alg=" + alg};
-  request.set_arguments.insert(request.set_arguments.end(), sets.begin(), sets.end());
-  return request;
+  return testing::shipped_request("SafetyBallRun-v0", alg, std::move(sets));
 }
 
-std::string error_of(const RunConfigRequest& request) {
-  try {
-    resolve_run_config(request);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected a ConfigError";
-  return "";
-}
+std::string error_of(const RunConfigRequest& request) { return testing::config_error_of(request); }
 
 TEST(ConstraintConfig, AbsentByDefaultAndLeftOutOfTheResolvedYaml) {
   const RunConfig config = resolve_run_config(shipped("cpo", {})).config;

@@ -10,6 +10,8 @@
 #include "../test_support.h"
 #include "experiments/run_results.h"
 #include "experiments/selection.h"
+#include "experiments/table1.h"
+#include "experiments/table1_render.h"
 
 namespace bsg {
 namespace {
@@ -67,6 +69,20 @@ TEST(SeveralConstraintsSelection, EvaluationJsonConstraintsAreRead) {
   EXPECT_EQ(evaluation->constraint_costs[0], 3.5);
   EXPECT_TRUE(std::isnan(evaluation->constraint_costs[1]));
   EXPECT_EQ(evaluation->constraint_limits, (std::vector<double>{20.0, 5.0}));
+}
+
+TEST(SeveralConstraintsSelection, TheCostRateMetricShowsTheTrainingCostRateBesideJAndH) {
+  ConfigurationResults trpo = two_constraint_configuration({{10.0, 4.0}, {20.0, 6.0}});  // rates 0.1, 0.2
+  trpo.alg = Algorithm::trpo;
+  trpo.constraint_limits.clear();
+  for (SeedResult& seed : trpo.seeds) seed.constraint_costs.clear();
+  const ConfigurationResults cpo = two_constraint_configuration({{10.0, 4.0}, {20.0, 6.0}});
+  Table1 table = build_table1({trpo, cpo}, SelectionScore::mean_return);
+  EXPECT_EQ(table1_markdown(table).find("r="), std::string::npos);  // not by default
+  table.show_cost_rate = true;
+  const std::string markdown = table1_markdown(table);
+  EXPECT_TRUE(testing::contains(markdown, "r=0.15"));  // (0.1 + 0.2) / 2
+  EXPECT_TRUE(testing::contains(markdown, "training cost rate"));
 }
 
 }  // namespace
