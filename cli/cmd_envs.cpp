@@ -1,13 +1,19 @@
 // `bsg envs [--json]`: the registered environments with their observation and
 // action sizes, episode length and cost limit (docs/environments.md#the-sixteen-environments, report Table 3).
+// `bsg envs --describe ID [--set key=value]...`: the full resolved description
+// of one environment as YAML (docs/environments.md#environment-descriptions), with
+// its observation and action sizes as comments.
 #include <CLI/CLI.hpp>
 
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "commands.h"
+#include "env_set_arguments.h"
 #include "envs/env.h"
 
 namespace bsg::cli {
@@ -40,14 +46,38 @@ int list_envs(bool json) {
   return 0;
 }
 
+int describe_env(const std::string& id, const std::vector<std::string>& set_arguments) {
+  const envs::EnvDescription description = envs::describe(id, parse_env_set_arguments(set_arguments));
+  const envs::EnvSpec spec = envs::make(description)->spec();
+  std::cout << "# " << spec.id << ": observation " << spec.observation_dim << ", action "
+            << spec.action_dim << "\n"
+            << envs::to_yaml(description);
+  return 0;
+}
+
 }  // namespace
 
 void add_envs_command(CLI::App& app, Action& run) {
   CLI::App* command = app.add_subcommand(
       "envs", "List the registered environments: observation/action sizes, episode length, cost limit");
   auto json = std::make_shared<bool>(false);
-  command->add_flag("--json", *json, "print a JSON array");
-  command->callback([&run, json]() { run = [json]() { return list_envs(*json); }; });
+  auto describe = std::make_shared<std::string>();
+  auto set = std::make_shared<std::vector<std::string>>();
+  auto* json_flag = command->add_flag("--json", *json, "print a JSON array");
+  auto* describe_option = command->add_option(
+      "--describe", *describe, "print the full description of one environment id as YAML");
+  command->add_option("--set", *set, "--describe: change a parameter (repeatable), e.g. --set bombs=12")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->needs(describe_option);
+  json_flag->excludes(describe_option);
+  command->callback([&run, json, describe, set]() {
+    if (!describe->empty()) {
+      run = [describe, set]() { return describe_env(*describe, *set); };
+      return;
+    }
+    run = [json]() { return list_envs(*json); };
+  });
 }
 
 }  // namespace bsg::cli

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "algos/run_environment.h"
 #include "algos/run_directory.h"
 #include "algos/trainer.h"
 #include "commands.h"
@@ -61,6 +62,7 @@ ResolvedTrainConfig resolve_config(const TrainArguments& args) {
   request.set_arguments = args.set_arguments;
   request.valid_env_ids = envs::registered_ids();
   resolved.config = resolve_run_config(request).config;
+  resolve_env_block(resolved.config);
   return resolved;
 }
 

@@ -4,7 +4,6 @@
 // see the agent only through the Agent interface.
 #pragma once
 
-#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -47,18 +46,6 @@ class Task {
   virtual void write_observation(std::span<double> out) const = 0;
   // Task fields of EnvState.
   virtual void write_state(EnvState& /*state*/) const {}
-};
-
-using TaskFactory =
-    std::function<std::unique_ptr<Task>(World& world, Agent& agent, const EnvOptions& options)>;
-
-// What the builder must know before the world exists (docs/environments.md#the-sixteen-environments, #physics-settings).
-struct TaskBlueprint {
-  std::string name;           // "Circle", "Gather", "Reach", "Run"
-  WorldLayout layout = WorldLayout::kPlane200;
-  int sub_steps = 4;          // 4, or 1 for Reach
-  bool power_upgrade = false; // Reach and Gather (docs/environments.md#agents)
-  TaskFactory make;
 };
 
 }  // namespace bsg::envs

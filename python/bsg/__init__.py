@@ -8,13 +8,19 @@
 ``bsg.env_ids()`` lists the ids; ``bsg.VectorEnv(id, num_envs)`` steps many
 environments on a C++ thread pool; ``bsg.make(id, api="gymnasium")`` gives
 gymnasium's 5-tuple with the cost in ``info["cost"]``.
+
+Every other keyword argument changes a parameter of the environment's
+description (``bsg.describe(id)`` lists them, docs/environments.md):
+``bsg.make("SafetyBallGather-v0", bombs=12)``, or a new combination
+``bsg.make(agent="Drone", task="Reach", zones=4)``; the same for
+``bsg.VectorEnv``. A bad key or value raises ValueError naming it.
 """
 
 from . import _core
 from .spaces import Box, box
 from .wrappers import GymnasiumEnv
 
-__all__ = ["make", "env_ids", "Env", "VectorEnv", "EnvSpec", "GymnasiumEnv", "Box"]
+__all__ = ["make", "describe", "env_ids", "Env", "VectorEnv", "EnvSpec", "GymnasiumEnv", "Box"]
 
 EnvSpec = _core.EnvSpec
 _OPTIONS = ("box_clock",)
@@ -25,10 +31,17 @@ def env_ids():
     return _core.env_ids()
 
 
-def _check_options(options):
-    unknown = sorted(set(options) - set(_OPTIONS))
-    if unknown:
-        raise TypeError(f"unknown option(s) {unknown}; valid options: {list(_OPTIONS)}")
+def _split_options(kwargs):
+    """(options, environment parameters) of a keyword-argument dict."""
+    options = {key: value for key, value in kwargs.items() if key in _OPTIONS}
+    parameters = {key: value for key, value in kwargs.items() if key not in _OPTIONS}
+    return options, parameters
+
+
+def describe(env_id=None, **parameters):
+    """The resolved description of ``env_id`` with ``parameters`` applied, as a
+    dict of key to text (as ``bsg envs --describe`` prints it)."""
+    return dict(_core.describe(env_id, parameters))
 
 
 class Env(_core.Env):
@@ -44,9 +57,9 @@ class Env(_core.Env):
     metadata = {"render_modes": []}
     render_mode = None
 
-    def __init__(self, env_id, **options):
-        _check_options(options)
-        super().__init__(env_id, **options)
+    def __init__(self, env_id=None, **kwargs):
+        options, parameters = _split_options(kwargs)
+        super().__init__(env_id, parameters=parameters, **options)
         spec = self.spec
         self.observation_space = box(
             -spec.observation_bound, spec.observation_bound, (spec.observation_dim,))
@@ -83,9 +96,9 @@ class VectorEnv(_core.VectorEnv):
     term.
     """
 
-    def __init__(self, env_id, num_envs, num_threads=0, seed=0, **options):
-        _check_options(options)
-        super().__init__(env_id, num_envs, num_threads, seed, **options)
+    def __init__(self, env_id=None, num_envs=1, num_threads=0, seed=0, **kwargs):
+        options, parameters = _split_options(kwargs)
+        super().__init__(env_id, num_envs, num_threads, seed, parameters=parameters, **options)
         spec = self.spec
         self.single_observation_space = box(
             -spec.observation_bound, spec.observation_bound, (spec.observation_dim,))
@@ -105,16 +118,18 @@ class VectorEnv(_core.VectorEnv):
                 f"thread(s){' (closed)' if self.closed else ''}>")
 
 
-def make(env_id, *, api="safety", **options):
+def make(env_id=None, *, api="safety", **kwargs):
     """Makes environment ``env_id`` (see ``env_ids()``).
 
     ``api="safety"`` (default): Safety-Gymnasium's 6-tuple step;
     ``api="gymnasium"``: gymnasium's 5-tuple with the cost in ``info["cost"]``.
+    Other keyword arguments change the description: ``make(id, bombs=12)``,
+    ``make(agent="Drone", task="Reach")`` (no id: that agent on that task).
     Unknown ids raise ValueError listing the valid ones.
     """
-    if not isinstance(env_id, str):
+    if env_id is not None and not isinstance(env_id, str):
         raise TypeError(f"env_id must be a str, got {type(env_id).__name__}")
     if api not in ("safety", "gymnasium"):
         raise ValueError(f"api must be 'safety' or 'gymnasium', got {api!r}")
-    env = Env(env_id, **options)
+    env = Env(env_id, **kwargs)
     return GymnasiumEnv(env) if api == "gymnasium" else env

@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "arguments.h"
 #include "bench_helpers.h"
 #include "envs/env.h"
 #include "python_env.h"
@@ -12,6 +13,13 @@
 PYBIND11_MODULE(_core, module) {
   module.doc() = "bsg environments (C++ core of the bsg package)";
   module.def("env_ids", &bsg::envs::registered_ids, "Every registered environment id, sorted.");
+  module.def(
+      "describe",
+      [](pybind11::handle env_id, pybind11::handle parameters) {
+        return bsg::envs::to_env_overrides(bsg::python::env_description(env_id, parameters));
+      },
+      pybind11::arg("env_id"), pybind11::arg("parameters") = pybind11::none(),
+      "The resolved description as (key, text) pairs, as `bsg envs --describe` prints it.");
   bsg::python::bind_env(module);
   bsg::python::bind_vector_env(module);
   bsg::python::bind_bench_helpers(module);

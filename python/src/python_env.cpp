@@ -24,8 +24,8 @@ py::array_t<double> copy_to_array(std::span<const double> values,
   return array;
 }
 
-PythonEnv::PythonEnv(const std::string& env_id, const std::string& box_clock)
-    : env_(envs::make(env_id, env_options(box_clock))),
+PythonEnv::PythonEnv(py::handle env_id, const std::string& box_clock, py::handle parameters)
+    : env_(envs::make(env_description(env_id, parameters), env_options(box_clock))),
       spec_(env_->spec()),
       action_shape_{spec_.action_dim} {}
 
@@ -107,8 +107,8 @@ void bind_env(py::module_& module) {
       });
 
   py::class_<PythonEnv>(module, "Env", "One environment (see bsg.Env).")
-      .def(py::init<const std::string&, const std::string&>(), py::arg("env_id"),
-           py::arg("box_clock") = "episode_phase")
+      .def(py::init<py::handle, const std::string&, py::handle>(), py::arg("env_id"),
+           py::arg("box_clock") = "episode_phase", py::arg("parameters") = py::none())
       .def("reset", &PythonEnv::reset, py::arg("seed") = py::none(),
            py::arg("options") = py::none(),
            "Resets; returns (observation, info). seed=None continues the random stream.")

@@ -22,8 +22,8 @@ namespace bsg::python {
 
 class PythonVectorEnv {
  public:
-  PythonVectorEnv(const std::string& env_id, int num_envs, int num_threads, pybind11::handle seed,
-                  const std::string& box_clock);
+  PythonVectorEnv(pybind11::handle env_id, int num_envs, int num_threads, pybind11::handle seed,
+                  const std::string& box_clock, pybind11::handle parameters);
 
   // seed None: the constructor's seed at the first reset, then each
   // environment's own stream continues; an int: environment i gets seed + i.
