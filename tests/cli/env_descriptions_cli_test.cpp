@@ -122,7 +122,7 @@ TEST(CustomRun, ResumeAndEvalRebuildTheSameEnvironment) {
 TEST(CustomRun, AWholeDescriptionNamesItsStandardEnvironment) {
   const TemporaryDirectory dir;
   const std::string file = run_file(dir, "env: {agent: Ant, task: Gather, bombs: 16, name: AntGather16}\n");
-  const auto result = run_bsg("train --print-config " + file + kConfigs);
+  const auto result = run_bsg("train --print-config " + file + kConfigs + " --set steps_per_epoch=2000");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_TRUE(contains(result.output, "\nenv_id: SafetyAntGather-v0  #")) << result.output;
   EXPECT_TRUE(contains(result.output, "name: AntGather16, agent: Ant, task: Gather")) << result.output;

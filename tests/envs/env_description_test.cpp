@@ -113,7 +113,8 @@ TEST(CustomEnvironments, BallReachWithoutZonesAndBoxHasNeitherOverManyResets) {
     EXPECT_TRUE(in_square(layout.agent_position, 7.0));
     EXPECT_GE(planar(*layout.goal, layout.agent_position), 2.5);
     const StepResult step = env->step(zero);
-    for (size_t i = 24; i < 48; ++i) EXPECT_EQ(step.observation[i], 0.0);  // nothing to sense
+    // The zones pseudo-LIDAR after the agent (7) and the LIDAR (24): nothing to sense.
+    for (size_t i = 7 + 24; i < 7 + 48; ++i) EXPECT_EQ(step.observation[i], 0.0);
     EXPECT_EQ(step.cost_term("cost_collisions"), 0);
     EXPECT_FALSE(env->state().box.has_value());
   }
@@ -163,7 +164,9 @@ TEST(CustomEnvironments, CircleEpisodesLastTheDescribedNumberOfSteps) {
       step = env->step(zero);
       ++length;
     } while (!step.terminated && !step.truncated);
-    if (!step.terminated) EXPECT_EQ(length, steps) << id;
+    if (!step.terminated) {
+      EXPECT_EQ(length, steps) << id;
+    }
     EXPECT_LE(length, steps);
   }
 }
