@@ -11,10 +11,11 @@
 #include <nlohmann/json.hpp>
 
 #include "../test_support.h"
+#include "progress_rows.h"
 #include "run_bsg.h"
 
 namespace fs = std::filesystem;
-using bsg::testing::read_csv_rows;
+using bsg::testing::progress_without_timings;
 using bsg::testing::read_text_file;
 using bsg::testing::run_bsg;
 using bsg::testing::TemporaryDirectory;
@@ -74,22 +75,6 @@ std::string run_file(const TemporaryDirectory& dir, const std::string& env_lines
   write_text_file(path, "alg: lag-trpo\nseed: 3\nepochs: 4\nsteps_per_epoch: 500\nsave_freq: 1\n"
                         "eval_episodes: 2\ncost_limit: 1\n" + env_lines);
   return path.string();
-}
-
-std::vector<std::vector<std::string>> progress_without_timings(const fs::path& path) {
-  std::vector<std::vector<std::string>> rows;
-  std::vector<bool> keep;
-  for (const std::vector<std::string>& fields : read_csv_rows(path)) {
-    if (keep.empty()) {
-      for (const std::string& name : fields) keep.push_back(!(name.rfind("time_", 0) == 0 || name == "fps"));
-    }
-    std::vector<std::string> kept;
-    for (std::size_t i = 0; i < fields.size() && i < keep.size(); ++i) {
-      if (keep[i]) kept.push_back(fields[i]);
-    }
-    rows.push_back(kept);
-  }
-  return rows;
 }
 
 TEST(CustomRun, ResumeAndEvalRebuildTheSameEnvironment) {
