@@ -102,7 +102,11 @@ int train(const TrainArguments& args) {
       return mpi.max(stop_signals.stop_pending() != 0 ? 1.0 : 0.0) > 0.0;
     };
     if (mpi.is_root() && !args.quiet) {
-      std::cout << "bsg train: " << config.env_id << " " << to_string(config.alg) << " seed " << config.seed << ", "
+      std::string env_name = config.env_id;
+      for (const auto& [key, value] : config.env) {
+        if (key == "name" && value != config.env_id) env_name = value + " (from " + config.env_id + ")";
+      }
+      std::cout << "bsg train: " << env_name << " " << to_string(config.alg) << " seed " << config.seed << ", "
                 << config.epochs << " epochs of " << config.steps_per_epoch << " steps on " << mpi.size()
                 << (mpi.size() == 1 ? " rank" : " ranks") << (resume ? ", resuming " : " -> ")
                 << directory->root.string() << std::endl;
