@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -59,7 +60,7 @@ Row choice(std::string_view key, std::string D::*member, TaskSet tasks, std::str
 const std::vector<Row>& rows() {
   static const std::vector<Row> table = [] {
     std::vector<Row> r = {
-      {{"name", ParameterType::text, kAllTasks, "", "", "non-empty text",
+      {{"name", ParameterType::text, kAllTasks, "", "", "letters, digits, -, _, .",
         "id reported by spec(), e.g. SafetyBallCircle-v0 or your own name"}, &D::name, Bound::any, {}},
       choice("agent", &D::agent, kAllTasks, "Ball, Car, Drone, Ant",
              {"Ball", "Car", "Drone", "Ant"}, "the robot; changing it restarts from the standard description"),
@@ -230,6 +231,11 @@ void set_value(EnvDescription& d, const Row& row, const std::string& text) {
           d.*member = *value;
         } else {
           if (text.empty()) fail(key, text, "expects non-empty text");
+          // A name is an id: it goes into YAML, logs and directory names unquoted.
+          const bool id_like = std::all_of(text.begin(), text.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_' || c == '.';
+          });
+          if (row.choices.empty() && !id_like) fail(key, text, "use letters, digits, '-', '_' and '.' only");
           if (!row.choices.empty() &&
               std::find(row.choices.begin(), row.choices.end(), text) == row.choices.end()) {
             const std::string guess = closest_name(text, row.choices);

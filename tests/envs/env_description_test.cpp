@@ -283,6 +283,7 @@ TEST(BadDescriptions, EachIsAOneLineErrorNamingKeyAndValue) {
   expect_error("SafetyBallCircle-v0", {{"world", "Moon"}}, {"world=Moon", "SmallRoom"});
   expect_error("SafetyBallReach-v0", {{"zone_layout", "barrier"}}, {"zones=8", "17"});
   expect_error("SafetyBallDance-v0", {{"bombs", "1"}}, {"SafetyBallDance-v0", "valid ids"});
+  expect_error("SafetyBallGather-v0", {{"name", "my: gather"}}, {"name=my: gather", "letters, digits"});
 }
 
 TEST(BadDescriptions, PlacementThatCannotSucceedStopsWithAnErrorNotALoop) {
