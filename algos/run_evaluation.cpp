@@ -2,6 +2,7 @@
 
 #include "algos/actor_critic.h"
 #include "algos/make_algorithm.h"
+#include "algos/run_environment.h"
 #include "algos/training_checkpoint.h"
 #include "common/run_config_yaml.h"
 
@@ -16,8 +17,7 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
                                      const MpiContext& mpi, const EnvDecorator& decorate) {
   check_is_run_directory(directory);
   const RunConfig config = load_resolved_run_config(directory.config(), envs::registered_ids());
-  std::unique_ptr<envs::Env> env =
-      envs::make(config.env_id, {.physics = envs::parse_physics_model(to_string(config.physics))});
+  std::unique_ptr<envs::Env> env = make_run_env(config);
   Rng unused_init(0);  // the checkpoint overwrites every parameter
   ActorCritic actor_critic(env->spec().observation_dim, env->spec().action_dim, config, unused_init);
   std::unique_ptr<TrustRegionAlgorithm> algorithm = make_algorithm(config);

@@ -14,6 +14,7 @@
 #include "algos/evaluation_files.h"
 #include "algos/make_algorithm.h"
 #include "algos/progress_line.h"
+#include "algos/run_environment.h"
 #include "common/run_config_checks.h"
 #include "common/run_config_yaml.h"
 #include "common/seeding.h"
@@ -76,8 +77,7 @@ std::optional<double> find_diagnostic(const PolicyUpdateResult& result, std::str
 OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi,
                                  TrainerOptions options)
     : OnPolicyTrainer(config, std::move(directory), mpi, options,
-                      envs::make(config.env_id,
-                                 {.physics = envs::parse_physics_model(to_string(config.physics))})) {}
+                      make_run_env(config)) {}
 
 OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi,
                                  TrainerOptions options, std::unique_ptr<envs::Env> env)

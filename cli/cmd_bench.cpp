@@ -5,6 +5,8 @@
 // faithful lean`), each environment is measured with every model in turn, R
 // times, alternating, so that a shared or throttled CPU affects all alike; the
 // text output then ends with the ratio of the median rates to the first model's.
+// `--set key=value` (repeatable) changes a parameter of the environment's
+// description (`bsg envs --describe ID`); with --train it sets a run key instead.
 // `bsg bench --train --env ID --alg A [--epochs N] [--set key=value]... [--json]`:
 // seconds per training epoch instead (train_benchmark.h).
 #include <CLI/CLI.hpp>
@@ -19,6 +21,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "env_set_arguments.h"
 #include "envs/env.h"
 #include "envs/env_benchmark.h"
 #include "train_benchmark.h"
@@ -33,6 +36,7 @@ struct BenchArguments {
   int rounds = 1;
   bool json = false;
   bool train = false;  // --train: time training epochs (train_benchmark.h)
+  std::vector<std::string> set_arguments;  // environment overrides key=value
 };
 
 double median(std::vector<double> values) {
@@ -46,14 +50,28 @@ int bench(const BenchArguments& args) {
   for (const std::string& name : args.physics) {
     models.push_back({.physics = envs::parse_physics_model(name)});  // a bad name fails here
   }
-  std::vector<std::string> ids;
+  const envs::EnvOverrides overrides = parse_env_set_arguments(args.set_arguments);
+  std::vector<envs::EnvDescription> descriptions;
   if (args.env_id.empty()) {
-    ids = envs::registered_ids();
-  } else {
-    for (const envs::EnvOptions& options : models) {
-      envs::make(args.env_id, options);  // an unknown id or model fails here, naming it
+    // Overrides apply to every id that has the keys (a Gather key skips the others).
+    for (const std::string& id : envs::registered_ids()) {
+      if (overrides.empty()) {
+        descriptions.push_back(envs::describe(id));
+        continue;
+      }
+      bool applies = true;
+      for (const auto& [key, value] : overrides) {
+        const envs::EnvParameter* parameter = envs::find_env_parameter(key);
+        applies = applies && (parameter == nullptr || envs::applies_to(*parameter, envs::describe(id)));
+      }
+      if (applies) descriptions.push_back(envs::describe(id, overrides));  // bad values fail here
     }
-    ids.push_back(args.env_id);
+    if (descriptions.empty()) envs::describe("SafetyBallCircle-v0", overrides);  // names the key
+  } else {
+    descriptions.push_back(envs::describe(args.env_id, overrides));
+    for (const envs::EnvOptions& options : models) {
+      envs::make(descriptions.back(), options);  // an unknown id or model fails here, naming it
+    }
   }
   const bool several = models.size() > 1 || args.rounds > 1;
   nlohmann::json list = nlohmann::json::array();
@@ -62,15 +80,16 @@ int bench(const BenchArguments& args) {
               << std::setw(14) << "env steps/s" << std::setw(18) << "physics steps/s"
               << std::setw(12) << "overhead" << "\n";
   }
-  for (const std::string& id : ids) {
+  for (const envs::EnvDescription& description : descriptions) {
+    const std::string& id = description.name;
     std::map<size_t, std::vector<double>> env_rates;  // model index → env steps/s per round
     for (int round = 0; round < args.rounds; ++round) {
       for (size_t m = 0; m < models.size(); ++m) {
         if (models[m].physics == envs::PhysicsModel::kLean &&
-            !envs::has_lean_model(id)) {
+            !envs::has_lean_model(description)) {
           continue;  // all environments: skip those without a lean model
         }
-        const envs::EnvBenchmark result = envs::benchmark_env(id, args.steps, 0, models[m]);
+        const envs::EnvBenchmark result = envs::benchmark_env(description, args.steps, 0, models[m]);
         const double overhead = result.physics_steps_per_second / result.env_steps_per_second;
         env_rates[m].push_back(result.env_steps_per_second);
         const std::string physics(envs::to_string(models[m].physics));
@@ -128,19 +147,21 @@ void add_bench_command(CLI::App& app, Action& run) {
   auto* alg = command->add_option("--alg", train->alg, "--train: algorithm (default lag-trpo)");
   auto* epochs = command->add_option("--epochs", train->epochs, "--train: epochs to time (default 5)")
                      ->check(CLI::Range(1, 1000000));
-  auto* set = command->add_option("--set", train->set_arguments, "--train: override one config key (repeatable)")
-                  ->expected(1)
-                  ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  command->add_option("--set", args->set_arguments,
+                      "change an environment parameter (repeatable), e.g. --set bombs=12; with "
+                      "--train: override one config key")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   steps->excludes(train_flag);
   physics->excludes(train_flag);  // --train takes the model from the config: --set physics=lean
   rounds->excludes(train_flag);
   alg->needs(train_flag);
   epochs->needs(train_flag);
-  set->needs(train_flag);
   command->callback([&run, args, train]() {
     if (args->train) {
       if (!args->env_id.empty()) train->env_id = args->env_id;
       train->json = args->json;
+      train->set_arguments = args->set_arguments;
       run = [train]() { return run_train_benchmark(*train); };
       return;
     }

@@ -1,5 +1,8 @@
 // `bsg envs [--json]`: the registered environments with their observation and
 // action sizes, episode length and cost limit (docs/environments.md#the-sixteen-environments, report Table 3).
+// `bsg envs --describe ID [--set key=value]...`: the full resolved description
+// of one environment as YAML (docs/environments.md#environment-descriptions), with
+// its observation and action sizes as comments.
 // `bsg envs --picture FILE [--width W] [--height H] [--camera C] [--seed S]`:
 // a PNG of every environment after reset(S), 4 per row (docs/rendering.md).
 #include <CLI/CLI.hpp>
@@ -8,9 +11,13 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "commands.h"
+#include "env_set_arguments.h"
 #include "envs/env.h"
+#include "envs/standard_descriptions.h"
 #include "render/env_renderer.h"
 #include "render/image_grid.h"
 #include "render/png_file.h"
@@ -54,13 +61,23 @@ struct PictureArguments {
 int picture_envs(const PictureArguments& args) {
   render::EnvRenderer renderer(args.render);
   std::vector<render::Image> images;
-  for (const std::string& id : envs::registered_ids()) {
-    const std::unique_ptr<envs::Env> env = envs::make(id);
+  // The 16 standard environments, 4 per row (the README's picture).
+  for (const envs::EnvDescription& description : envs::standard_descriptions()) {
+    const std::unique_ptr<envs::Env> env = envs::make(description);
     env->reset(args.seed);
     renderer.render(*env, images.emplace_back());
   }
   render::write_png(args.path, render::image_grid(images, 4, 4));
   std::cout << "wrote " << args.path << " (" << images.size() << " environments)\n";
+  return 0;
+}
+
+int describe_env(const std::string& id, const std::vector<std::string>& set_arguments) {
+  const envs::EnvDescription description = envs::describe(id, parse_env_set_arguments(set_arguments));
+  const envs::EnvSpec spec = envs::make(description)->spec();
+  std::cout << "# " << spec.id << ": observation " << spec.observation_dim << ", action "
+            << spec.action_dim << "\n"
+            << envs::to_yaml(description);
   return 0;
 }
 
@@ -70,9 +87,20 @@ void add_envs_command(CLI::App& app, Action& run) {
   CLI::App* command = app.add_subcommand(
       "envs", "List the registered environments: observation/action sizes, episode length, cost limit");
   auto json = std::make_shared<bool>(false);
-  command->add_flag("--json", *json, "print a JSON array");
   auto picture = std::make_shared<PictureArguments>();
-  command->add_option("--picture", picture->path, "write a PNG of every environment after reset, 4 per row");
+  auto describe = std::make_shared<std::string>();
+  auto set = std::make_shared<std::vector<std::string>>();
+  auto* json_flag = command->add_flag("--json", *json, "print a JSON array");
+  auto* describe_option = command->add_option(
+      "--describe", *describe, "print the full description of one environment id as YAML");
+  command->add_option("--set", *set, "--describe: change a parameter (repeatable), e.g. --set bombs=12")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->needs(describe_option);
+  json_flag->excludes(describe_option);
+  auto* picture_option =
+      command->add_option("--picture", picture->path, "write a PNG of every environment after reset, 4 per row");
+  picture_option->excludes(describe_option)->excludes(json_flag);
   command->add_option("--width", picture->render.width, "--picture: width of one environment's image")
       ->capture_default_str();
   command->add_option("--height", picture->render.height, "--picture: height of one environment's image")
@@ -80,7 +108,11 @@ void add_envs_command(CLI::App& app, Action& run) {
   command->add_option("--camera", picture->render.camera, "--picture: default, track or top")
       ->capture_default_str();
   command->add_option("--seed", picture->seed, "--picture: reset seed")->capture_default_str();
-  command->callback([&run, json, picture]() {
+  command->callback([&run, json, describe, set, picture]() {
+    if (!describe->empty()) {
+      run = [describe, set]() { return describe_env(*describe, *set); };
+      return;
+    }
     run = [json, picture]() {
       return picture->path.empty() ? list_envs(*json) : picture_envs(*picture);
     };

@@ -1,9 +1,11 @@
 // `bsg rollout --env ID --policy random|zero --episodes N --seed S
-// [--physics faithful|lean] [--json]`:
+// [--physics faithful|lean] [--set key=value]... [--json]`:
 // plays whole episodes with a fixed policy and prints each episode's return,
 // cost and length, then their mean and standard deviation. The first episode
 // resets with `seed`, later ones continue the environment's random stream; the
 // random policy draws uniformly in [−1, 1] from its own generator seeded with S.
+// --set changes a parameter of the environment's description (`bsg envs
+// --describe ID` lists them); the JSON then also holds the overrides.
 // --video FILE.mp4 and --trajectories FILE.png record the episodes (cli/recording.h).
 #include <CLI/CLI.hpp>
 
@@ -18,6 +20,7 @@
 
 #include "commands.h"
 #include "common/random.h"
+#include "env_set_arguments.h"
 #include "envs/env.h"
 #include "recording.h"
 
@@ -32,6 +35,7 @@ struct RolloutArguments {
   std::string physics = "faithful";
   bool json = false;
   RecordingArguments recording;
+  std::vector<std::string> set_arguments;  // environment overrides key=value
 };
 
 struct Episode {
@@ -56,8 +60,10 @@ MeanStd mean_std(const std::vector<Episode>& episodes, Field field) {
 }
 
 int rollout(const RolloutArguments& args) {
+  const envs::EnvOverrides overrides = parse_env_set_arguments(args.set_arguments);
   std::unique_ptr<envs::Env> env =
-      envs::make(args.env_id, {.physics = envs::parse_physics_model(args.physics)});
+      envs::make(envs::describe(args.env_id, overrides),
+                 {.physics = envs::parse_physics_model(args.physics)});
   std::optional<Recording> recording;
   if (args.recording.any()) {
     recording.emplace(args.recording);
@@ -99,6 +105,7 @@ int rollout(const RolloutArguments& args) {
                           {"policy", args.policy},
                           {"seed", args.seed},
                           {"physics", args.physics}};
+    for (const auto& [key, value] : overrides) out["overrides"][key] = value;
     for (const Episode& e : episodes) {
       out["episodes"].push_back(
           {{"return", e.episode_return}, {"cost", e.cost}, {"length", e.length}});
@@ -108,7 +115,7 @@ int rollout(const RolloutArguments& args) {
     std::cout << std::setprecision(17) << out.dump(2) << "\n";
     return 0;
   }
-  std::cout << args.env_id << ", policy " << args.policy << ", seed " << args.seed << ", physics "
+  std::cout << env->spec().id << ", policy " << args.policy << ", seed " << args.seed << ", physics "
             << args.physics << "\n"
             << std::setw(8) << "episode" << std::setw(14) << "return" << std::setw(10) << "cost"
             << std::setw(8) << "length" << "\n";
@@ -137,6 +144,10 @@ void add_rollout_command(CLI::App& app, Action& run) {
   command->add_option("--seed", args->seed, "seed of the first reset and of the random policy");
   command->add_option("--physics", args->physics, "physics model: faithful (default) or lean")
       ->check(CLI::IsMember({"faithful", "lean"}));
+  command->add_option("--set", args->set_arguments,
+                      "change a parameter of the environment (repeatable), e.g. --set bombs=12")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   command->add_flag("--json", args->json, "print JSON with every episode and the summary");
   add_recording_options(*command, args->recording);
   command->callback([&run, args]() { run = [args]() { return rollout(*args); }; });

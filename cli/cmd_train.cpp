@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "algos/run_environment.h"
 #include "algos/run_directory.h"
 #include "algos/trainer.h"
 #include "commands.h"
@@ -64,6 +65,7 @@ ResolvedTrainConfig resolve_config(const TrainArguments& args) {
   request.set_arguments = args.set_arguments;
   request.valid_env_ids = envs::registered_ids();
   resolved.config = resolve_run_config(request).config;
+  resolve_env_block(resolved.config);
   return resolved;
 }
 
@@ -136,7 +138,11 @@ int train(const TrainArguments& args) {
       return mpi.max(stop_signals.stop_pending() != 0 ? 1.0 : 0.0) > 0.0;
     };
     if (mpi.is_root() && !args.quiet) {
-      std::cout << "bsg train: " << config.env_id << " " << to_string(config.alg) << " seed " << config.seed << ", "
+      std::string env_name = config.env_id;
+      for (const auto& [key, value] : config.env) {
+        if (key == "name" && value != config.env_id) env_name = value + " (from " + config.env_id + ")";
+      }
+      std::cout << "bsg train: " << env_name << " " << to_string(config.alg) << " seed " << config.seed << ", "
                 << config.epochs << " epochs of " << config.steps_per_epoch << " steps on " << mpi.size()
                 << (mpi.size() == 1 ? " rank" : " ranks") << (resume ? ", resuming " : " -> ")
                 << directory->root.string() << std::endl;

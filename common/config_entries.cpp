@@ -88,6 +88,12 @@ ConfigEntry parse_set_argument(std::string_view argument) {
   key.erase(0, key.find_first_not_of(" \t"));
   key.erase(key.find_last_not_of(" \t") + 1);
   if (key.empty()) throw ConfigError(origin + ": the key before '=' is empty");
+  // env.<parameter>=value sets one environment parameter: env: {<parameter>: value}.
+  std::string env_parameter;
+  if (key.starts_with("env.") && key.size() > 4) {
+    env_parameter = key.substr(4);
+    key = "env";
+  }
   if (find_config_key(key) == nullptr) throw_unknown_key(key, origin);
   const std::string value_text(argument.substr(equals + 1));
   YAML::Node value;
@@ -95,6 +101,11 @@ ConfigEntry parse_set_argument(std::string_view argument) {
     value = YAML::Load(value_text);
   } catch (const YAML::Exception& e) {
     throw ConfigError(origin + ": the value is not valid YAML: " + e.what());
+  }
+  if (!env_parameter.empty()) {
+    YAML::Node mapping(YAML::NodeType::Map);
+    mapping[env_parameter] = value;
+    value = mapping;
   }
   return {key, value, origin};
 }

@@ -35,6 +35,7 @@ std::vector<ConfigEntry> read_config_file(const std::filesystem::path& path);
 
 // One `--set` argument "key=value": the value is parsed as a YAML scalar (or a
 // flow sequence such as [32, 32]) and later type-checked like a file value.
+// "env.bombs=12" is the environment parameter bombs: the same as "env={bombs: 12}".
 std::vector<ConfigEntry> parse_set_arguments(const std::vector<std::string>& arguments);
 ConfigEntry parse_set_argument(std::string_view argument);
 

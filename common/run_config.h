@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "common/constraint_config.h"
@@ -73,6 +74,11 @@ struct RunConfig {
   int steps_per_epoch = 32000;     // B: env steps per epoch summed over ranks
   int max_ep_len = 250;            // episode time limit in steps
   Physics physics = Physics::faithful;
+  // The `env:` block: parameters of the environment's description as
+  // (key, value text), applied to env_id's description in this order
+  // (envs/env_parameters.h). A run directory's config.yaml holds the whole
+  // resolved description once the run has any (algos/run_environment.h).
+  std::vector<std::pair<std::string, std::string>> env;
 
   // --- networks (docs/algorithms.md#networks) ---
   std::vector<int> hidden_sizes = {64, 64};

@@ -64,6 +64,25 @@ void reject_ineffective_multiplier_keys(const RunConfig& config, const RunConfig
   }
 }
 
+// A run file whose env: block names agent and task but that gives no env_id
+// starts from their standard description: env_id Safety<agent><task>-v0.
+std::vector<ConfigEntry> implied_env_id(const std::vector<ConfigEntry>& run_entries,
+                                        const std::vector<ConfigEntry>& set_entries) {
+  if (find_last_entry(set_entries, "env_id") || find_last_entry(run_entries, "env_id")) return {};
+  std::string agent, task, origin;
+  for (const auto* layer : {&run_entries, &set_entries}) {
+    for (const ConfigEntry& entry : *layer) {
+      if (entry.key != "env" || !entry.value.IsMap()) continue;
+      if (entry.value["agent"] && entry.value["agent"].IsScalar()) agent = entry.value["agent"].Scalar();
+      if (entry.value["task"] && entry.value["task"].IsScalar()) task = entry.value["task"].Scalar();
+      origin = entry.origin;
+    }
+  }
+  if (agent.empty() || task.empty()) return {};
+  return {ConfigEntry{"env_id", YAML::Node("Safety" + agent + task + "-v0"),
+                      origin + " (env_id from env: agent and task)"}};
+}
+
 std::string join(const std::vector<std::string>& items) {
   std::string joined;
   for (const std::string& item : items) joined += (joined.empty() ? "" : ", ") + item;
@@ -115,8 +134,10 @@ ResolvedRunConfig resolve_run_config(const RunConfigRequest& request) {
                                                      ? list_config_env_ids(request.configs_dir)
                                                      : request.valid_env_ids;
   const ConfigKey& env_key = *find_config_key("env_id");
+  const std::vector<ConfigEntry> implied = implied_env_id(run_entries, set_entries);
   const ConfigEntry& env_entry =
-      choosing_entry(run_entries, set_entries, "env_id", request, join(valid_env_ids));
+      implied.empty() ? choosing_entry(run_entries, set_entries, "env_id", request, join(valid_env_ids))
+                      : implied.front();
   set_config_value(config, env_key, env_entry.value, env_entry.origin);
   check_env_id(config.env_id, env_entry.origin, valid_env_ids);
   resolved.origins["env_id"] = env_entry.origin;

@@ -13,6 +13,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "common/closest_name.h"
 #include "common/config_error.h"
 #include "common/message_text.h"
 #include "common/config_scalar.h"
@@ -39,10 +40,11 @@ EnumAccess enum_access() {
           }};
 }
 
+using TextPairs = std::vector<std::pair<std::string, std::string>>;
 using FieldAccess =
     std::variant<bool RunConfig::*, int RunConfig::*, std::int64_t RunConfig::*,
                  double RunConfig::*, std::string RunConfig::*, std::vector<int> RunConfig::*,
-                 std::vector<ConstraintConfig> RunConfig::*, EnumAccess>;
+                 std::vector<ConstraintConfig> RunConfig::*, TextPairs RunConfig::*, EnumAccess>;
 
 struct SchemaRow {
   ConfigKey info;
@@ -108,6 +110,8 @@ const std::vector<SchemaRow>& schema_rows() {
          "directory under which the run directory is created"),
     choice("physics", enum_access<&R::physics>(), kPhysicsNames, L::run, all,
            "faithful (the original's model) or lean (equivalent, faster; the Ant and the Car)"),
+    {{"env", ConfigValueType::mapping, L::run, {}, {}, all,
+      "environment parameters, e.g. {bombs: 12} (`bsg envs --describe ID` lists them)"}, &R::env},
     constraint_list("constraints", &R::constraints, all,
                     "several constraints, each summing named cost terms (or all) against its own limit: "
                     "[{terms: [cost_outside_bounds], limit: 20}, ...]; absent: the cost against cost_limit"),
@@ -254,6 +258,7 @@ std::string expected_text(const ConfigKey& key) {
     case ConfigValueType::integer_list:
       return "a non-empty list of integers in " + key.range.to_string() + ", e.g. [64, 64]";
     case ConfigValueType::constraint_list: return "a list of {terms, limit}";
+    case ConfigValueType::mapping: return "a mapping of parameter: value, e.g. {bombs: 12}";
   }
   return "";
 }
@@ -308,6 +313,7 @@ std::string_view to_string(ConfigValueType type) {
     case ConfigValueType::choice: return "choice";
     case ConfigValueType::integer_list: return "int list";
     case ConfigValueType::constraint_list: return "constraint list";
+    case ConfigValueType::mapping: return "mapping";
   }
   return "<invalid>";
 }
@@ -343,6 +349,7 @@ std::string ConfigKey::valid_values() const {
     case ConfigValueType::integer_list: return "list of " + range.to_string();
     case ConfigValueType::constraint_list: return "list of {terms: [names] or all, limit: >= 0}";
     case ConfigValueType::text: return "non-empty text";
+    case ConfigValueType::mapping: return "parameter: value pairs";
     case ConfigValueType::choice: {
       std::string joined;
       for (std::string_view name : choices) {
@@ -412,31 +419,9 @@ std::string config_key_list() {
 }
 
 std::string closest_config_key(std::string_view unknown) {
-  // Levenshtein distance; a typo is at most 2 edits (or a third of the word).
-  auto distance = [](std::string_view a, std::string_view b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-      std::size_t diagonal = row[0];
-      row[0] = i;
-      for (std::size_t j = 1; j <= b.size(); ++j) {
-        const std::size_t above = row[j];
-        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-        diagonal = above;
-      }
-    }
-    return row[b.size()];
-  };
-  std::string best;
-  std::size_t best_distance = std::max<std::size_t>(2, unknown.size() / 3) + 1;
-  for (const ConfigKey& entry : run_config_schema()) {
-    const std::size_t d = distance(unknown, entry.key);
-    if (d < best_distance) {
-      best_distance = d;
-      best = entry.key;
-    }
-  }
-  return best;
+  std::vector<std::string_view> keys;
+  for (const ConfigKey& entry : run_config_schema()) keys.push_back(entry.key);
+  return closest_name(unknown, keys);
 }
 
 void set_config_value(RunConfig& config, const ConfigKey& key, const YAML::Node& value,
@@ -466,6 +451,23 @@ void set_config_value(RunConfig& config, const ConfigKey& key, const YAML::Node&
         } else if constexpr (std::is_same_v<Access, std::string RunConfig::*>) {
           if (!value.IsScalar() || value.Scalar().empty()) throw_type_error(key, value, origin);
           config.*access = value.Scalar();
+        } else if constexpr (std::is_same_v<Access, TextPairs RunConfig::*>) {
+          // Merged into the pairs so far: a later layer changes single keys
+          // (the environment checks keys and values when it is built).
+          if (value.IsNull()) return;
+          if (!value.IsMap()) throw_type_error(key, value, origin);
+          for (const auto& pair : value) {
+            if (!pair.first.IsScalar() || !pair.second.IsScalar()) throw_type_error(key, value, origin);
+            TextPairs& pairs = config.*access;
+            const std::string name = pair.first.Scalar();
+            const auto same = std::find_if(pairs.begin(), pairs.end(),
+                                           [&](const auto& p) { return p.first == name; });
+            if (same != pairs.end()) {
+              same->second = pair.second.Scalar();
+            } else {
+              pairs.emplace_back(name, pair.second.Scalar());
+            }
+          }
         } else if constexpr (std::is_same_v<Access, std::vector<int> RunConfig::*>) {
           if (!value.IsSequence() || value.size() == 0) throw_type_error(key, value, origin);
           std::vector<int> list;
@@ -522,6 +524,12 @@ std::string config_value_to_yaml(const RunConfig& config, const ConfigKey& key) 
           return out.str();
         } else if constexpr (std::is_same_v<Access, std::vector<ConstraintConfig> RunConfig::*>) {
           return constraint_list_to_yaml(config.*access);
+        } else if constexpr (std::is_same_v<Access, TextPairs RunConfig::*>) {
+          YAML::Emitter out;  // quotes the text where YAML would misread it
+          out << YAML::Flow << YAML::BeginMap;
+          for (const auto& [name, text] : config.*access) out << YAML::Key << name << YAML::Value << text;
+          out << YAML::EndMap;
+          return out.c_str();
         } else {  // EnumAccess
           const int index = access.get(config);
           return std::string(key.choices[static_cast<std::size_t>(index)]);

@@ -23,7 +23,7 @@ namespace bsg {
 enum class ConfigLayer { run, algorithm, environment };
 std::string_view to_string(ConfigLayer layer);
 
-enum class ConfigValueType { boolean, integer, real, text, choice, integer_list, constraint_list };
+enum class ConfigValueType { boolean, integer, real, text, choice, integer_list, constraint_list, mapping };
 std::string_view to_string(ConfigValueType type);
 
 // Numeric bounds of an integer, a real, or each element of an integer list.

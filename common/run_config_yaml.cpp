@@ -32,6 +32,8 @@ RunConfig from_document(const YAML::Node& document, const std::string& source_na
   apply_config_entries(config, entries, origins);
   // Run directories written before the `dtype` key existed were trained in
   // float64 throughout: they resume in float64.
+  // No env: block: the standard description of env_id (as written since the key exists).
+  if (origins.count("env") == 0) origins["env"] = source_name + " (no env: the standard description)";
   if (origins.count("dtype") == 0) {
     config.dtype = Dtype::float64;
     origins["dtype"] = source_name + " (no dtype: written before the key existed, float64)";
@@ -58,6 +60,8 @@ std::string to_yaml(const RunConfig& config) {
   for (const ConfigKey& key : run_config_schema()) {
     if (!key.applies_to(config.alg)) continue;
     if (key.type == ConfigValueType::constraint_list && config.constraints.empty()) continue;  // as before the key
+    // No env: block for a standard environment, as before the key existed.
+    if (key.type == ConfigValueType::mapping && config.env.empty()) continue;
     if (first || key.default_source != section) {
       section = key.default_source;
       out << "# --- " << to_string(section) << " ---\n";

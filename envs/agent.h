@@ -24,6 +24,9 @@ struct AgentOptions {
   bool power_upgrade = false;
   // Faithful or lean model (env.h); only agents registered with a lean model see kLean.
   PhysicsModel physics = PhysicsModel::kFaithful;
+  // The Car clips its actions to [-1, 1] as the others do (the fork's Car;
+  // the original's does not, docs/environments.md#kept-quirks, item 4).
+  bool clip_actions = false;
 };
 
 // Per-agent constants of docs/environments.md#agents that tasks and sensors use.

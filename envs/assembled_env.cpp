@@ -50,7 +50,7 @@ std::span<const double> AssembledEnv::reset_to(const Layout& layout) {
 
 double AssembledEnv::clock_seconds() const {
   if (options_.box_clock == BoxClock::kEpisodePhase) return 0;
-  return static_cast<double>(steps_since_construction_) * World::kEnvStepSeconds;
+  return static_cast<double>(steps_since_construction_) * world_->env_step_seconds();
 }
 
 std::span<const double> AssembledEnv::reset_impl(const Layout* injected) {

@@ -425,9 +425,9 @@ constexpr GearSpec kGears[] = {
 };
 constexpr double kGearMaxForce = 10000;
 
-// Motor constants (docs/environments.md#motors-forces-and-contacts, #car). T_param = 1/60 s bounds motor impulses
-// whatever the number of sub-steps (PyBullet quirk, docs/environments.md#kept-quirks, item 1).
-constexpr double kMotorImpulseSeconds = World::kEnvStepSeconds;
+// Motor constants (docs/environments.md#motors-forces-and-contacts, #car). T_param (the environment
+// step, World::env_step_seconds) bounds motor impulses whatever the number of
+// sub-steps (PyBullet quirk, docs/environments.md#kept-quirks, item 1).
 constexpr double kSteeringPerAction = 0.5;  // [rad]
 constexpr double kSteeringKp = 0.1;
 constexpr double kSteeringKd = 1.0;
@@ -538,7 +538,9 @@ CarAgent::CarAgent(World& world, const AgentOptions& options)
     : speed_per_action_rad_per_s_(options.power_upgrade ? kSpeedPerActionUpgraded
                                                         : kSpeedPerAction),
       ring_motor_max_impulse_((options.power_upgrade ? kRingForceUpgraded : kRingForce) *
-                              kMotorImpulseSeconds) {
+                              world.env_step_seconds()),
+      steering_max_impulse_(kSteeringForce * world.env_step_seconds()),
+      clip_actions_(options.clip_actions) {
   traits_.action_dim = 2;
   traits_.observation_dim = 7;
   traits_.initial_position = btVector3(0, 0, 0.2);
@@ -784,8 +786,11 @@ void CarAgent::apply_action(std::span<const double> action) {
     throw std::invalid_argument("CarAgent::apply_action: expected 2 action entries, got " +
                                 std::to_string(action.size()));
   }
-  // Not clipped (docs/environments.md#kept-quirks, item 4).
-  wheel_target_rad_per_s_ = speed_per_action_rad_per_s_ * action[0];
+  // Not clipped (docs/environments.md#kept-quirks, item 4), unless the description
+  // asks for the fork's clipping (clip_actions).
+  const double throttle = clip_actions_ ? std::clamp(action[0], -1.0, 1.0) : action[0];
+  const double steering = clip_actions_ ? std::clamp(action[1], -1.0, 1.0) : action[1];
+  wheel_target_rad_per_s_ = speed_per_action_rad_per_s_ * throttle;
   for (int m : {kRearRingMotor, kFrontRingMotor}) {
     // VELOCITY_CONTROL: kd 1, kp 0, no rhs clamp, impulse F·T_param (docs/environments.md#motors-forces-and-contacts).
     btMultiBodyJointMotor& motor = *motors_[m];
@@ -794,7 +799,7 @@ void CarAgent::apply_action(std::span<const double> action) {
     motor.setRhsClamp(SIMD_INFINITY);
     motor.setMaxAppliedImpulse(ring_motor_max_impulse_);
   }
-  const double steering_rad = kSteeringPerAction * action[1];
+  const double steering_rad = kSteeringPerAction * steering;
   for (int m : {kLeftHingeMotor, kRightHingeMotor}) {
     // POSITION_CONTROL with PyBullet's defaults; the target is clamped to the
     // hinge limits (both hinges are limited, docs/environments.md#car).
@@ -803,7 +808,7 @@ void CarAgent::apply_action(std::span<const double> action) {
     btMultiBodyJointMotor& motor = *motors_[m];
     motor.setVelocityTarget(0, kSteeringKd);
     motor.setPositionTarget(target, kSteeringKp);
-    motor.setMaxAppliedImpulse(kSteeringForce * kMotorImpulseSeconds);
+    motor.setMaxAppliedImpulse(steering_max_impulse_);
     steering_target_rad_ = target;
   }
 }

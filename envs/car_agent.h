@@ -101,6 +101,8 @@ class CarAgent final : public Agent {
   AgentTraits traits_;
   double speed_per_action_rad_per_s_;
   double ring_motor_max_impulse_;  // F·T_param per internal step (docs/environments.md#motors-forces-and-contacts)
+  double steering_max_impulse_;
+  bool clip_actions_;
   btMultiBody* body_ = nullptr;
   // Lean: the chassis's COM frame in the welded base's COM frame.
   bool welded_base_ = false;

@@ -7,8 +7,9 @@
 
 namespace bsg::envs {
 
-Collectibles::Collectibles(int count)
-    : positions_(static_cast<size_t>(count), btVector3(0, 0, 0)),
+Collectibles::Collectibles(int count, double detection_distance)
+    : detection_distance_(detection_distance),
+      positions_(static_cast<size_t>(count), btVector3(0, 0, 0)),
       active_(std::make_unique<bool[]>(static_cast<size_t>(count))) {
   for (int i = 0; i < count; ++i) active_[static_cast<size_t>(i)] = true;
 }
@@ -27,7 +28,7 @@ void Collectibles::place(std::span<const btVector3> positions) {
 int Collectibles::collect_near(const btVector3& agent) {
   int collected = 0;
   for (size_t i = 0; i < positions_.size(); ++i) {
-    if (active_[i] && planar_distance(positions_[i], agent) < kDetectionDistance) {
+    if (active_[i] && planar_distance(positions_[i], agent) < detection_distance_) {
       active_[i] = false;
       ++collected;
     }

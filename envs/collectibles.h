@@ -1,6 +1,6 @@
 // Apples and Bombs of Gather (docs/environments.md#gather, #obstacles): visual spheres (no collision
 // shape) that are collected once the agent's COM comes within 1 m in the
-// plane. A collected object stays in place and stays visible to the
+// plane (gather_detection_distance of the description). A collected object stays in place and stays visible to the
 // pseudo-LIDAR (docs/environments.md#kept-quirks, item 9).
 #pragma once
 
@@ -16,7 +16,7 @@ class Collectibles {
  public:
   static constexpr double kDetectionDistance = 1.0;  // [m], strict: δ < 1
 
-  explicit Collectibles(int count);
+  explicit Collectibles(int count, double detection_distance = kDetectionDistance);
 
   int count() const { return static_cast<int>(positions_.size()); }
   std::span<const btVector3> positions() const { return positions_; }
@@ -24,12 +24,13 @@ class Collectibles {
 
   // New positions, every object active again.
   void place(std::span<const btVector3> positions);
-  // Deactivates every active object within kDetectionDistance of `agent` and
+  // Deactivates every active object within the detection distance of `agent` and
   // returns how many that were.
   int collect_near(const btVector3& agent);
   int active_count() const;
 
  private:
+  double detection_distance_;
   std::vector<btVector3> positions_;
   std::unique_ptr<bool[]> active_;  // not vector<bool>: spans need real bools
 };

@@ -118,13 +118,16 @@ class DroneAgent final : public Agent {
   std::array<btMultiBodyJointMotor*, kRotorCount> motors_{};
   std::array<const btCollisionObject*, kLinkCount + 1> colliders_{};  // base, links 0..4
   double hover_speed_rad_per_s_ = 0;  // ω_h
+  double env_step_seconds_ = 0;       // T_param, bounds the motor impulses
   int ground_contacts_ = 0;           // n_g after the last step (stale until then, docs/environments.md#kept-quirks, item 10)
   btAlignedObjectArray<btQuaternion> scratch_world_to_local_;
   btAlignedObjectArray<btVector3> scratch_local_origin_;
 };
 
 DroneAgent::DroneAgent(World& world, const AgentOptions& /*options: no power upgrade, docs/environments.md#agents*/)
-    : world_(world), hover_speed_rad_per_s_(drone_hover_speed_rad_per_s()) {
+    : world_(world),
+      hover_speed_rad_per_s_(drone_hover_speed_rad_per_s()),
+      env_step_seconds_(world.env_step_seconds()) {
   traits_.action_dim = 4;
   traits_.observation_dim = 17;
   traits_.initial_position = btVector3(0, 0, 0.17);  // the body box touches the ground
@@ -276,7 +279,7 @@ void DroneAgent::apply_action(std::span<const double> action) {
     motor->setVelocityTarget(target_rad_per_s, 1.0);
     motor->setPositionTarget(0, 0);
     motor->setRhsClamp(SIMD_INFINITY);
-    motor->setMaxAppliedImpulse(kMotorForce * World::kEnvStepSeconds);
+    motor->setMaxAppliedImpulse(kMotorForce * env_step_seconds_);
 
     // Thrust from the commanded speed (docs/environments.md#kept-quirks, item 7) along the rotor's z axis, as a
     // LINK_FRAME force at the rotor origin. PyBullet rotates it with the link's

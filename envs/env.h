@@ -34,6 +34,9 @@
 #include <string_view>
 #include <vector>
 
+#include "env_description.h"
+#include "env_parameters.h"
+
 namespace bsg::envs {
 
 using Vec3 = std::array<double, 3>;
@@ -181,10 +184,19 @@ class Env {
 // and the agent has no lean model.
 std::unique_ptr<Env> make(const std::string& id, const EnvOptions& options = {});
 
+// Builds any description, standard or custom (env_description.h); throws
+// std::invalid_argument with one line naming the key at fault.
+std::unique_ptr<Env> make(const EnvDescription& description, const EnvOptions& options = {});
+
+// The description registered as `id` with `overrides` applied and checked
+// (env_parameters.h); throws std::invalid_argument naming the id or the key.
+EnvDescription describe(const std::string& id, const EnvOverrides& overrides = {});
+
 // Every registered id, sorted.
 std::vector<std::string> registered_ids();
 
 // True if make(id) accepts PhysicsModel::kLean; throws like make() for an unknown id.
 bool has_lean_model(const std::string& id);
+bool has_lean_model(const EnvDescription& description);
 
 }  // namespace bsg::envs

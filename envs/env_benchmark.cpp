@@ -6,6 +6,7 @@
 
 #include "assembled_env.h"
 #include "common/random.h"
+#include "env_builder.h"
 #include "registry.h"
 
 namespace bsg::envs {
@@ -19,14 +20,19 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 EnvBenchmark benchmark_env(const std::string& id, long steps, std::uint64_t seed,
                            const EnvOptions& options) {
+  return benchmark_env(find_description(id), steps, seed, options);
+}
+
+EnvBenchmark benchmark_env(const EnvDescription& description, long steps, std::uint64_t seed,
+                           const EnvOptions& options) {
   if (steps < 1) throw std::invalid_argument("benchmark_env: steps must be >= 1");
   EnvBenchmark result;
-  result.id = id;
+  result.id = description.name;
   result.steps = steps;
   Rng rng(seed);
 
   {
-    const std::unique_ptr<Env> env = make(id, options);
+    const std::unique_ptr<Env> env = build_env(description, options);
     std::vector<double> action(static_cast<size_t>(env->spec().action_dim));
     env->reset(seed);
     const auto start = std::chrono::steady_clock::now();
@@ -39,7 +45,7 @@ EnvBenchmark benchmark_env(const std::string& id, long steps, std::uint64_t seed
   }
   {
     // The same scene, driven by the same kind of actions, without the task.
-    const std::unique_ptr<Env> env = build_env(find_registration(id), options);
+    const std::unique_ptr<Env> env = build_env(description, options);
     auto& assembled = static_cast<AssembledEnv&>(*env);
     std::vector<double> action(static_cast<size_t>(env->spec().action_dim));
     env->reset(seed);

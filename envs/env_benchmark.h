@@ -23,5 +23,8 @@ struct EnvBenchmark {
 // std::invalid_argument for an unknown id, steps < 1 or options make() rejects.
 EnvBenchmark benchmark_env(const std::string& id, long steps, std::uint64_t seed = 0,
                            const EnvOptions& options = {});
+// The same for any description (custom ones included).
+EnvBenchmark benchmark_env(const EnvDescription& description, long steps, std::uint64_t seed = 0,
+                           const EnvOptions& options = {});
 
 }  // namespace bsg::envs

@@ -1,30 +1,69 @@
 #include "env_builder.h"
 
-#include "assembled_env.h"
-
 #include <stdexcept>
 
-namespace bsg::envs {
+#include "ant_agent.h"
+#include "assembled_env.h"
+#include "ball_agent.h"
+#include "car_agent.h"
+#include "circle_task.h"
+#include "drone_agent.h"
+#include "env_parameters.h"
+#include "gather_task.h"
+#include "reach_task.h"
+#include "run_task.h"
 
-std::unique_ptr<Env> build_env(const EnvRegistration& registration, const EnvOptions& options) {
-  if (options.physics == PhysicsModel::kLean && !registration.has_lean_model) {
-    throw std::invalid_argument(registration.id + ": the " + registration.agent_name +
+namespace bsg::envs {
+namespace {
+
+AgentFactory agent_factory(const std::string& agent) {
+  if (agent == "Ball") return make_ball_agent;
+  if (agent == "Car") return make_car_agent;
+  if (agent == "Drone") return make_drone_agent;
+  if (agent == "Ant") return make_ant_agent;
+  throw std::invalid_argument("env: agent=" + agent + ": unknown agent; valid: Ball, Car, Drone, Ant");
+}
+
+std::unique_ptr<Task> make_task(const EnvDescription& d, World& world, Agent& agent,
+                                const EnvOptions& options) {
+  if (d.task == "Circle") return std::make_unique<CircleTask>(world, agent, d);
+  if (d.task == "Gather") return std::make_unique<GatherTask>(world, agent, d);
+  if (d.task == "Reach") return std::make_unique<ReachTask>(world, agent, d, options.box_clock);
+  if (d.task == "Run") return std::make_unique<RunTask>(world, agent, d);
+  throw std::invalid_argument("env: task=" + d.task + ": unknown task; valid: Circle, Gather, Reach, Run");
+}
+
+}  // namespace
+
+bool agent_has_lean_model(const std::string& agent) { return agent == "Car" || agent == "Ant"; }
+
+WorldLayout parse_world_layout(const std::string& world) {
+  if (world == "SmallRoom") return WorldLayout::kSmallRoom;
+  if (world == "Octagon") return WorldLayout::kOctagon;
+  if (world == "Plane200") return WorldLayout::kPlane200;
+  throw std::invalid_argument("env: world=" + world + ": unknown world; valid: SmallRoom, Octagon, Plane200");
+}
+
+std::unique_ptr<Env> build_env(const EnvDescription& d, const EnvOptions& options) {
+  check_env_description(d);
+  if (options.physics == PhysicsModel::kLean && !agent_has_lean_model(d.agent)) {
+    throw std::invalid_argument(d.name + ": the " + d.agent +
                                 " has no lean physics model (only the Ant and the "
                                 "Car have one); use physics: faithful");
   }
-  const TaskBlueprint& blueprint = registration.task;
-  auto world = std::make_unique<World>(blueprint.layout, blueprint.sub_steps);
+  auto world = std::make_unique<World>(parse_world_layout(d.world), d.frame_skip, d.time_step);
   AgentOptions agent_options;
-  agent_options.power_upgrade = blueprint.power_upgrade;
+  agent_options.power_upgrade = d.power_upgrade;
   agent_options.physics = options.physics;
-  std::unique_ptr<Agent> agent = registration.make_agent(*world, agent_options);
-  std::unique_ptr<Task> task = blueprint.make(*world, *agent, options);
+  agent_options.clip_actions = d.clip_actions;
+  std::unique_ptr<Agent> agent = agent_factory(d.agent)(*world, agent_options);
+  std::unique_ptr<Task> task = make_task(d, *world, *agent, options);
   EnvSpec spec;
-  spec.id = registration.id;
-  spec.agent = registration.agent_name;
-  spec.task = blueprint.name;
-  spec.max_episode_steps = registration.max_episode_steps;
-  spec.cost_limit = registration.cost_limit;
+  spec.id = d.name;
+  spec.agent = d.agent;
+  spec.task = d.task;
+  spec.max_episode_steps = d.max_episode_steps;
+  spec.cost_limit = d.cost_limit;
   return std::make_unique<AssembledEnv>(std::move(spec), options, std::move(world),
                                         std::move(agent), std::move(task));
 }

@@ -1,6 +1,8 @@
-// Assembles an environment from its parts (design.md, the report's
-// EnvironmentBuilder): the task's world (layout and sub-steps), the agent
-// built in it with the task's power setting, then the task itself.
+// Assembles an environment from its description (design.md, the report's
+// EnvironmentBuilder): the world (layout, time step and sub-steps), the agent
+// built in it with the description's power and clipping settings, then the
+// task reading its counts, sizes and ranges from the same description. Every
+// environment, standard or custom, is built here.
 #pragma once
 
 #include <memory>
@@ -8,25 +10,23 @@
 
 #include "agent.h"
 #include "env.h"
-#include "task.h"
+#include "env_description.h"
+#include "world.h"
 
 namespace bsg::envs {
 
 // Every agent file exposes one of these, e.g. make_ball_agent (ball_agent.h).
 using AgentFactory = std::unique_ptr<Agent> (*)(World& world, const AgentOptions& options);
 
-// One registry entry: everything needed to build an id (docs/environments.md#the-sixteen-environments).
-struct EnvRegistration {
-  std::string id;           // "Safety<Agent><Task>-v0"
-  std::string agent_name;   // "Ball", "Car", "Drone", "Ant"
-  AgentFactory make_agent = nullptr;
-  TaskBlueprint task;
-  int max_episode_steps = 0;
-  double cost_limit = 0;    // report Table 3
-  bool has_lean_model = false;  // the agent builds a lean model for PhysicsModel::kLean
-};
+// True for the agents whose factory builds a lean model (the Car and the Ant).
+bool agent_has_lean_model(const std::string& agent);
 
-// Throws std::invalid_argument if options ask for a lean model the agent does not have.
-std::unique_ptr<Env> build_env(const EnvRegistration& registration, const EnvOptions& options);
+// "SmallRoom", "Octagon" or "Plane200"; throws std::invalid_argument otherwise.
+WorldLayout parse_world_layout(const std::string& world);
+
+// Checks the description (env_parameters.h) and builds it. Throws
+// std::invalid_argument naming the key at fault, or the agent if options ask
+// for a lean model it does not have.
+std::unique_ptr<Env> build_env(const EnvDescription& description, const EnvOptions& options);
 
 }  // namespace bsg::envs

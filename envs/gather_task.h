@@ -1,18 +1,24 @@
 // Gather (docs/environments.md#gather, `GatherTask`): collect 8 apples (+10 each) and avoid 8
 // bombs (cost) in the SmallRoom, seeing both through two pseudo-LIDARs.
 //
-// Parameters (docs/environments.md#gather):
-//   apples, bombs       8 and 8, placed with agent clearance 1.0, pairwise 2.0
-//   detection distance  1.0 m in the plane
-//   apple reward        +10; death reward −10 (replaces the step's reward)
-//   sensors             pseudo-LIDAR 16 bins, range env_dim = 10: apples, then bombs
-//   out of range        agent z > 2 (cost_out_of_range)
+// Parameters (docs/environments.md#gather; EnvDescription keys in brackets):
+//   apples, bombs       8 and 8 (apples, bombs), placed with agent clearance 1.0
+//                       (gather_agent_clearance), pairwise 2.0 (gather_spacing) in
+//                       the square [−7, 7]² (placement_half_width)
+//   detection distance  1.0 m in the plane (gather_detection_distance)
+//   apple reward        +10 (apple_reward); death reward −10 (death_reward,
+//                       replaces the step's reward)
+//   sensors             pseudo-LIDAR 16 bins (gather_sensor_bins), range env_dim = 10
+//                       (gather_sensor_range): apples, then bombs
+//   out of range        agent z > 2 (max_altitude; cost_out_of_range)
 //   ends the episode    when every apple is collected
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "collectibles.h"
+#include "env_description.h"
 #include "pseudo_lidar_sensor.h"
 #include "task.h"
 
@@ -20,15 +26,7 @@ namespace bsg::envs {
 
 class GatherTask final : public Task {
  public:
-  static constexpr int kApples = 8;
-  static constexpr int kBombs = 8;
-  static constexpr double kAppleReward = 10;
-  static constexpr double kDeathReward = -10;
-  static constexpr double kAgentClearance = 1.0;
-  static constexpr double kPairwiseClearance = 2.0;
-  static constexpr double kMaxAltitude = 2.0;
-
-  GatherTask(World& world, Agent& agent);
+  GatherTask(World& world, Agent& agent, const EnvDescription& description);
 
   int observation_dim() const override { return 2 * sensor_.bins(); }
   std::span<const CostTerm> cost_terms() const override { return terms_; }
@@ -42,13 +40,13 @@ class GatherTask final : public Task {
 
  private:
   Agent& agent_;
+  const EnvDescription description_;
   PseudoLidarSensor sensor_;
-  Collectibles apples_{kApples};
-  Collectibles bombs_{kBombs};
+  Collectibles apples_;
+  Collectibles bombs_;
+  std::vector<btVector3> placement_;  // reused by place()
   std::array<CostTerm, 2> terms_{CostTerm{"cost_gathered_bombs", 0},
                                  CostTerm{"cost_out_of_range", 0}};
 };
-
-TaskBlueprint gather_task();
 
 }  // namespace bsg::envs

@@ -32,7 +32,7 @@ btVector3 box_inertia() {
 
 }  // namespace
 
-MovingBox::MovingBox(World& world) {
+MovingBox::MovingBox(World& world, double circle_radius) : circle_radius_(circle_radius) {
   auto body = std::make_unique<btMultiBody>(0, kMass, box_inertia(), /*fixedBase=*/false,
                                             /*canSleep=*/false);
   body->setBasePos(btVector3(0, 0, 0));
@@ -85,8 +85,8 @@ void MovingBox::place(const btVector3& centre, const btQuaternion& orientation, 
 void MovingBox::move(double clock_seconds) {
   clock_seconds_ = clock_seconds;
   const double angle = clock_seconds + phase_;
-  pivot_ = btVector3(centre_.x() + kCircleRadius * std::sin(angle),
-                     centre_.y() + kCircleRadius * std::cos(angle), centre_.z());
+  pivot_ = btVector3(centre_.x() + circle_radius_ * std::sin(angle),
+                     centre_.y() + circle_radius_ * std::cos(angle), centre_.z());
   constraint_->setPivotInB(pivot_);
 }
 

@@ -25,7 +25,7 @@ class MovingBox {
   static constexpr double kFriction = 0.9;
   static constexpr double kRestitution = 0.4;
 
-  explicit MovingBox(World& world);
+  explicit MovingBox(World& world, double circle_radius = kCircleRadius);
 
   // Teleports the box to circle centre `centre` with `orientation` and zero
   // velocity, and sets its pivot to P(clock_seconds) (docs/environments.md#moving-box: "whenever
@@ -45,6 +45,7 @@ class MovingBox {
   const btCollisionObject* collider() const { return collider_; }
 
  private:
+  double circle_radius_;
   btMultiBody* body_ = nullptr;
   btMultiBodyFixedConstraint* constraint_ = nullptr;
   const btCollisionObject* collider_ = nullptr;

@@ -6,9 +6,9 @@
 
 namespace bsg::envs {
 
-btVector3 uniform_room_point(Rng& rng) {
-  const double x = uniform(rng, -kPlacementHalfWidth, kPlacementHalfWidth);
-  const double y = uniform(rng, -kPlacementHalfWidth, kPlacementHalfWidth);
+btVector3 uniform_room_point(Rng& rng, double half_width) {
+  const double x = uniform(rng, -half_width, half_width);
+  const double y = uniform(rng, -half_width, half_width);
   return {x, y, 0};
 }
 
@@ -21,7 +21,7 @@ double planar_distance(const btVector3& a, const btVector3& b) {
 std::vector<btVector3> sample_obstacle_positions(Rng& rng, int count, const btVector3& agent,
                                                  const std::optional<btVector3>& goal,
                                                  double pairwise_clearance,
-                                                 double agent_clearance) {
+                                                 double agent_clearance, double half_width) {
   std::vector<btVector3> accepted;  // the goal (if any) first, as in the original
   if (goal) accepted.push_back(*goal);
   const size_t first = accepted.size();
@@ -31,9 +31,9 @@ std::vector<btVector3> sample_obstacle_positions(Rng& rng, int count, const btVe
       throw std::runtime_error(
           "obstacle placement: no room for " + std::to_string(count) + " obstacles with clearance " +
           std::to_string(pairwise_clearance) + " m after " + std::to_string(kMaxPlacementAttempts) +
-          " draws");
+          " draws (fewer objects or a smaller spacing in the environment's description)");
     }
-    const btVector3 q = uniform_room_point(rng);
+    const btVector3 q = uniform_room_point(rng, half_width);
     if (planar_distance(q, agent) < agent_clearance) continue;
     bool clear = true;
     for (const btVector3& other : accepted) {

@@ -17,17 +17,19 @@ namespace bsg::envs {
 inline constexpr double kPlacementHalfWidth = 7.0;
 inline constexpr long kMaxPlacementAttempts = 100000;
 
-// (U(−7, 7), U(−7, 7), 0): x drawn first.
-btVector3 uniform_room_point(Rng& rng);
+// (U(−w, w), U(−w, w), 0) with w = half_width: x drawn first.
+btVector3 uniform_room_point(Rng& rng, double half_width = kPlacementHalfWidth);
 
 // `count` positions, in acceptance order. A draw q is rejected if
 // ‖q − agent‖_xy < agent_clearance; it is accepted iff its 3-d distance to every
 // position accepted so far (and to `goal`, if given) is > pairwise_clearance.
-// Throws std::runtime_error after kMaxPlacementAttempts draws.
+// Draws in the square of `half_width`. Throws std::runtime_error after
+// kMaxPlacementAttempts draws.
 std::vector<btVector3> sample_obstacle_positions(Rng& rng, int count, const btVector3& agent,
                                                  const std::optional<btVector3>& goal,
                                                  double pairwise_clearance,
-                                                 double agent_clearance);
+                                                 double agent_clearance,
+                                                 double half_width = kPlacementHalfWidth);
 
 // ‖a − b‖ in the plane, as NumPy's norm: sqrt(dx² + dy²) (docs/environments.md#planar-distances).
 double planar_distance(const btVector3& a, const btVector3& b);

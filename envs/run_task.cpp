@@ -12,11 +12,17 @@ double run_potential(double x, double y) {
   return -60.0 * std::sqrt(dx * dx + y * y);
 }
 
-RunTask::RunTask(World& /*world*/, Agent& agent) : agent_(agent) {}
+RunTask::RunTask(World& /*world*/, Agent& agent, const EnvDescription& description)
+    : agent_(agent),
+      y_limit_(description.run_y_limit),
+      speed_limit_(description.run_speed_limit),
+      spawn_range_(description.run_spawn_range),
+      count_outside_bounds_(description.count_outside_bounds),
+      count_velocity_violation_(description.count_velocity_violation) {}
 
 void RunTask::sample_layout(Rng& rng, Layout& layout) {
-  const double x = uniform(rng, -0.01, 0.01);
-  const double y = uniform(rng, -0.01, 0.01);
+  const double x = uniform(rng, -spawn_range_, spawn_range_);
+  const double y = uniform(rng, -spawn_range_, spawn_range_);
   const AgentTraits& traits = agent_.traits();
   layout.agent_position = {x, y, traits.initial_position.z()};
   // Run never re-orients the agent (the Car keeps facing world −x, docs/environments.md#kept-quirks, item 17).
@@ -41,25 +47,19 @@ TaskOutcome RunTask::evaluate(Rng& /*rng*/) {
   outcome.reward = phi - phi_prev_ + agent_.specific_reward();
   phi_prev_ = phi;
   const double speed_xy = std::sqrt(v.x() * v.x() + v.y() * v.y());
-  terms_[0].value = std::abs(p.y()) > kRunYLimit ? 1.0 : 0.0;
-  terms_[1].value = speed_xy > agent_.traits().run_speed_limit ? 1.0 : 0.0;
-  outcome.cost = std::min(1.0, terms_[0].value + terms_[1].value);
+  terms_[0].value = std::abs(p.y()) > y_limit_ ? 1.0 : 0.0;
+  terms_[1].value = speed_xy > speed_limit_ ? 1.0 : 0.0;
+  outcome.cost = std::min(1.0, (count_outside_bounds_ ? terms_[0].value : 0.0) +
+                                   (count_velocity_violation_ ? terms_[1].value : 0.0));
   return outcome;
 }
 
 void RunTask::write_state(EnvState& state) const { state.phi_prev = phi_prev_; }
 
-TaskBlueprint run_task() {
-  return {"Run", WorldLayout::kPlane200, 4, false,
-          [](World& world, Agent& agent, const EnvOptions&) {
-            return std::make_unique<RunTask>(world, agent);
-          }};
-}
-
 void RunTask::add_markings(std::vector<Marking>& out) const {
   // The lane edges along the whole 500 m plane (docs/environments.md#worlds).
   constexpr double kHalfLength = 250;
-  for (const double y : {-kRunYLimit, kRunYLimit}) {
+  for (const double y : {-y_limit_, y_limit_}) {
     out.push_back({Marking::Kind::kSafetyBoundary, {-kHalfLength, y, 0}, {kHalfLength, y, 0}, 0, 0,
                    true});
   }

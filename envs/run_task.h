@@ -1,16 +1,18 @@
 // Run (docs/environments.md#run, `RunTask`): run along +x on a 500-m plane towards a target
 // 1000 m away, staying in the lane |y| ≤ 2 and under the agent's speed limit.
 //
-// Parameters (docs/environments.md#run):
+// Parameters (docs/environments.md#run; EnvDescription keys in brackets):
 //   potential          Φ(p) = −60·‖p − (1000, 0)‖
 //   reward             Φ(p) − Φ_prev + s_agent (unscaled agent term)
-//   lane               |y| ≤ 2 m (cost_outside_bounds)
-//   speed limit        ‖v_xy‖ ≤ AgentTraits::run_speed_limit (cost_velocity_violation)
-//   reset              p = (U(−0.01, 0.01), U(−0.01, 0.01)), initial orientation kept
+//   lane               |y| ≤ 2 m (run_y_limit; cost_outside_bounds)
+//   speed limit        ‖v_xy‖ ≤ the agent's limit (run_speed_limit; cost_velocity_violation)
+//   reset              p = (U(−0.01, 0.01), U(−0.01, 0.01)) (run_spawn_range),
+//                      initial orientation kept
 #pragma once
 
 #include <array>
 
+#include "env_description.h"
 #include "task.h"
 
 namespace bsg::envs {
@@ -22,7 +24,7 @@ double run_potential(double x, double y);
 
 class RunTask final : public Task {
  public:
-  RunTask(World& world, Agent& agent);
+  RunTask(World& world, Agent& agent, const EnvDescription& description);
 
   int observation_dim() const override { return 0; }
   std::span<const CostTerm> cost_terms() const override { return terms_; }
@@ -36,11 +38,14 @@ class RunTask final : public Task {
 
  private:
   Agent& agent_;
+  const double y_limit_;
+  const double speed_limit_;
+  const double spawn_range_;
+  const bool count_outside_bounds_;
+  const bool count_velocity_violation_;
   double phi_prev_ = 0;
   std::array<CostTerm, 2> terms_{CostTerm{"cost_outside_bounds", 0},
                                  CostTerm{"cost_velocity_violation", 0}};
 };
-
-TaskBlueprint run_task();
 
 }  // namespace bsg::envs

@@ -4,7 +4,6 @@
 // see the agent only through the Agent interface.
 #pragma once
 
-#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -52,18 +51,6 @@ class Task {
   // Appends what the task marks without a body (marking.h), for drawing; not
   // on the step path.
   virtual void add_markings(std::vector<Marking>& /*out*/) const {}
-};
-
-using TaskFactory =
-    std::function<std::unique_ptr<Task>(World& world, Agent& agent, const EnvOptions& options)>;
-
-// What the builder must know before the world exists (docs/environments.md#the-sixteen-environments, #physics-settings).
-struct TaskBlueprint {
-  std::string name;           // "Circle", "Gather", "Reach", "Run"
-  WorldLayout layout = WorldLayout::kPlane200;
-  int sub_steps = 4;          // 4, or 1 for Reach
-  bool power_upgrade = false; // Reach and Gather (docs/environments.md#agents)
-  TaskFactory make;
 };
 
 }  // namespace bsg::envs

@@ -135,13 +135,17 @@ int resolve_num_threads(int num_threads, int num_envs) {
 
 VectorEnv::VectorEnv(const std::string& id, int num_envs, int num_threads,
                      const EnvOptions& options)
+    : VectorEnv(describe(id), num_envs, num_threads, options) {}
+
+VectorEnv::VectorEnv(const EnvDescription& description, int num_envs, int num_threads,
+                     const EnvOptions& options)
     : num_envs_(num_envs) {
   if (num_envs < 1) {
     throw std::invalid_argument("VectorEnv: num_envs must be >= 1, got " +
                                 std::to_string(num_envs));
   }
   num_threads_ = resolve_num_threads(num_threads, num_envs);
-  make_env_ = [id, options] { return make(id, options); };
+  make_env_ = [description, options] { return make(description, options); };
   envs_.reserve(static_cast<size_t>(num_envs));
   for (int i = 0; i < num_envs; ++i) envs_.push_back(make_env_());
   spec_ = envs_.front()->spec();

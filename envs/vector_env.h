@@ -60,6 +60,9 @@ class VectorEnv {
   // num_envs < 1 or num_threads < 0.
   VectorEnv(const std::string& id, int num_envs, int num_threads = 0,
             const EnvOptions& options = {});
+  // The same for any description (env_description.h), checked before the first build.
+  VectorEnv(const EnvDescription& description, int num_envs, int num_threads = 0,
+            const EnvOptions& options = {});
   ~VectorEnv();
   VectorEnv(const VectorEnv&) = delete;
   VectorEnv& operator=(const VectorEnv&) = delete;

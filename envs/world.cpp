@@ -58,9 +58,21 @@ class ClosestHitIgnoring : public btCollisionWorld::ClosestRayResultCallback {
 
 }  // namespace
 
-World::World(WorldLayout layout, int sub_steps) : layout_(layout), sub_steps_(sub_steps) {
+World::World(WorldLayout layout, int sub_steps)
+    : World(layout, sub_steps, kEnvStepSeconds / std::max(sub_steps, 1)) {
+  env_step_seconds_ = kEnvStepSeconds;  // exactly, whatever the sub-steps
+}
+
+World::World(WorldLayout layout, int sub_steps, double time_step_seconds)
+    : layout_(layout),
+      sub_steps_(sub_steps),
+      time_step_(time_step_seconds),
+      env_step_seconds_(time_step_seconds * sub_steps) {
   if (sub_steps < 1) {
     throw std::invalid_argument("World: sub_steps must be >= 1, got " + std::to_string(sub_steps));
+  }
+  if (!(time_step_seconds > 0)) {
+    throw std::invalid_argument("World: time_step must be > 0 s, got " + std::to_string(time_step_seconds));
   }
   install_bullet_block_pool();
   // PyBullet sets the broadphase's AABB margin to 0 (docs/environments.md#physics-settings). Bullet keeps it
@@ -106,7 +118,7 @@ double World::env_dim() const { return layout_ == WorldLayout::kPlane200 ? 250.0
 void World::step() {
   // (1/60)/(1/60/n) is exact for n in {1, 4}, so Bullet performs exactly n
   // internal steps per call (docs/environments.md#physics-settings).
-  dynamics_->stepSimulation(kEnvStepSeconds, sub_steps_, internal_step_seconds());
+  dynamics_->stepSimulation(env_step_seconds(), sub_steps_, internal_step_seconds());
 }
 
 btCollisionShape* World::keep_shape(std::unique_ptr<btCollisionShape> shape) {

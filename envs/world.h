@@ -6,6 +6,7 @@
 // Parameters:
 //   layout     SmallRoom (Reach, Gather), Octagon (Circle) or Plane200 (Run)
 //   sub_steps  internal steps per environment step: 4 (Circle, Run, Gather), 1 (Reach)
+//   time_step  one internal step [s]: 1/(60·sub_steps) unless given (EnvDescription)
 #pragma once
 
 #include <memory>
@@ -45,13 +46,18 @@ class World {
   static constexpr double kGravity = -9.81;
 
   World(WorldLayout layout, int sub_steps);
+  // Internal steps of `time_step_seconds` (the fork's other step lengths).
+  World(WorldLayout layout, int sub_steps, double time_step_seconds);
   ~World();
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
   WorldLayout layout() const { return layout_; }
   int sub_steps() const { return sub_steps_; }
-  double internal_step_seconds() const { return kEnvStepSeconds / sub_steps_; }
+  double internal_step_seconds() const { return time_step_; }
+  // T_param: the duration of one environment step, time_step · sub_steps
+  // (1/60 s in every standard environment).
+  double env_step_seconds() const { return env_step_seconds_; }
   // Scale used by sensors and observations: 10 for SmallRoom and Octagon
   // (Octagon's ground is 30 m wide: original quirk, docs/environments.md#kept-quirks, item 15), 250 for Plane200.
   double env_dim() const;
@@ -114,6 +120,8 @@ class World {
 
   WorldLayout layout_;
   int sub_steps_;
+  double time_step_;
+  double env_step_seconds_;
   std::unique_ptr<btDefaultCollisionConfiguration> collision_configuration_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
   std::unique_ptr<btOverlappingPairCache> pair_cache_;  // outlives the broadphase using it

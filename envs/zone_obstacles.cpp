@@ -7,9 +7,9 @@
 
 namespace bsg::envs {
 
-ZoneObstacles::ZoneObstacles(ZoneKind kind, int count)
+ZoneObstacles::ZoneObstacles(ZoneKind kind, int count, double radius)
     : kind_(kind),
-      radius_(kind == ZoneKind::kPuddle ? 1.0 : 0.45),
+      radius_(radius),
       positions_(static_cast<size_t>(count), btVector3(0, 0, 0)) {}
 
 void ZoneObstacles::place(std::span<const btVector3> positions) {

@@ -5,7 +5,8 @@
 //
 // Parameters:
 //   count   8
-//   radius  Puddle 1.0 m, Pillar 0.45 m (Reach with the Drone)
+//   radius  Puddle 1.0 m, Pillar 0.45 m (Reach with the Drone), or as the
+//           description's zone_radius says
 #pragma once
 
 #include <span>
@@ -19,7 +20,7 @@ enum class ZoneKind { kPuddle, kPillar };
 
 class ZoneObstacles {
  public:
-  ZoneObstacles(ZoneKind kind, int count);
+  ZoneObstacles(ZoneKind kind, int count, double radius);
 
   ZoneKind kind() const { return kind_; }
   double radius() const { return radius_; }

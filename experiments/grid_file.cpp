@@ -94,6 +94,11 @@ GridSetting make_setting(const ConfigKey& key, const YAML::Node& value,
     for (std::size_t i = 0; i < value.size(); ++i) {
       setting.name_text += (i ? "x" : "") + value[i].Scalar();
     }
+  } else if (value.IsMap()) {  // env: {bombs: 12} names the run "bombs12"
+    setting.value_text = canonical;
+    for (const auto& pair : value) {
+      setting.name_text += (setting.name_text.empty() ? "" : "_") + pair.first.Scalar() + pair.second.Scalar();
+    }
   } else {
     setting.value_text = value.Scalar();
     setting.name_text = value.Scalar();

@@ -11,6 +11,12 @@ gymnasium's 5-tuple with the cost in ``info["cost"]``. When gymnasium is
 importable, ``import bsg`` registers every id as ``bsg/<id>`` for
 ``gymnasium.make`` and ``gymnasium.make_vec`` (docs/python.md).
 ``render_mode="rgb_array"`` makes ``env.render()`` return frames (``bsg.rendering``).
+
+Every other keyword argument changes a parameter of the environment's
+description (``bsg.describe(id)`` lists them, docs/environments.md):
+``bsg.make("SafetyBallGather-v0", bombs=12)``, or a new combination
+``bsg.make(agent="Drone", task="Reach", zones=4)``; the same for
+``bsg.VectorEnv``. A bad key or value raises ValueError naming it.
 """
 
 from . import _core
@@ -19,7 +25,7 @@ from .spaces import Box, _gymnasium, box
 from .gymnasium_env import GymnasiumEnv
 from .wrappers import NextStepAutoreset
 
-__all__ = ["make", "env_ids", "Env", "VectorEnv", "EnvSpec", "GymnasiumEnv", "Box"]
+__all__ = ["make", "describe", "env_ids", "Env", "VectorEnv", "EnvSpec", "GymnasiumEnv", "Box"]
 
 EnvSpec = _core.EnvSpec
 _OPTIONS = ("box_clock",)
@@ -30,10 +36,17 @@ def env_ids():
     return _core.env_ids()
 
 
-def _check_options(options):
-    unknown = sorted(set(options) - set(_OPTIONS))
-    if unknown:
-        raise TypeError(f"unknown option(s) {unknown}; valid options: {list(_OPTIONS)}")
+def _split_options(kwargs):
+    """(options, environment parameters) of a keyword-argument dict."""
+    options = {key: value for key, value in kwargs.items() if key in _OPTIONS}
+    parameters = {key: value for key, value in kwargs.items() if key not in _OPTIONS}
+    return options, parameters
+
+
+def describe(env_id=None, **parameters):
+    """The resolved description of ``env_id`` with ``parameters`` applied, as a
+    dict of key to text (as ``bsg envs --describe`` prints it)."""
+    return dict(_core.describe(env_id, parameters))
 
 
 def _check_max_episode_steps(max_episode_steps):
@@ -63,15 +76,16 @@ class Env(_core.Env):
     metadata = _rendering.METADATA
     render_mode = None
 
-    def __init__(self, env_id, *, max_episode_steps=None, render_mode=None, width=480,
-                 height=360, camera="default", **options):
-        _check_options(options)
+    def __init__(self, env_id=None, *, max_episode_steps=None, render_mode=None, width=480,
+                 height=360, camera="default", **kwargs):
+        options, parameters = _split_options(kwargs)
         _check_max_episode_steps(max_episode_steps)
         renderer = _rendering.make_renderer(render_mode, width, height, camera)
-        super().__init__(env_id, **options)
+        super().__init__(env_id, parameters=parameters, **options)
         self.render_mode = render_mode
         self._renderer = renderer
-        self._options = dict(options)
+        self._env_id = env_id  # what a copy or gymnasium's spec remakes (None: agent and task)
+        self._options = dict(kwargs)
         self._render_options = (dict(render_mode=render_mode, width=width, height=height,
                                      camera=camera) if render_mode is not None else {})
         if max_episode_steps is not None:
@@ -98,7 +112,7 @@ class Env(_core.Env):
     def __reduce__(self):
         # A copy replays what this environment did since its last seeded
         # reset (python/src/episode_history.h): Bullet has no full snapshot.
-        return (_restore_env, (type(self), self.spec.id,
+        return (_restore_env, (type(self), self._env_id,
                                {**self._options, **self._render_options},
                                self._max_episode_steps, self._history()))
 
@@ -122,7 +136,7 @@ def _restore_env(cls, env_id, options, max_episode_steps, history):
 from .vector import VectorEnv  # noqa: E402  (needs Env's module to be complete)
 
 
-def make(env_id, *, api="safety", max_episode_steps=None, autoreset=False,
+def make(env_id=None, *, api="safety", max_episode_steps=None, autoreset=False,
          disable_env_checker=None, **options):
     """Makes environment ``env_id`` (see ``env_ids()``).
 
@@ -135,10 +149,12 @@ def make(env_id, *, api="safety", max_episode_steps=None, autoreset=False,
     gymnasium's and Safety-Gymnasium's callers and changes nothing (bsg.make
     adds no checker). ``render_mode="rgb_array"`` (or ``"depth_array"``),
     ``width=480``, ``height=360``, ``camera="default"`` (or ``"track"``,
-    ``"top"``) make ``render()`` return frames. Unknown ids raise ValueError
-    listing the valid ones.
+    ``"top"``) make ``render()`` return frames. Other keyword arguments change
+    the description: ``make(id, bombs=12)``, ``make(agent="Drone",
+    task="Reach")`` (no id: that agent on that task). Unknown ids raise
+    ValueError listing the valid ones.
     """
-    if not isinstance(env_id, str):
+    if env_id is not None and not isinstance(env_id, str):
         raise TypeError(f"env_id must be a str, got {type(env_id).__name__}")
     if api not in ("safety", "gymnasium"):
         raise ValueError(f"api must be 'safety' or 'gymnasium', got {api!r}")

@@ -76,5 +76,6 @@ def _registered_spec(env):
     if _gymnasium is None:
         return env.spec
     from . import registration
-    return registration.gymnasium_spec(env.spec.id, getattr(env, "_options", {}),
+    return registration.gymnasium_spec(getattr(env, "_env_id", env.spec.id),
+                                       getattr(env, "_options", {}),
                                        getattr(env, "_max_episode_steps", None) or None)

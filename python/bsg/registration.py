@@ -58,9 +58,8 @@ def make_registered_vector_env(env_id, num_envs=1, max_episode_steps=None, rende
 
 def register_all():
     """Registers ``bsg/<id>`` for every id (a no-op for ids already registered)."""
-    from . import env_ids
+    from . import describe, env_ids
     from .gymnasium_env import GymnasiumEnv
-    from ._core import Env as CoreEnv
     make_registered_env.metadata = GymnasiumEnv.metadata  # what gymnasium.make checks
     for env_id in env_ids():
         name = registered_id(env_id)
@@ -70,15 +69,25 @@ def register_all():
             id=name,
             entry_point=f"{__name__}:make_registered_env",
             vector_entry_point=f"{__name__}:make_registered_vector_env",
-            max_episode_steps=CoreEnv(env_id).spec.max_episode_steps,
+            max_episode_steps=int(describe(env_id)["max_episode_steps"]),
             kwargs={"env_id": env_id},
         )
 
 
 def gymnasium_spec(env_id, options, max_episode_steps=None):
     """gymnasium's EnvSpec of ``env_id`` made with ``options`` (and another
-    episode length if ``max_episode_steps`` is given)."""
-    spec = _gymnasium.spec(registered_id(env_id))
+    episode length if ``max_episode_steps`` is given). ``env_id`` None (an
+    agent on a task, ``bsg.make(agent=..., task=...)``) gives an unregistered
+    spec whose entry point remakes the same environment."""
+    if env_id is None:
+        from . import _split_options, describe
+        described = describe(**_split_options(options)[1])
+        spec = _gymnasium.envs.registration.EnvSpec(
+            id=registered_id(described["name"]), entry_point=f"{__name__}:make_registered_env",
+            vector_entry_point=f"{__name__}:make_registered_vector_env",
+            max_episode_steps=int(described["max_episode_steps"]), kwargs={"env_id": None})
+    else:
+        spec = _gymnasium.spec(registered_id(env_id))
     changes = {"kwargs": {**spec.kwargs, **options}}
     if max_episode_steps is not None:
         changes["max_episode_steps"] = max_episode_steps

@@ -58,18 +58,18 @@ class VectorEnv(_core.VectorEnv, _VectorBase):
     with its ``"_<key>"`` mask of the environments that reported it.
     """
 
-    def __init__(self, env_id, num_envs, num_threads=0, seed=0, *, api="safety",
+    def __init__(self, env_id=None, num_envs=1, num_threads=0, seed=0, *, api="safety",
                  autoreset_mode="NextStep", max_episode_steps=None, render_mode=None,
-                 width=480, height=360, camera="default", **options):
+                 width=480, height=360, camera="default", **kwargs):
         if api not in ("safety", "gymnasium"):
             raise ValueError(f"api must be 'safety' or 'gymnasium', got {api!r}")
         next_step = _next_step(autoreset_mode)
-        _check_arguments(options, max_episode_steps)
+        options, parameters = _check_arguments(kwargs, max_episode_steps)
         self._renderer = _rendering.make_renderer(render_mode, width, height, camera)
-        super().__init__(env_id, num_envs, num_threads, seed, **options)
+        super().__init__(env_id, num_envs, num_threads, seed, parameters=parameters, **options)
         self._configure(api == "gymnasium", next_step, max_episode_steps or 0)
         self.api = api
-        self._options = dict(options)
+        self._options = dict(kwargs)
         spec = self.bsg_spec
         self.single_observation_space = box(
             -spec.observation_bound, spec.observation_bound, (spec.observation_dim,))
@@ -81,7 +81,7 @@ class VectorEnv(_core.VectorEnv, _VectorBase):
         self.autoreset_mode = _AutoresetMode(mode) if _AutoresetMode is not None else mode
         self.metadata = {**_rendering.METADATA, "autoreset_mode": self.autoreset_mode}
         self.render_mode = render_mode
-        self._spec = _gymnasium_spec(spec.id, options, api) or spec
+        self._spec = _gymnasium_spec(env_id, kwargs, api) or spec
 
     @property
     def bsg_spec(self):
@@ -164,10 +164,11 @@ class VectorEnv(_core.VectorEnv, _VectorBase):
                 f"thread(s){' (closed)' if self.closed else ''}>")
 
 
-def _check_arguments(options, max_episode_steps):
-    from . import _check_max_episode_steps, _check_options  # one check for Env and VectorEnv
-    _check_options(options)
+def _check_arguments(kwargs, max_episode_steps):
+    """(options, description parameters) of ``kwargs``, checked as ``Env`` checks them."""
+    from . import _check_max_episode_steps, _split_options  # one check for Env and VectorEnv
     _check_max_episode_steps(max_episode_steps)
+    return _split_options(kwargs)
 
 
 def _gymnasium_spec(env_id, options, api):

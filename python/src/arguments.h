@@ -14,6 +14,14 @@ namespace bsg::python {
 // box_clock: "episode_phase" (default) or "simulated" (env.h EnvOptions).
 envs::EnvOptions env_options(const std::string& box_clock);
 
+// The description of `env_id` with the keyword arguments in `parameters` (a
+// dict of environment parameters, envs/env_parameters.h) applied: bools as
+// true/false, ints and floats as Python writes them, strings as they are.
+// env_id None starts from SafetyBallCircle-v0 (give agent= and task=).
+// TypeError for another value type; ValueError (one line naming the key and
+// value) for a bad key or value.
+envs::EnvDescription env_description(pybind11::handle env_id, pybind11::handle parameters);
+
 // An integer in [0, 2**64) (Python's or numpy's); TypeError for anything
 // else, ValueError out of range.
 std::uint64_t seed_value(pybind11::handle seed);

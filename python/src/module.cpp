@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "arguments.h"
 #include "bench_helpers.h"
 #include "envs/env.h"
 #include "envs/world.h"
@@ -16,6 +17,13 @@ PYBIND11_MODULE(_core, module) {
   // Simulated seconds per environment step (every id): render_fps = 1 / this.
   module.attr("env_step_seconds") = bsg::envs::World::kEnvStepSeconds;
   module.def("env_ids", &bsg::envs::registered_ids, "Every registered environment id, sorted.");
+  module.def(
+      "describe",
+      [](pybind11::handle env_id, pybind11::handle parameters) {
+        return bsg::envs::to_env_overrides(bsg::python::env_description(env_id, parameters));
+      },
+      pybind11::arg("env_id"), pybind11::arg("parameters") = pybind11::none(),
+      "The resolved description as (key, text) pairs, as `bsg envs --describe` prints it.");
   bsg::python::bind_env(module);
   bsg::python::bind_vector_env(module);
   bsg::python::bind_bench_helpers(module);

@@ -29,8 +29,10 @@ py::array_t<double> copy_to_array(std::span<const double> values,
   return array;
 }
 
-PythonEnv::PythonEnv(const std::string& env_id, const std::string& box_clock)
-    : make_env_([env_id, options = env_options(box_clock)] { return envs::make(env_id, options); }),
+PythonEnv::PythonEnv(py::handle env_id, const std::string& box_clock, py::handle parameters)
+    : make_env_([description = env_description(env_id, parameters), options = env_options(box_clock)] {
+        return envs::make(description, options);
+      }),
       env_(make_env_()),
       spec_(env_->spec()),
       max_episode_steps_(spec_.max_episode_steps),
@@ -224,8 +226,8 @@ void bind_env(py::module_& module) {
       });
 
   py::class_<PythonEnv>(module, "Env", "One environment (see bsg.Env).")
-      .def(py::init<const std::string&, const std::string&>(), py::arg("env_id"),
-           py::arg("box_clock") = "episode_phase")
+      .def(py::init<py::handle, const std::string&, py::handle>(), py::arg("env_id"),
+           py::arg("box_clock") = "episode_phase", py::arg("parameters") = py::none())
       .def("reset", &PythonEnv::reset, py::arg("seed") = py::none(),
            py::arg("options") = py::none(),
            "Resets; returns (observation, info). seed=None continues the random stream.")

@@ -30,8 +30,9 @@ namespace bsg::python {
 
 class PythonEnv {
  public:
-  // Throws ValueError for an unknown id (listing the ids) or box_clock.
-  PythonEnv(const std::string& env_id, const std::string& box_clock);
+  // Throws ValueError for an unknown id (listing the ids), box_clock or
+  // environment parameter (`parameters`: a dict, arguments.h env_description).
+  PythonEnv(pybind11::handle env_id, const std::string& box_clock, pybind11::handle parameters);
 
   // seed None continues the environment's random stream (seed 0 before any
   // seeded reset); options must be None or empty (gymnasium's signature).

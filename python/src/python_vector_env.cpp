@@ -72,13 +72,15 @@ std::vector<std::uint8_t> reset_mask(py::handle options, int num_envs, const std
 
 }  // namespace
 
-PythonVectorEnv::PythonVectorEnv(const std::string& env_id, int num_envs, int num_threads,
-                                 py::handle seed, const std::string& box_clock)
+PythonVectorEnv::PythonVectorEnv(py::handle env_id, int num_envs, int num_threads,
+                                 py::handle seed, const std::string& box_clock,
+                                 py::handle parameters)
     : initial_seed_(seed_value(seed)) {
   const envs::EnvOptions options = env_options(box_clock);
+  const envs::EnvDescription description = env_description(env_id, parameters);
   {
     const py::gil_scoped_release release;  // building N worlds takes a while
-    vector_ = std::make_unique<envs::VectorEnv>(env_id, num_envs, num_threads, options);
+    vector_ = std::make_unique<envs::VectorEnv>(description, num_envs, num_threads, options);
   }
   spec_ = vector_->spec();
   num_envs_ = vector_->num_envs();
@@ -238,9 +240,10 @@ void PythonVectorEnv::close() {
 
 void bind_vector_env(py::module_& module) {
   py::class_<PythonVectorEnv>(module, "VectorEnv", "N environments on a thread pool (see bsg.VectorEnv).")
-      .def(py::init<const std::string&, int, int, py::handle, const std::string&>(),
+      .def(py::init<py::handle, int, int, py::handle, const std::string&, py::handle>(),
            py::arg("env_id"), py::arg("num_envs"), py::arg("num_threads") = 0,
-           py::arg("seed") = 0, py::arg("box_clock") = "episode_phase")
+           py::arg("seed") = 0, py::arg("box_clock") = "episode_phase",
+           py::arg("parameters") = py::none())
       .def("_configure", &PythonVectorEnv::configure, py::arg("gymnasium_api"),
            py::arg("next_step"), py::arg("max_episode_steps"))
       .def("reset", &PythonVectorEnv::reset, py::arg("seed") = py::none(),

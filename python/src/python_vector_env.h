@@ -25,8 +25,8 @@ namespace bsg::python {
 
 class PythonVectorEnv {
  public:
-  PythonVectorEnv(const std::string& env_id, int num_envs, int num_threads, pybind11::handle seed,
-                  const std::string& box_clock);
+  PythonVectorEnv(pybind11::handle env_id, int num_envs, int num_threads, pybind11::handle seed,
+                  const std::string& box_clock, pybind11::handle parameters);
 
   // gymnasium_api: the 5-tuple with info["cost"] instead of the 6-tuple;
   // next_step: Gymnasium's next-step autoreset instead of same-step;

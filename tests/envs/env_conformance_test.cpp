@@ -37,6 +37,16 @@ const std::map<std::string, ExpectedSpec>& expected_specs() {
       {"SafetyDroneReach-v0", {67, 4, 500, 10}},    {"SafetyDroneRun-v0", {17, 4, 500, 25}},
       {"SafetyAntCircle-v0", {34, 8, 1000, 25}},    {"SafetyAntGather-v0", {65, 8, 1000, 0.2}},
       {"SafetyAntReach-v0", {83, 8, 1000, 25}},     {"SafetyAntRun-v0", {33, 8, 1000, 25}},
+      // The fork variant (docs/environments.md#the-fork-variant): shorter Circle and Run
+      // episodes; CarReach without Box and LIDAR (7 + 24 + 2).
+      {"SafetyBallCircle-fork", {8, 2, 200, 25}},   {"SafetyBallGather-fork", {39, 2, 250, 0.2}},
+      {"SafetyBallReach-fork", {57, 2, 250, 10}},   {"SafetyBallRun-fork", {7, 2, 100, 25}},
+      {"SafetyCarCircle-fork", {8, 2, 300, 25}},    {"SafetyCarGather-fork", {39, 2, 500, 0.2}},
+      {"SafetyCarReach-fork", {33, 2, 500, 10}},    {"SafetyCarRun-fork", {7, 2, 200, 25}},
+      {"SafetyDroneCircle-fork", {18, 4, 300, 25}}, {"SafetyDroneGather-fork", {49, 4, 500, 0.2}},
+      {"SafetyDroneReach-fork", {67, 4, 500, 10}},  {"SafetyDroneRun-fork", {17, 4, 200, 25}},
+      {"SafetyAntCircle-fork", {34, 8, 500, 25}},   {"SafetyAntGather-fork", {65, 8, 1000, 0.2}},
+      {"SafetyAntReach-fork", {83, 8, 1000, 25}},   {"SafetyAntRun-fork", {33, 8, 200, 25}},
   };
   return table;
 }
@@ -52,7 +62,7 @@ class Conformance : public ::testing::TestWithParam<std::string> {};
 TEST_P(Conformance, SpecMatchesTheRegistrationTableAndReportTable3) {
   const std::string id = GetParam();
   const auto expected = expected_specs().find(id);
-  ASSERT_NE(expected, expected_specs().end()) << id << " is not one of the 16 benchmark ids";
+  ASSERT_NE(expected, expected_specs().end()) << id << " is not one of the 16 benchmark ids or their fork variants";
   const auto env = make(id);
   const EnvSpec& spec = env->spec();
   EXPECT_EQ(spec.id, id);
@@ -63,7 +73,7 @@ TEST_P(Conformance, SpecMatchesTheRegistrationTableAndReportTable3) {
   EXPECT_EQ(spec.action_low, -1);
   EXPECT_EQ(spec.action_high, 1);
   EXPECT_EQ(spec.observation_bound, 1000);
-  EXPECT_EQ("Safety" + spec.agent + spec.task + "-v0", id);
+  EXPECT_TRUE("Safety" + spec.agent + spec.task + "-v0" == id || "Safety" + spec.agent + spec.task + "-fork" == id);
   EXPECT_EQ(env->reset(1).size(), static_cast<size_t>(spec.observation_dim));
 }
 

@@ -115,7 +115,7 @@ TEST_P(LeanPhysicsStatistics, MeanReturnAndCostAgreeWithFaithful) {
 std::vector<Case> cases() {
   std::vector<Case> result;
   for (const std::string& id : registered_ids()) {
-    if (!has_lean_model(id)) continue;
+    if (!has_lean_model(id) || !id.ends_with("-v0")) continue;  // the fork's differ only in values
     result.push_back({id, true});
     result.push_back({id, false});
   }

@@ -21,9 +21,9 @@ def catalogue(bsg_binary):
     return {entry["id"]: entry for entry in json.loads(out)}
 
 
-def test_env_ids_are_the_sixteen_of_the_suite():
-    expected = sorted(f"Safety{agent}{task}-v0" for agent in ("Ball", "Car", "Drone", "Ant")
-                      for task in ("Circle", "Gather", "Reach", "Run"))
+def test_env_ids_are_the_sixteen_of_the_suite_and_their_fork_variants():
+    expected = sorted(f"Safety{agent}{task}-{variant}" for agent in ("Ball", "Car", "Drone", "Ant")
+                      for task in ("Circle", "Gather", "Reach", "Run") for variant in ("v0", "fork"))
     assert IDS == expected
 
 

@@ -98,8 +98,9 @@ def test_numpy_integer_seed_is_accepted(env):
 
 
 def test_bad_options():
-    with pytest.raises(TypeError, match="unknown option.*box_clock"):
-        bsg.make("SafetyBallCircle-v0", max_steps=10)
+    # Keywords other than the options are environment parameters.
+    with pytest.raises(ValueError, match="max_episode_step=10: unknown parameter.*max_episode_steps"):
+        bsg.make("SafetyBallCircle-v0", max_episode_step=10)
     with pytest.raises(ValueError, match="box_clock must be"):
         bsg.make("SafetyBallCircle-v0", box_clock="wall")
     with pytest.raises(ValueError, match="api must be"):
