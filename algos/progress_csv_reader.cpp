@@ -88,7 +88,9 @@ ProgressLogText read_progress_log(std::string_view text, const std::string& sour
       }
     }
     const double expected_epoch = static_cast<double>(log.rows.size());
-    if (values[epoch_column] != expected_epoch) {
+    // The writer prints an epoch as an integer (format_csv_number): "00" or
+    // "0.0" is the same number but not a row it wrote.
+    if (values[epoch_column] != expected_epoch || fields[epoch_column] != format_csv_number(expected_epoch)) {
       fail(source_name, line_number, "epoch " + printable_excerpt(fields[epoch_column], 40) + " where epoch " +
                                          format_csv_number(expected_epoch) +
                                          " belongs (rows must hold epochs 0, 1, 2, ... in order)");

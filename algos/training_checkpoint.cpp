@@ -1,5 +1,6 @@
 #include "algos/training_checkpoint.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -29,6 +30,13 @@ void check_progress_log(const BinaryReader& reader, const std::string& text, con
   }
   if (log.rows.empty()) return;
   const std::vector<std::string> columns = split_csv_line(log.header);
+  // The trainer writes these three columns in every run (epoch_log.cpp); a
+  // header without one of them was not written by it.
+  for (const char* required : {"epoch", "total_env_steps", "time_s"}) {
+    if (std::find(columns.begin(), columns.end(), required) == columns.end()) {
+      reader.fail(std::string("its progress log's header has no column ") + required);
+    }
+  }
   const std::vector<std::string> last = split_csv_line(log.rows.back());
   for (std::size_t i = 0; i < columns.size(); ++i) {
     if (columns[i] == "time_s" && last[i] != format_csv_number(progress.elapsed_seconds)) {
@@ -115,8 +123,9 @@ TrainingProgress decode_training_checkpoint(std::string_view payload, const std:
     entry.value = reader.read_f64("algorithm state value");
     state.push_back(std::move(entry));
   }
-  // Format 2 ends with the training cost so far; format 1 files have none (it starts at 0).
-  if (format_version >= 2) progress.training_cost = load_training_cost(reader, actor_critic.constraint_count());
+  // The training cost so far ends the payload; checkpoints written before it
+  // existed have none (the sums start at 0).
+  if (reader.remaining() > 0) progress.training_cost = load_training_cost(reader, actor_critic.constraint_count());
   reader.expect_end();
   try {
     algorithm.restore_state(state);

@@ -70,6 +70,7 @@ int rollout(const RolloutArguments& args) {
     env = recording->wrap(std::move(env));
   }
   const int action_dim = env->spec().action_dim;
+  const std::string env_name = env->spec().id;  // a custom description's own name; env is gone after a recording
   Rng policy_rng(args.seed ^ 0x9e3779b97f4a7c15ULL);  // independent of the env's stream
   std::vector<double> action(static_cast<size_t>(action_dim), 0.0);
   std::vector<Episode> episodes;
@@ -115,7 +116,7 @@ int rollout(const RolloutArguments& args) {
     std::cout << std::setprecision(17) << out.dump(2) << "\n";
     return 0;
   }
-  std::cout << env->spec().id << ", policy " << args.policy << ", seed " << args.seed << ", physics "
+  std::cout << env_name << ", policy " << args.policy << ", seed " << args.seed << ", physics "
             << args.physics << "\n"
             << std::setw(8) << "episode" << std::setw(14) << "return" << std::setw(10) << "cost"
             << std::setw(8) << "length" << "\n";

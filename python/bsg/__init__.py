@@ -123,6 +123,8 @@ class Env(_core.Env):
         self.close()
 
     def __repr__(self):
+        if "_options" not in self.__dict__:  # __init__ raised before the C++ env existed
+            return "<bsg.Env (not constructed)>"
         return f"<bsg.Env {self.spec.id}{' (closed)' if self.closed else ''}>"
 
 

@@ -160,6 +160,8 @@ class VectorEnv(_core.VectorEnv, _VectorBase):
         pass  # gymnasium's VectorEnv.__del__ would close; the core frees itself
 
     def __repr__(self):
+        if "_options" not in self.__dict__:  # __init__ raised before the C++ envs existed
+            return "<bsg.VectorEnv (not constructed)>"
         return (f"<bsg.VectorEnv {self.bsg_spec.id} x{self.num_envs} on {self.num_threads} "
                 f"thread(s){' (closed)' if self.closed else ''}>")
 

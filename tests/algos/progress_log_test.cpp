@@ -177,7 +177,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadLog{"x,epoch\n1,0\n", "1: the header's first column is not 'epoch'"},
         // Found by the libFuzzer target: an empty header and rows of no fields.
         BadLog{"\n\n", "1: the header's first column is not 'epoch'"},
-        BadLog{"epoch,epoch\n0,0\n", "1: not a progress.csv header (column epoch is empty, repeated"}),
+        BadLog{"epoch,epoch\n0,0\n", "1: not a progress.csv header (column epoch is empty, repeated"},
+        // Found by the libFuzzer target: the right number, not as the writer prints it.
+        BadLog{"epoch,total_env_steps,x\n0.0,100,1\n", "2: epoch 0.0 where epoch 0 belongs"}),
     [](const ::testing::TestParamInfo<BadLog>& info) { return "line_" + std::to_string(info.index); });
 
 TEST_P(ProgressCsvBadLine, IsAnErrorNamingTheFileAndLine) {

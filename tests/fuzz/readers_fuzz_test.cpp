@@ -3,8 +3,10 @@
 // training payload) and the run directory's progress log on resume. Every
 // mutated input must give either a clean error (the reader's own exception
 // type, with a printable message of bounded length) or, where acceptance is
-// possible at all, exactly the original data: a mutated progress log or
-// checkpoint field is never taken silently. A crash, a hang (the ctest
+// possible at all, the original data: a mutated progress log or checkpoint
+// field is never taken silently. (A payload whose checksum the test recomputes
+// may carry other numbers in the log's rows, as opaque as the network's
+// parameters, but never another header, row count, epoch, step count or time.) A crash, a hang (the ctest
 // timeout) or another exception type fails the test. The counts are printed.
 #include <gtest/gtest.h>
 
@@ -115,6 +117,24 @@ TEST(ReadersFuzz, AMutatedProgressLogIsAnErrorOrRestoredToTheCheckpointsRecord) 
   EXPECT_GT(counts.clean_errors, counts.inputs / 2);
 }
 
+// The header, the row count and each row's epoch, total_env_steps and time_s.
+void expect_same_log_shape(const std::string& got, const std::string& original) {
+  const bsg::ProgressLogText got_log = bsg::read_progress_log(got, "got", 0);
+  const bsg::ProgressLogText original_log = bsg::read_progress_log(original, "original", 0);
+  ASSERT_EQ(got_log.header, original_log.header);
+  ASSERT_EQ(got_log.rows.size(), original_log.rows.size());
+  const std::vector<std::string> columns = bsg::split_csv_line(original_log.header);
+  for (std::size_t row = 0; row < got_log.rows.size(); ++row) {
+    const std::vector<std::string> got_fields = bsg::split_csv_line(got_log.rows[row]);
+    const std::vector<std::string> original_fields = bsg::split_csv_line(original_log.rows[row]);
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      if (columns[i] == "epoch" || columns[i] == "total_env_steps" || columns[i] == "time_s") {
+        EXPECT_EQ(got_fields[i], original_fields[i]) << columns[i] << " of row " << row;
+      }
+    }
+  }
+}
+
 TEST(ReadersFuzz, AMutatedCheckpointIsAnErrorOrHoldsTheOriginalFields) {
   const bsg::RunConfig config = small_config();
   bsg::Rng rng_init(5);
@@ -151,7 +171,11 @@ TEST(ReadersFuzz, AMutatedCheckpointIsAnErrorOrHoldsTheOriginalFields) {
       // Network parameters are opaque numbers; the fields are not.
       EXPECT_EQ(got.epochs_completed, progress.epochs_completed);
       EXPECT_EQ(got.elapsed_seconds, progress.elapsed_seconds);
-      EXPECT_EQ(got.progress_log, progress.progress_log);
+      // A payload whose checksum was recomputed is a deliberate edit: the
+      // numbers of the log's rows are as opaque as the parameters, but its
+      // shape is checked: the header, the row count and the epoch, step and
+      // time columns are the original's.
+      expect_same_log_shape(got.progress_log.value_or(""), *progress.progress_log);
       EXPECT_GE(got.num_ranks, 1);
       EXPECT_LE(got.num_ranks, bsg::kMaxCheckpointRanks);
     } catch (const bsg::CheckpointError& e) {

@@ -124,3 +124,17 @@ def test_bad_vector_arguments_and_actions():
     actions[2, 1] = np.nan
     with pytest.raises(ValueError, match=r"\[2, 1\] is not finite.*shape \(3, 2\)"):
         vector.step(actions)
+
+
+@pytest.mark.parametrize("make", [lambda: bsg.Env("SafetyBallGather-v0", bombs=-1),
+                                  lambda: bsg.VectorEnv("SafetyBallGather-v0", 2, bombs=-1)])
+def test_an_object_whose_constructor_raised_prints_safely(make):
+    # A traceback printer (pytest's, a debugger's) calls repr() on `self` of the
+    # failed __init__, whose C++ object was never built.
+    with pytest.raises(ValueError, match="bombs=-1") as raised:
+        make()
+    frame = raised.tb
+    while frame.tb_next is not None:
+        frame = frame.tb_next
+    half_made = frame.tb_frame.f_locals["self"]
+    assert repr(half_made).endswith("(not constructed)>")

@@ -102,7 +102,7 @@ def test_make_options_reach_bsg():
     longer.reset(seed=0)
     assert not any(longer.step(np.zeros(2))[3] for _ in range(299))
     assert longer.step(np.zeros(2))[3]
-    with pytest.raises(TypeError, match="unknown option"):
+    with pytest.raises(ValueError, match="unknown parameter"):
         gymnasium.make("bsg/SafetyBallCircle-v0", no_such_option=1)
     with pytest.raises(TypeError, match="gymnasium.wrappers.Autoreset"):
         # Under make's TimeLimit an inner autoreset would truncate every later step.

@@ -11,6 +11,7 @@
 
 #include "../cli/run_bsg.h"
 #include "envs/env.h"
+#include "envs/standard_descriptions.h"
 #include "render/image_grid.h"
 #include "render_test_support.h"
 
@@ -51,8 +52,8 @@ TEST(RenderDeterminism, ARendererReusedAcrossEnvironmentsDrawsWhatAFreshOneDraws
 TEST(RenderDeterminism, ANewProcessDrawsTheSamePixels) {
   BSG_RENDERER_OR_SKIP(renderer, (RenderOptions{64, 48, "top"}));
   std::vector<Image> images;
-  for (const std::string& id : envs::registered_ids()) {
-    const auto env = envs::make(id);
+  for (const envs::EnvDescription& description : envs::standard_descriptions()) {  // what --picture draws
+    const auto env = envs::make(description);
     env->reset(7);
     renderer->render(*env, images.emplace_back());
   }

@@ -62,7 +62,8 @@ for target in "${targets[@]}"; do
       --gtest_filter='ReadersFuzz.AMutatedCheckpoint*' >/dev/null
   fi
   echo "== $target: $seconds s"
-  if ! ASAN_OPTIONS=detect_leaks=1 "$program" -artifact_prefix="$work/$target-" -max_total_time="$seconds" -max_len=65536 -timeout=10 \
+  # A fixed seed (BSG_FUZZ_SEED to change it), so that a short CI run explores the same way each time.
+  if ! ASAN_OPTIONS=detect_leaks=1 "$program" -seed="${BSG_FUZZ_SEED:-1}" -artifact_prefix="$work/$target-" -max_total_time="$seconds" -max_len=65536 -timeout=10 \
        -rss_limit_mb=2048 -print_final_stats=1 "$corpus" 2>&1 | tail -n 25; then
     status=1
   fi
