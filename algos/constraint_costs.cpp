@@ -72,13 +72,4 @@ void StepCostSelector::select(const envs::StepResult& step, Eigen::Ref<Eigen::Ve
   }
 }
 
-std::vector<std::string> probe_cost_term_names(envs::Env& env) {
-  env.reset(0);
-  const std::vector<double> zero(static_cast<std::size_t>(env.spec().action_dim), 0.0);
-  const envs::StepResult step = env.step(zero);
-  std::vector<std::string> names;
-  for (const envs::CostTerm& term : step.cost_terms) names.emplace_back(term.name);
-  return names;
-}
-
 }  // namespace bsg

@@ -50,9 +50,4 @@ class StepCostSelector {
   bool bound_ = false;
 };
 
-// The environment's cost term names: one reset and one zero-action step (the
-// names are only reported with a step). Used to check `constraints:` before a
-// run starts; the caller resets the environment again before using it.
-std::vector<std::string> probe_cost_term_names(envs::Env& env);
-
 }  // namespace bsg

@@ -169,12 +169,15 @@ std::vector<std::string> Cpo::diagnostic_names() const {
 
 SeveralConstraintsStart begin_several_constraints_update(const PolicyUpdateInputs& inputs,
                                                          const std::vector<ConstraintEstimate>& constraints,
-                                                         const LinearOperator& fisher, const RunConfig& config) {
+                                                         const RunConfig& config) {
   SeveralConstraintsStart begun;
+  begun.fisher_product = std::make_unique<FisherVectorProduct>(
+      inputs.policy, inputs.surrogate.observations(), inputs.mpi, fisher_vector_product_options(config));
+  begun.fisher = as_linear_operator(*begun.fisher_product);
   begun.violations = per_step_constraint_violations(constraints, inputs.mean_episode_length);  // c_j
   begun.start = begin_policy_update(inputs);
   begun.gradients = averaged_constraint_gradients(inputs);  // g, B
-  begun.natural = natural_gradient_step(fisher, begun.gradients.reward, config.target_kl,
+  begun.natural = natural_gradient_step(begun.fisher, begun.gradients.reward, config.target_kl,
                                         conjugate_gradient_options(config));  // x, q, eta, Delta_R
   return begun;
 }
@@ -197,12 +200,9 @@ std::vector<NamedScalar> several_constraints_diagnostics(const PolicyUpdateInput
 
 PolicyUpdateResult Cpo::update_several(const PolicyUpdateInputs& inputs,
                                        const std::vector<ConstraintEstimate>& constraints) {
-  FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
-                             fisher_vector_product_options(config()));
-  const LinearOperator fisher_operator = as_linear_operator(fisher);
-  const SeveralConstraintsStart begun = begin_several_constraints_update(inputs, constraints, fisher_operator, config());
+  const SeveralConstraintsStart begun = begin_several_constraints_update(inputs, constraints, config());
   const Eigen::MatrixXd P =
-      conjugate_gradient_columns(fisher_operator, begun.gradients.costs, conjugate_gradient_options(config()));  // p_j
+      conjugate_gradient_columns(begun.fisher, begun.gradients.costs, conjugate_gradient_options(config()));  // p_j
   const Eigen::VectorXd r = P.transpose() * begun.gradients.reward;  // r_j = g^T p_j
   const Eigen::MatrixXd S = begun.gradients.costs.transpose() * P;   // S_jk = b_j^T p_k
   const CpoDualSolution dual = solve_cpo_dual(begun.natural.x_fisher_x, r, S, begun.violations, config().target_kl);

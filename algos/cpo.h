@@ -28,6 +28,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
+#include <vector>
 
 #include "algos/algorithm.h"
 #include "algos/conjugate_gradient.h"
@@ -84,6 +86,9 @@ std::vector<std::string> constraint_multiplier_names(int constraint_count);
 // The first steps CPO and PCPO share with m >= 2 constraints: c_j, theta_old
 // with the surrogates there, g and B, and x = CG(F, g) with q and the TRPO step.
 struct SeveralConstraintsStart {
+  // F at theta_old; owned here (on the heap, so `fisher` stays valid when the struct moves).
+  std::unique_ptr<FisherVectorProduct> fisher_product;
+  LinearOperator fisher;
   Eigen::VectorXd violations;  // c_j = (J_Cj - d_j) / (L + 1e-8)
   PolicyUpdateStart start;
   ConstraintGradients gradients;
@@ -91,7 +96,7 @@ struct SeveralConstraintsStart {
 };
 SeveralConstraintsStart begin_several_constraints_update(const PolicyUpdateInputs& inputs,
                                                          const std::vector<ConstraintEstimate>& constraints,
-                                                         const LinearOperator& fisher, const RunConfig& config);
+                                                         const RunConfig& config);
 
 // Their diagnostics: the common and TRPO columns, cost_gradient_norm = |B|_F, cpo_q,
 // the algorithm's `extra` columns, then constraint_<j>_nu = nu[j].

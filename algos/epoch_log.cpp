@@ -128,6 +128,18 @@ std::vector<NamedScalar> make_epoch_log_row(const EpochLogInputs& in, const MpiC
     if (in.training_cost == nullptr || in.training_cost->epochs_over_limit.size() != in.constraints.size()) {
       throw std::invalid_argument("make_epoch_log_row: the per-constraint columns need the training cost of every constraint");
     }
+    const bool fit_losses = !in.constraint_cost_value_fits.empty();
+    if (fit_losses && in.constraint_cost_value_fits.size() != in.constraints.size()) {
+      throw std::invalid_argument("make_epoch_log_row: one cost value fit per constraint is needed");
+    }
+    // Rank-local losses, before and change, averaged over ranks in one reduction.
+    std::vector<double> fit_loss(2 * in.constraint_cost_value_fits.size());
+    for (std::size_t i = 0; i < in.constraint_cost_value_fits.size(); ++i) {
+      const ValueFitStats& fit = in.constraint_cost_value_fits[i];
+      fit_loss[2 * i] = fit.loss_before;
+      fit_loss[2 * i + 1] = fit.mean_minibatch_loss - fit.loss_before;
+    }
+    if (fit_losses) mpi.average_in_place(fit_loss.data(), fit_loss.size());
     for (std::size_t i = 0; i < in.constraints.size(); ++i) {
       const std::string prefix = "constraint_" + std::to_string(i + 1) + "_";
       const double cumulative = in.training_cost->constraint_cumulative_costs[i];
@@ -136,6 +148,10 @@ std::vector<NamedScalar> make_epoch_log_row(const EpochLogInputs& in, const MpiC
       add(row, prefix + "cumulative_cost", cumulative);
       add(row, prefix + "cost_rate", TrainingCost::rate(cumulative, in.total_env_steps));
       add(row, prefix + "epochs_over_limit", static_cast<double>(in.training_cost->epochs_over_limit[i]));
+      if (fit_losses) {
+        add(row, prefix + "cost_value_loss", fit_loss[2 * i]);
+        add(row, prefix + "cost_value_loss_delta", fit_loss[2 * i + 1]);
+      }
     }
   }
 

@@ -32,6 +32,8 @@
 //   constraint_<i>_limit    d_i
 //   constraint_<i>_cumulative_cost, constraint_<i>_cost_rate, constraint_<i>_epochs_over_limit
 //                           its safety during training so far (training_cost.h)
+//   constraint_<i>_cost_value_loss, constraint_<i>_cost_value_loss_delta   V_Ci's fit, as
+//                           cost_value_loss (only if the algorithm trains the cost value nets)
 //   (the algorithm's per-constraint multipliers come with its diagnostics:
 //   constraint_<i>_lambda for TRPO-L and PDO, constraint_<i>_nu for CPO and PCPO)
 //   time_s                  seconds of training since the run started (resumes continue it)
@@ -83,6 +85,8 @@ struct EpochLogInputs {
   const RunningMeanStd* return_normalizer = nullptr;
   // The per-constraint columns, only with `constraints:` (empty: none).
   std::span<const ConstraintEstimate> constraints{};
+  // V_Ci's fits in the constraints' order, when the algorithm trains them (empty: no loss columns).
+  std::span<const ValueFitStats> constraint_cost_value_fits{};
   const TrainingCost* training_cost = nullptr;  // after this epoch; null: no safety columns
   double collect_seconds = 0.0;
   double update_seconds = 0.0;

@@ -72,16 +72,13 @@ std::vector<std::string> Pcpo::diagnostic_names() const {
 
 PolicyUpdateResult Pcpo::update_several(const PolicyUpdateInputs& inputs,
                                         const std::vector<ConstraintEstimate>& constraints) {
-  FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
-                             fisher_vector_product_options(config()));
-  const LinearOperator fisher_operator = as_linear_operator(fisher);
-  const SeveralConstraintsStart begun = begin_several_constraints_update(inputs, constraints, fisher_operator, config());
+  const SeveralConstraintsStart begun = begin_several_constraints_update(inputs, constraints, config());
   const Eigen::MatrixXd& B = begun.gradients.costs;
   const Eigen::VectorXd& c = begun.violations;
   const Eigen::Index m = B.cols();
   // L^-1 b_j: CG(F, b_j) in the KL metric, b_j itself in L2.
   const Eigen::MatrixXd directions = config().pcpo_projection == PcpoProjection::kl
-                                         ? conjugate_gradient_columns(fisher_operator, B, conjugate_gradient_options(config()))
+                                         ? conjugate_gradient_columns(begun.fisher, B, conjugate_gradient_options(config()))
                                          : B;
   // Only constraints with a usable gradient take part (the single constraint's b^T b > 1e-6 guard).
   std::vector<Eigen::Index> used;

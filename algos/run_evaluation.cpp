@@ -26,8 +26,7 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
   result.epochs_completed = progress.epochs_completed;
   result.epochs = config.epochs;
   StepCostSelector costs(config);
-  // Probed before any decoration, so that a recording shows only the evaluation's episodes.
-  if (costs.needs_terms()) costs.bind(probe_cost_term_names(*env), env->spec().id);
+  if (costs.needs_terms()) costs.bind(env->spec().cost_term_names, env->spec().id);
   if (decorate) env = decorate(std::move(env));
   result.summary = evaluate_policy(*env, actor_critic, episodes.value_or(config.eval_episodes), config.seed,
                                    config.max_ep_len, mpi, costs);

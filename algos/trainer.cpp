@@ -56,7 +56,7 @@ BufferOptions buffer_options(const RunConfig& config) {
 // some constraint names terms (checked before the run directory is touched).
 StepCostSelector bound_cost_selector(const RunConfig& config, envs::Env& env) {
   StepCostSelector selector(config);
-  if (selector.needs_terms()) selector.bind(probe_cost_term_names(env), env.spec().id);
+  if (selector.needs_terms()) selector.bind(env.spec().cost_term_names, env.spec().id);
   return selector;
 }
 
@@ -290,7 +290,10 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   log_inputs.collect_seconds = collect_seconds;
   log_inputs.update_seconds = update_seconds;
   log_inputs.elapsed_seconds = progress_.elapsed_seconds;
-  if (several) log_inputs.constraints = constraints;
+  if (several) {
+    log_inputs.constraints = constraints;
+    if (algorithm_->uses_cost_value_function()) log_inputs.constraint_cost_value_fits = std::span(fits).subspan(1);
+  }
   log_inputs.training_cost = &progress_.training_cost;
   const std::vector<NamedScalar> row = make_epoch_log_row(log_inputs, mpi_);
 
@@ -358,10 +361,10 @@ TrainingOutcome OnPolicyTrainer::run() {
   }
 
   // Deterministic evaluation (docs/reproducing.md#evaluation) with the final statistics.
-  // The term names for evaluation.json's per-term costs (the evaluation reseeds the environment first).
-  const std::vector<std::string> term_names = probe_cost_term_names(*env_);
+  // The term names label evaluation.json's per-term costs.
   EvaluationSummary summary = evaluate_policy(*env_, *actor_critic_, config_.eval_episodes, config_.seed,
-                                              config_.max_ep_len, mpi_, collector_.cost_selector(), term_names);
+                                              config_.max_ep_len, mpi_, collector_.cost_selector(),
+                                              env_->spec().cost_term_names);
   if (mpi_.is_root()) {
     const TrainingSafety safety = training_safety();
     write_evaluation_files(directory_, summary, &safety);

@@ -26,6 +26,8 @@ AssembledEnv::AssembledEnv(EnvSpec spec, const EnvOptions& options, std::unique_
       task_(std::move(task)) {
   spec_.action_dim = agent_->traits().action_dim;
   spec_.observation_dim = agent_->traits().observation_dim + task_->observation_dim();
+  spec_.cost_term_names.clear();
+  for (const CostTerm& term : task_->cost_terms()) spec_.cost_term_names.emplace_back(term.name);
   observation_.assign(static_cast<size_t>(spec_.observation_dim), 0.0);
 }
 

@@ -54,6 +54,10 @@ struct EnvSpec {
   double action_low = -1;     // declared action bounds (docs/environments.md#one-step)
   double action_high = 1;
   double observation_bound = 1000;  // declared observation space ±1000 (never clipped)
+  // The names of the task's cost terms, in the order of StepResult::cost_terms
+  // (which every step reports in full), so that a learner can check which
+  // terms a constraint sums before it takes a step.
+  std::vector<std::string> cost_term_names;
 };
 
 // One named cost component, like the original's info keys (docs/environments.md#tasks):

@@ -106,7 +106,7 @@ std::string table1_latex(const Table1& table) {
 
 std::string table1_csv(const Table1& table) {
   std::string text =
-      "env_id,alg,status,config,config_dir,seeds_finished,seeds_expected,mean_return,mean_cost,"
+      "env_id,alg,status,config,config_dir,seeds_finished,seeds_expected,mean_return,mean_cost,mean_cost_rate,"
       "cost_limit,return_over_trpo,cost_over_limit,feasible,best_constrained,column\n";
   for (const Table1Row& row : table.rows) {
     for (const Table1Cell& cell : row.cells) {
@@ -119,9 +119,10 @@ std::string table1_csv(const Table1& table) {
               std::to_string(cell.seeds_finished) +
               "," + std::to_string(cell.seeds_expected) + ",";
       if (cell.selected) {
-        text += csv_number(cell.score.mean_return) + "," + csv_number(cell.score.mean_cost);
+        text += csv_number(cell.score.mean_return) + "," + csv_number(cell.score.mean_cost) + "," +
+                csv_number(cell.score.mean_cost_rate);  // empty if a seed's evaluation predates the cost rate
       } else {
-        text += ",";
+        text += ",,";
       }
       text += std::string(",") + csv_number(row.cost_limit) + "," + csv_number(normalised_return(row, cell)) + "," +
               csv_number(normalised_cost(row, cell)) + "," +
@@ -135,16 +136,17 @@ std::string table1_csv(const Table1& table) {
 
 std::string configurations_csv(const Table1& table) {
   std::string text =
-      "env_id,alg,config,seeds_finished,seeds_expected,mean_return,mean_cost,cost_limit,feasible,"
+      "env_id,alg,config,seeds_finished,seeds_expected,mean_return,mean_cost,mean_cost_rate,cost_limit,feasible,"
       "score,selected,column\n";
   for (const ConfigurationSummary& config : table.configurations) {
     text += config.env_id + "," + std::string(to_string(config.alg)) + "," +
             csv_field(config.config_name) + "," +
             std::to_string(config.seeds_finished) + "," + std::to_string(config.seeds_expected) + ",";
     if (config.score) {
-      text += csv_number(config.score->mean_return) + "," + csv_number(config.score->mean_cost) + ",";
+      text += csv_number(config.score->mean_return) + "," + csv_number(config.score->mean_cost) + "," +
+              csv_number(config.score->mean_cost_rate) + ",";
     } else {
-      text += ",,";
+      text += ",,,";
     }
     text += csv_number(config.cost_limit) + "," +
             (config.score ? (config.score->feasible ? "true" : "false") : "") + "," +

@@ -198,26 +198,30 @@ void bind_env(py::module_& module) {
       .def_readonly("action_low", &envs::EnvSpec::action_low)
       .def_readonly("action_high", &envs::EnvSpec::action_high)
       .def_readonly("observation_bound", &envs::EnvSpec::observation_bound)
+      .def_readonly("cost_term_names", &envs::EnvSpec::cost_term_names,
+                    "the task's cost terms, in the order steps report them")
       .def(py::pickle(
           [](const envs::EnvSpec& spec) {  // specs pickle: plain data
             return py::make_tuple(spec.id, spec.agent, spec.task, spec.observation_dim,
                                   spec.action_dim, spec.max_episode_steps, spec.cost_limit,
-                                  spec.action_low, spec.action_high, spec.observation_bound);
+                                  spec.action_low, spec.action_high, spec.observation_bound,
+                                  spec.cost_term_names);
           },
           [](const py::tuple& state) {
-            if (state.size() != 10) throw py::value_error("EnvSpec state must have 10 entries");
+            if (state.size() != 11) throw py::value_error("EnvSpec state must have 11 entries");
             return envs::EnvSpec{state[0].cast<std::string>(), state[1].cast<std::string>(),
                                  state[2].cast<std::string>(), state[3].cast<int>(),
                                  state[4].cast<int>(), state[5].cast<int>(),
                                  state[6].cast<double>(), state[7].cast<double>(),
-                                 state[8].cast<double>(), state[9].cast<double>()};
+                                 state[8].cast<double>(), state[9].cast<double>(),
+                                 state[10].cast<std::vector<std::string>>()};
           }))
       .def("__eq__", [](const envs::EnvSpec& a, const envs::EnvSpec& b) {
         return a.id == b.id && a.agent == b.agent && a.task == b.task &&
                a.observation_dim == b.observation_dim && a.action_dim == b.action_dim &&
                a.max_episode_steps == b.max_episode_steps && a.cost_limit == b.cost_limit &&
                a.action_low == b.action_low && a.action_high == b.action_high &&
-               a.observation_bound == b.observation_bound;
+               a.observation_bound == b.observation_bound && a.cost_term_names == b.cost_term_names;
       })
       .def("__repr__", [](const envs::EnvSpec& spec) {
         return "EnvSpec(id='" + spec.id + "', max_episode_steps=" +

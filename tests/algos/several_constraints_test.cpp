@@ -230,6 +230,7 @@ TEST(SeveralConstraintsTraining, ColumnsAndSafetyDuringTrainingAgreeWithTheEpiso
     // episodes' costs: J_C mean x episodes, per epoch, summed.
     double cumulative = 0.0, cumulative_1 = 0.0, cumulative_2 = 0.0;
     long long over_2 = 0;
+    bool second_value_loss_differs = false;  // V_C2's own fit, not V_C1's repeated
     for (std::size_t k = 0; k < columns["epoch"].size(); ++k) {
       const double episodes = columns["episodes"][k];
       ASSERT_EQ(episodes, 3.0);
@@ -244,7 +245,15 @@ TEST(SeveralConstraintsTraining, ColumnsAndSafetyDuringTrainingAgreeWithTheEpiso
       EXPECT_NEAR(columns["constraint_2_cost_rate"][k], cumulative_2 / steps, 1e-12);
       EXPECT_EQ(columns["constraint_2_epochs_over_limit"][k], static_cast<double>(over_2));
       EXPECT_EQ(columns["constraint_1_limit"][k], 20.0);
+      // Constraint 1's V_C is the net cost_value_loss has always described; constraint 2's
+      // loss is a mean of squares.
+      EXPECT_EQ(columns["constraint_1_cost_value_loss"][k], columns["cost_value_loss"][k]);
+      EXPECT_EQ(columns["constraint_1_cost_value_loss_delta"][k], columns["cost_value_loss_delta"][k]);
+      EXPECT_GE(columns["constraint_2_cost_value_loss"][k], 0.0);
+      EXPECT_GE(columns["constraint_2_cost_value_loss"][k] + columns["constraint_2_cost_value_loss_delta"][k], 0.0);
+      second_value_loss_differs |= columns["constraint_2_cost_value_loss"][k] != columns["cost_value_loss"][k];
     }
+    EXPECT_TRUE(second_value_loss_differs);
   }
 }
 

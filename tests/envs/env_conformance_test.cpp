@@ -77,6 +77,23 @@ TEST_P(Conformance, SpecMatchesTheRegistrationTableAndReportTable3) {
   EXPECT_EQ(env->reset(1).size(), static_cast<size_t>(spec.observation_dim));
 }
 
+// The spec names the cost terms before any step; a step reports the same
+// names in the same order (docs/environments.md#tasks lists them per task).
+TEST_P(Conformance, SpecNamesTheCostTermsAStepReports) {
+  const auto env = make(GetParam());
+  const std::map<std::string, std::vector<std::string>> terms_of_task{
+      {"Circle", {"cost_outside_bounds"}},
+      {"Gather", {"cost_gathered_bombs", "cost_out_of_range"}},
+      {"Reach", {"number_collisions", "cost_collisions", "cost_out_of_range"}},
+      {"Run", {"cost_outside_bounds", "cost_velocity_violation"}}};
+  EXPECT_EQ(env->spec().cost_term_names, terms_of_task.at(env->spec().task));
+  env->reset(3);
+  const StepResult result = env->step(std::vector<double>(static_cast<size_t>(env->spec().action_dim), 0.0));
+  std::vector<std::string> stepped;
+  for (const CostTerm& term : result.cost_terms) stepped.emplace_back(term.name);
+  EXPECT_EQ(stepped, env->spec().cost_term_names);
+}
+
 TEST_P(Conformance, RandomEpisodeKeepsInvariantsAndTruncatesAtTheEpisodeLength) {
   const auto env = make(GetParam());
   const EnvSpec& spec = env->spec();

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "../test_support.h"
 #include "common/csv_text.h"
 #include "experiments/table1_render.h"
@@ -90,10 +92,27 @@ TEST(Table1, CsvHasOneLinePerCellWithMissingFieldsEmpty) {
   const Table1 table = build_table1(results(), SelectionScore::mean_return);
   const std::string csv = table1_csv(table);
   EXPECT_TRUE(contains(csv, "env_id,alg,status,config,config_dir,seeds_finished,seeds_expected,mean_return,"));
-  EXPECT_TRUE(contains(csv, "SafetyBallCircle-v0,pdo,infeasible,b,SafetyBallCircle-v0/pdo/b,2,2,250.0,27.0,25.0,1.25,1.08,false,false,PDO\n"));
-  EXPECT_TRUE(contains(csv, "SafetyBallRun-v0,cpo,missing,,,0,0,,,25.0,,,,false,CPO\n"));
+  EXPECT_TRUE(contains(csv, "SafetyBallCircle-v0,pdo,infeasible,b,SafetyBallCircle-v0/pdo/b,2,2,250.0,27.0,0.0,25.0,1.25,1.08,false,false,PDO\n"));
+  EXPECT_TRUE(contains(csv, "SafetyBallRun-v0,cpo,missing,,,0,0,,,,25.0,,,,false,CPO\n"));
   const std::string all = configurations_csv(table);
-  EXPECT_TRUE(contains(all, "SafetyBallCircle-v0,trpo,target_kl=0.001,2,2,100.0,80.0,25.0,false,100.0,false,TRPO\n"));
+  EXPECT_TRUE(contains(all, "SafetyBallCircle-v0,trpo,target_kl=0.001,2,2,100.0,80.0,0.0,25.0,false,100.0,false,TRPO\n"));
+}
+
+TEST(Table1, CsvCarriesTheMeanTrainingCostRateOverSeeds) {
+  SeedResult first{0, 190, 24, {}, 0.01};
+  SeedResult second{1, 194, 24.5, {}, 0.04};
+  const Table1 table = build_table1({config("SafetyBallCircle-v0", Algorithm::trpo, "t", {{0, 200, 80, {}, 0.5}}),
+                                     config("SafetyBallCircle-v0", Algorithm::lag_trpo, "a", {first, second})},
+                                    SelectionScore::mean_return);
+  const std::string csv = table1_csv(table);
+  // (0.01 + 0.04) / 2 = 0.025 beside J = 192 and H = 24.25.
+  EXPECT_TRUE(contains(csv, ",lag-trpo,feasible,a,SafetyBallCircle-v0/lag-trpo/a,2,2,192.0,24.25,0.025,25.0,"));
+  EXPECT_TRUE(contains(csv, "mean_return,mean_cost,mean_cost_rate,cost_limit,"));
+  EXPECT_TRUE(contains(configurations_csv(table), "SafetyBallCircle-v0,trpo,t,1,2,200.0,80.0,0.5,25.0,"));
+  // A run from before the cost rate (NaN) leaves the field empty.
+  const Table1 old = build_table1(
+      {config("SafetyBallCircle-v0", Algorithm::trpo, "t", {{0, 200, 80, {}, std::nan("")}})}, SelectionScore::mean_return);
+  EXPECT_TRUE(contains(table1_csv(old), ",1,2,200.0,80.0,,25.0,"));
 }
 
 TEST(Table1, ConfigurationNamesWithCommasAreQuotedInCsv) {
@@ -103,7 +122,7 @@ TEST(Table1, ConfigurationNamesWithCommasAreQuotedInCsv) {
   const std::string csv = table1_csv(table);
   const std::string line = csv.substr(csv.find('\n') + 1, csv.find('\n', csv.find('\n') + 1) - csv.find('\n') - 1);
   const std::vector<std::string> fields = parse_csv_fields(line);
-  ASSERT_EQ(fields.size(), 15u);
+  ASSERT_EQ(fields.size(), 16u);
   EXPECT_EQ(fields[3], "target_kl=0.001,lam_c=0.5");
   EXPECT_EQ(fields[4], "SafetyBallCircle-v0/trpo/target_kl=0.001,lam_c=0.5");
 }

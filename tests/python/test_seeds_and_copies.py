@@ -122,6 +122,7 @@ def test_specs_pickle():
     assert clone == spec and isinstance(clone, bsg.EnvSpec)
     assert (clone.id, clone.agent, clone.max_episode_steps, clone.cost_limit) == \
         ("SafetyAntGather-v0", "Ant", 1000, 0.2)
+    assert clone.cost_term_names == ["cost_gathered_bombs", "cost_out_of_range"]
 
 
 def test_out_of_range_actions_are_treated_as_the_original_and_warn_once():
