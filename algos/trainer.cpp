@@ -15,6 +15,7 @@
 #include "algos/make_algorithm.h"
 #include "algos/progress_line.h"
 #include "algos/run_environment.h"
+#include "common/atomic_file.h"
 #include "common/run_config_checks.h"
 #include "common/run_config_yaml.h"
 #include "common/seeding.h"
@@ -110,6 +111,13 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
     if (!saved.training_cost.constraint_cumulative_costs.empty()) progress_.training_cost = saved.training_cost;
     checkpoint_epochs_ = saved.epochs_completed;
     if (mpi_.is_root()) {
+      // A write killed half-way (SIGKILL, a lost node) leaves its temporary behind; the target is intact.
+      const std::vector<std::filesystem::path> stale = remove_stale_temporaries(directory_.root);
+      if (!stale.empty() && options_.log != nullptr) {
+        *options_.log << "removed " << stale.size() << " stale temporary file" << (stale.size() == 1 ? "" : "s")
+                      << " left by interrupted writes in " << directory_.root.string() << " (first: "
+                      << stale.front().filename().string() << ")\n";
+      }
       progress_csv_.emplace(ProgressCsv::resume(
           directory_.progress(), ProgressResume{saved.epochs_completed, saved.progress_log, config_.steps_per_epoch,
                                                 options_.log != nullptr ? options_.log : &std::cerr}));

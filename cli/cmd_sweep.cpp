@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "commands.h"
+#include "common/atomic_file.h"
 #include "configs_search.h"
 #include "experiments/child_process.h"
 #include "experiments/local_launcher.h"
@@ -57,6 +58,12 @@ RunLock lock_sweep_directory(const std::filesystem::path& out_dir) {
                              "); wait for it to end or choose another --out");
   }
   lock->record_holder(::getpid());
+  // A sweep killed during a write of its files leaves the write's temporary behind.
+  const std::vector<std::filesystem::path> stale = remove_stale_temporaries(out_dir);
+  if (!stale.empty()) {
+    std::cerr << "bsg sweep: removed " << stale.size() << " stale temporary file" << (stale.size() == 1 ? "" : "s")
+              << " left by interrupted writes in " << out_dir.string() << "\n";
+  }
   return std::move(*lock);
 }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -71,6 +72,30 @@ TEST(TrainIntegrity, ATornProgressRowIsRestoredAndTheRunEqualsAnUninterruptedOne
   for (const std::size_t count : counts) EXPECT_EQ(count, counts.front());
   EXPECT_EQ(bsg::testing::progress_without_timings(run / "progress.csv"),
             bsg::testing::progress_without_timings(oracle / "progress.csv"));
+}
+
+// A checkpoint write killed half-way leaves <file>.tmp.<pid>.<6 characters>;
+// the resume removes it (its writer is gone) and says so, and keeps a fresh
+// one, which a write on another host could still be using.
+TEST(TrainIntegrity, AResumeRemovesTheTemporariesOfKilledWritesAndSaysSo) {
+  TemporaryDirectory dir;
+  const std::string file = run_file(dir, "run.yaml", kBallTrpoL);
+  const fs::path run = dir.path() / "run";
+  ASSERT_EQ(train_and_stop(file, run, 2), 0);
+  // pid 2^22 + 1 is above Linux's largest pid (pid_max <= 2^22): no process has it.
+  const fs::path stale = run / "checkpoint.bin.tmp.4194305.AbCdEf";
+  const fs::path fresh = run / "config.yaml.tmp.4194305.GhIjKl";
+  write_text_file(stale, "half a checkpoint");
+  write_text_file(fresh, "half a config");
+  fs::last_write_time(stale, fs::file_time_type::clock::now() - std::chrono::minutes(5));
+  const auto resumed = run_bsg("train --resume " + run.string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("removed 1 stale temporary file left by interrupted writes in " + run.string() +
+                                " (first: checkpoint.bin.tmp.4194305.AbCdEf)"),
+            std::string::npos)
+      << resumed.output;
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_TRUE(fs::exists(fresh));
 }
 
 // Issue 25, reproduction 1: a CarRun/cpo run directory holding a BallCircle

@@ -171,8 +171,8 @@ TEST(Table1, PidMultiplierConfigurationsFormColumnsOfTheirOwn) {
   EXPECT_TRUE(contains(markdown, "| BallCircle | 1.00 (3.20) | 0.75 (0.96) | **0.85 (1.00)** | 0.50 (1.60)\u2020 |"))
       << markdown;
   EXPECT_TRUE(contains(table1_csv(table), "SafetyBallCircle-v0,lag-trpo,feasible,pid,SafetyBallCircle-v0/lag-trpo/pid,"
-                                          "1,1,170.0,25.0,25.0,0.85,1.0,true,true,TRPO-PID\n"));
-  EXPECT_TRUE(contains(configurations_csv(table), "SafetyBallCircle-v0,lag-trpo,sgd,1,1,150.0,24.0,25.0,true,150.0,true,TRPO-L\n"));
+                                          "1,1,170.0,25.0,0.0,25.0,0.85,1.0,true,true,TRPO-PID\n"));
+  EXPECT_TRUE(contains(configurations_csv(table), "SafetyBallCircle-v0,lag-trpo,sgd,1,1,150.0,24.0,0.0,25.0,true,150.0,true,TRPO-L\n"));
 }
 
 }  // namespace
