@@ -156,5 +156,37 @@ TEST(Table1, PidMultiplierConfigurationsFormColumnsOfTheirOwn) {
   EXPECT_TRUE(contains(configurations_csv(table), "SafetyBallCircle-v0,lag-trpo,sgd,1,1,150.0,24.0,25.0,true,150.0,true,TRPO-L\n"));
 }
 
+TEST(Table1, CorrectedLearnerConfigurationsFormColumnsAfterTheFaithfulOnes) {
+  // A faithful and a corrected sweep of TRPO and TRPO-L on one environment:
+  // each corrected column holds its own selection, after every faithful
+  // column, and its J is normalised by the corrected TRPO's.
+  const std::string run = "SafetyBallRun-v0";
+  std::vector<ConfigurationResults> all = {
+      config(run, Algorithm::trpo, "default", {{0, 400, 230, {}}}, 1),
+      config(run, Algorithm::lag_trpo, "a", {{0, 100, 60, {}}}, 1),
+      config(run, Algorithm::trpo, "default", {{0, 2000, 230, {}}}, 1),
+      config(run, Algorithm::lag_trpo, "a", {{0, 500, 20, {}}}, 1),
+  };
+  all[2].corrected_learner = true;
+  all[3].corrected_learner = true;
+  const Table1 table = build_table1(all, SelectionScore::mean_return);
+  EXPECT_EQ(table.columns, (std::vector<Table1Column>{{Algorithm::trpo, false, false},
+                                                      {Algorithm::lag_trpo, false, false},
+                                                      {Algorithm::trpo, false, true},
+                                                      {Algorithm::lag_trpo, false, true}}));
+  const Table1Row& row = table.rows.at(0);
+  EXPECT_EQ(row.trpo_return(), 400.0);
+  EXPECT_EQ(row.trpo_return(true), 2000.0);
+  EXPECT_TRUE(row.cells[3].best_constrained);  // within the limit, against 60 / 25
+  EXPECT_EQ(table1_column_label(Table1Column{Algorithm::lag_trpo, false, true}), "TRPO-L corrected");
+  const std::string markdown = table1_markdown(table);
+  // 100 / 400 = 0.25 with 60 / 25 = 2.40; 500 / 2000 = 0.25 with 20 / 25 = 0.80.
+  EXPECT_TRUE(contains(markdown, "| Env | TRPO | TRPO-L | TRPO corrected | TRPO-L corrected |\n")) << markdown;
+  EXPECT_TRUE(contains(markdown, "| BallRun | 1.00 (9.20) | 0.25 (2.40)\u2020 | 1.00 (9.20) | **0.25 (0.80)** |"))
+      << markdown;
+  EXPECT_TRUE(contains(configurations_csv(table), "SafetyBallRun-v0,lag-trpo,a,1,1,500.0,20.0,25.0,true,500.0,true,"
+                                                  "TRPO-L corrected\n"));
+}
+
 }  // namespace
 }  // namespace bsg
