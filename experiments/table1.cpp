@@ -34,9 +34,12 @@ bool better_constrained(const Table1Cell& a, const Table1Cell& b) {
 }  // namespace
 
 std::optional<double> Table1Row::trpo_return(bool corrected_learner) const {
-  for (const Table1Cell& cell : cells) {
-    if (cell.alg == Algorithm::trpo && cell.corrected_learner == corrected_learner && cell.selected) {
-      return cell.score.mean_return;
+  for (const bool corrected : {false, true}) {
+    if (corrected && !corrected_learner) break;
+    for (const Table1Cell& cell : cells) {
+      if (cell.alg == Algorithm::trpo && cell.corrected_learner == corrected && cell.selected) {
+        return cell.score.mean_return;
+      }
     }
   }
   return std::nullopt;

@@ -49,8 +49,9 @@ struct Table1Row {
   std::string env_id;
   double cost_limit = 0.0;  // d; NaN if no run of the row has a configuration
   std::vector<Table1Cell> cells;  // one per Table1::columns entry
-  // J_TRPO, the mean return of TRPO's selected configuration, if it has one:
-  // the corrected learner's TRPO for a corrected column, the faithful one else.
+  // J_TRPO, the mean return of the faithful TRPO's selected configuration, if
+  // it has one; for a corrected column (`corrected_learner`) without it, the
+  // corrected TRPO's. One reference makes the two learners' columns comparable.
   std::optional<double> trpo_return(bool corrected_learner = false) const;
 };
 

@@ -228,7 +228,7 @@ TEST(Table, SeveralSweepsMakeOneTableWrittenToOutput) {
 // Table 1 both ways: a faithful sweep and the same grid with `learner: corrected`
 // (configs/grids/report_corrected.yaml's shape). The corrected runs form
 // columns of their own, read from their config.yaml (or, before any has
-// started, from the grid copy), with J over the corrected TRPO's.
+// started, from the grid copy), with J over the faithful TRPO's.
 TEST(Table, CorrectedLearnerSweepsGiveColumnsBesideTheFaithfulOnes) {
   const TemporaryDirectory root;
   const fs::path faithful = root.path() / "faithful";
@@ -252,7 +252,7 @@ TEST(Table, CorrectedLearnerSweepsGiveColumnsBesideTheFaithfulOnes) {
   // TRPO-L corrected has not started: its column comes from the grid copy.
   EXPECT_NE(result.output.find("| Env | TRPO | TRPO-L | TRPO corrected | TRPO-L corrected |\n"), std::string::npos)
       << result.output;
-  EXPECT_NE(result.output.find("| BallRun | 1.00 (9.20) | **0.25 (2.40)\u2020** | 1.00 (9.20) | missing |"),
+  EXPECT_NE(result.output.find("| BallRun | 1.00 (9.20) | **0.25 (2.40)\u2020** | 5.00 (9.20) | missing |"),
             std::string::npos)
       << result.output;
   EXPECT_NE(read_text_file(out / "table1.csv").find(",TRPO corrected\n"), std::string::npos);
