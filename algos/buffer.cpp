@@ -162,8 +162,10 @@ void Buffer::finish_path(double last_value, const Eigen::Ref<const Eigen::Vector
         cost_advantages_.col(i).segment(start, length) + cost_values_.col(i).segment(start, length);  // R^Ci_t
   }
 
-  // G_t = sum_l gamma^l r_t+l over raw rewards followed by v_last (Q5).
+  // G_t = sum_l gamma^l r_t+l over raw rewards followed by v_last (Q5), or by
+  // v_last in raw units: V learns scaled values, V = G / (s_ret + 1e-5).
   double running_return = last_value;
+  if (options_.consistent_return_statistic && reward_scale_std) running_return *= *reward_scale_std + kStdEpsilon;
   for (Eigen::Index t = start + length - 1; t >= start; --t) {
     running_return = rewards_[t] + gamma * running_return;
     discounted_returns_[t] = running_return;

@@ -11,6 +11,8 @@
 //   gamma             0.99, discount for rewards AND costs
 //   lam               0.95, GAE lambda for rewards
 //   lam_c             0.95, GAE lambda for costs
+//   consistent_return_statistic  false (Q5 kept): G_t ends in V's scaled bootstrap
+//                     value; true: in V (s_ret + 1e-5), the raw units of the rewards
 //   constraint_count  m, the number of constraints (docs/algorithms.md#several-constraints):
 //                     each has its own cost column c_i,t, cost values, GAE
 //                     advantages and targets; m = 1 (the default) is the
@@ -28,6 +30,7 @@ struct BufferOptions {
   double lam = 0.95;
   double lam_c = 0.95;
   int constraint_count = 1;
+  bool consistent_return_statistic = false;  // Q5
 };
 
 // One completed episode, raw (unscaled, undiscounted) sums.
@@ -65,7 +68,8 @@ class Buffer {
   // Closes the current path with bootstrap values (v_last, c_last) (0, 0 on a
   // true terminal). If `reward_scale_std` is set, rewards are scaled as
   // clip(r / (s_ret + 1e-5), -10, 10) for GAE and the value targets (docs/algorithms.md#reward-scaling);
-  // G_t always uses raw rewards with v_last appended (Q5). Records the episode
+  // G_t always uses raw rewards, with v_last appended (Q5) or, with
+  // consistent_return_statistic and reward scaling, v_last (s_ret + 1e-5). Records the episode
   // if `end` is episode_end.
   void finish_path(double last_value, double last_cost_value, std::optional<double> reward_scale_std,
                    PathEnd end);

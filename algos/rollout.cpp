@@ -78,9 +78,11 @@ void RolloutCollector::collect(envs::Env& env, std::uint64_t epoch_env_seed, con
 
     // Bootstrap with (V, V_C)(o_t+1) at a time-out or the epoch cut; a true
     // terminal on the last step is bootstrapped too (Q7: epoch_end wins).
+    // Without timeout_bootstrap a time-out ends the return, on the last step too.
     double last_value = 0.0;
     last_cost_values_.setZero();
-    if (timeout || epoch_end) {
+    const bool bootstrap = timeout ? options_.timeout_bootstrap : epoch_end;
+    if (bootstrap) {
       actor_critic.normalize_observation(raw_observation_, normalized_observation_);
       last_value = predict_values(actor_critic, last_cost_values_);
     }

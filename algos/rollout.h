@@ -17,6 +17,8 @@
 //   local_steps        N = B / R
 //   max_ep_len         time limit in steps (an env truncation counts too)
 //   use_reward_scaling divide rewards by the return normaliser's std for GAE
+//   timeout_bootstrap  true (original): a time-out is bootstrapped with (V, V_C)(o_T);
+//                      false: it ends the path like a terminal (bootstrap 0)
 #pragma once
 
 #include <Eigen/Core>
@@ -35,6 +37,7 @@ struct RolloutOptions {
   int local_steps = 0;
   int max_ep_len = 0;
   bool use_reward_scaling = true;
+  bool timeout_bootstrap = true;
 };
 
 class RolloutCollector {

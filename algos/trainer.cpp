@@ -50,7 +50,8 @@ std::unique_ptr<ActorCritic> make_actor_critic(const RunConfig& config, const en
 }
 
 BufferOptions buffer_options(const RunConfig& config) {
-  return BufferOptions{config.gamma, config.lam, config.lam_c, constraint_count(config)};
+  return BufferOptions{config.gamma, config.lam, config.lam_c, constraint_count(config),
+                       config.consistent_return_statistic};
 }
 
 // The constraints' step costs, bound to the environment's cost terms when
@@ -92,7 +93,8 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
       buffer_(local_steps(config, mpi), env_->spec().observation_dim, env_->spec().action_dim,
               buffer_options(config)),
       collector_(env_->spec().observation_dim, env_->spec().action_dim,
-                 RolloutOptions{local_steps(config, mpi), config.max_ep_len, config.use_reward_scaling},
+                 RolloutOptions{local_steps(config, mpi), config.max_ep_len, config.use_reward_scaling,
+                                config.timeout_bootstrap},
                  bound_cost_selector(config, *env_)),
       normalized_observations_(local_steps(config, mpi), env_->spec().observation_dim),
       returns_column_(local_steps(config, mpi), 1) {
@@ -258,9 +260,15 @@ void OnPolicyTrainer::run_epoch(int epoch) {
 
   // 5. Normalisers last (docs/algorithms.md#each-epoch, step 5).
   if (ac.standardize_observations) ac.observation_normalizer.update(buffer_.observations(), mpi_);
-  if (config_.use_reward_scaling) {
+  if (config_.use_reward_scaling &&
+      (config_.reward_scale_warmup_epochs == 0 || epoch < config_.reward_scale_warmup_epochs)) {
+    const double old_scale = ac.return_normalizer.std()[0] + Buffer::kStdEpsilon;
     returns_column_.col(0) = buffer_.discounted_returns();
     ac.return_normalizer.update(returns_column_, mpi_);
+    // Q19: V learns G / (s_ret + 1e-5); keep its raw-unit predictions across the change of s_ret.
+    if (config_.rescale_value_output) {
+      ac.value.scale_output(old_scale / (ac.return_normalizer.std()[0] + Buffer::kStdEpsilon));
+    }
   }
   check_parameters_finite(epoch);
   if (epoch % config_.check_freq == 0) check_ranks_agree(epoch);

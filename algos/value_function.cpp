@@ -1,6 +1,7 @@
 #include "algos/value_function.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,18 @@ std::vector<int> value_layer_sizes(int observation_size, const std::vector<int>&
 ValueFunction::ValueFunction(int observation_size, const std::vector<int>& hidden_sizes, Rng& rng,
                              MlpOptions init, AdamOptions adam)
     : net_(value_layer_sizes(observation_size, hidden_sizes), rng, init), optimizer_(net_.num_parameters(), adam) {}
+
+void ValueFunction::scale_output(double factor) {
+  if (!std::isfinite(factor) || factor <= 0.0) {
+    throw std::invalid_argument("ValueFunction::scale_output: factor must be finite and positive, got " +
+                                std::to_string(factor));
+  }
+  const int last = net_.num_layers() - 1;
+  const Eigen::Index weights = net_.weights(last).size();
+  Eigen::Map<Eigen::VectorXd> parameters = net_.mutable_parameters();
+  parameters.segment(net_.weight_offset(last), weights) *= factor;
+  parameters.segment(net_.bias_offset(last), net_.output_size()) *= factor;
+}
 
 double ValueFunction::predict(const Eigen::Ref<const Eigen::VectorXd>& observation,
                               MlpSampleWorkspace& workspace) const {

@@ -60,6 +60,13 @@ class ValueFunction {
   double loss_and_gradient(const Eigen::Ref<const Eigen::MatrixXd>& observations,
                            const Eigen::Ref<const Eigen::VectorXd>& targets, Eigen::Ref<Eigen::VectorXd> gradient);
 
+  // Multiplies the output layer's weights and bias by `factor`, so that every
+  // prediction V(s) becomes factor * V(s) (the output layer is linear). With
+  // factor = s_old / s_new this is PopArt's preserving step (van Hasselt et
+  // al. 2016, eq. 6 without a mean): V keeps its predictions in raw units when
+  // the return statistic changes (Q19). The Adam moments are left as they are.
+  void scale_output(double factor);
+
   // The docs/algorithms.md#value-fits schedule. Collective (one gradient allreduce per minibatch); `rng`
   // is the rank's RNG (shuffles).
   ValueFitStats fit(const Eigen::Ref<const Eigen::MatrixXd>& observations,

@@ -47,6 +47,13 @@ inline constexpr std::array<std::string_view, 2> kPcpoProjectionNames = {"kl", "
 enum class Physics { faithful, lean };
 inline constexpr std::array<std::string_view, 2> kPhysicsNames = {"faithful", "lean"};
 
+// Which learner a run uses (docs/algorithms.md#quirk-switches): the original's
+// (every quirk switch as set by the layers) or the corrected one, which turns
+// on every "corrected" switch (Q1, Q4, Q5, Q10, Q19) unless the run file or
+// --set names that switch itself.
+enum class Learner { faithful, corrected };
+inline constexpr std::array<std::string_view, 2> kLearnerNames = {"faithful", "corrected"};
+
 // Hidden-layer activation of the MLPs (docs/algorithms.md#networks: tanh is the only one used).
 enum class Activation { tanh };
 inline constexpr std::array<std::string_view, 1> kActivationNames = {"tanh"};
@@ -57,6 +64,7 @@ std::string_view to_string(CpoRSign sign);
 std::string_view to_string(PcpoProjection projection);
 std::string_view to_string(Activation activation);
 std::string_view to_string(Physics physics);
+std::string_view to_string(Learner learner);
 
 struct RunConfig {
   // --- run (the run file or --set) ---
@@ -74,6 +82,7 @@ struct RunConfig {
   int steps_per_epoch = 32000;     // B: env steps per epoch summed over ranks
   int max_ep_len = 250;            // episode time limit in steps
   Physics physics = Physics::faithful;
+  Learner learner = Learner::faithful;  // the `learner:` preset (run file, --set, grid)
   // The `env:` block: parameters of the environment's description as
   // (key, value text), applied to env_id's description in this order
   // (envs/env_parameters.h). A run directory's config.yaml holds the whole
@@ -96,6 +105,10 @@ struct RunConfig {
   bool use_standardized_advantages = false;  // Q6
   double obs_clip = 0.0;                     // Q3: 0 = no clipping
   bool exact_parallel_variance = false;      // Q4
+  bool consistent_return_statistic = false;  // Q5: the statistic's bootstrap value in raw units
+  bool rescale_value_output = false;         // Q19: V's output layer follows the statistic (PopArt)
+  int reward_scale_warmup_epochs = 0;        // > 0: the statistic is frozen after this many epochs
+  bool timeout_bootstrap = true;             // bootstrap V at time-outs (false: a time-out ends the return)
 
   // --- trust region (docs/algorithms.md#trust-region-tools) ---
   double target_kl = 0.01;         // delta

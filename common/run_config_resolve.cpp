@@ -5,6 +5,7 @@
 
 #include "common/config_entries.h"
 #include "common/config_error.h"
+#include "common/learner_preset.h"
 #include "common/run_config_schema.h"
 
 namespace bsg {
@@ -81,6 +82,24 @@ std::vector<ConfigEntry> implied_env_id(const std::vector<ConfigEntry>& run_entr
   if (agent.empty() || task.empty()) return {};
   return {ConfigEntry{"env_id", YAML::Node("Safety" + agent + task + "-v0"),
                       origin + " (env_id from env: agent and task)"}};
+}
+
+// `learner: corrected` (common/learner_preset.h): every corrected switch that
+// applies to the algorithm, unless the run file or --set names it.
+void apply_learner_preset(RunConfig& config, const std::vector<ConfigEntry>& run_entries,
+                          const std::vector<ConfigEntry>& set_entries, ConfigOrigins& origins) {
+  if (config.learner != Learner::corrected) return;
+  const std::string preset_origin = "learner: corrected (" + origins["learner"] + ")";
+  for (const auto& [name, value] : corrected_learner_settings()) {
+    const ConfigKey& key = *find_config_key(name);
+    const std::string key_name(name);
+    if (!key.applies_to(config.alg) || find_last_entry(run_entries, key_name) != nullptr ||
+        find_last_entry(set_entries, key_name) != nullptr) {
+      continue;
+    }
+    set_config_value(config, key, YAML::Node(std::string(value)), preset_origin);
+    origins[key_name] = preset_origin;
+  }
 }
 
 std::string join(const std::vector<std::string>& items) {
@@ -160,6 +179,8 @@ ResolvedRunConfig resolve_run_config(const RunConfigRequest& request) {
   for (const auto* layer : {&env_entries, &run_entries, &set_entries}) {
     apply_config_entries(config, *layer, resolved.origins);
   }
+
+  apply_learner_preset(config, run_entries, set_entries, resolved.origins);
 
   // 3. Every key of the algorithm has a value from some layer.
   for (const ConfigKey& key : run_config_schema()) {

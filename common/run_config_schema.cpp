@@ -110,6 +110,9 @@ const std::vector<SchemaRow>& schema_rows() {
          "directory under which the run directory is created"),
     choice("physics", enum_access<&R::physics>(), kPhysicsNames, L::run, all,
            "faithful (the original's model) or lean (equivalent, faster; the Ant and the Car)"),
+    choice("learner", enum_access<&R::learner>(), kLearnerNames, L::run, all,
+           "preset: faithful (the original's learner) or corrected (every corrected switch on: Q1, Q4, Q5, "
+           "Q10, Q19; a switch the run file or --set names itself keeps that value)"),
     {{"env", ConfigValueType::mapping, L::run, {}, {}, all,
       "environment parameters, e.g. {bombs: 12} (`bsg envs --describe ID` lists them)"}, &R::env},
     constraint_list("constraints", &R::constraints, all,
@@ -154,6 +157,16 @@ const std::vector<SchemaRow>& schema_rows() {
          "Q3: clip normalised observations to +-obs_clip; 0 = no clipping (original)"),
     boolean("exact_parallel_variance", &R::exact_parallel_variance, L::algorithm, all,
             "Q4: Chan's exact parallel variance instead of the original's update"),
+    boolean("consistent_return_statistic", &R::consistent_return_statistic, L::algorithm, all,
+            "Q5: the return statistic's bootstrap value in raw units, V (s_ret + 1e-5), as the rewards "
+            "(original: V's scaled value)"),
+    boolean("rescale_value_output", &R::rescale_value_output, L::algorithm, all,
+            "Q19: when the return statistic changes, scale V's output layer by old/new std so that "
+            "V's predictions in raw units are kept (PopArt)"),
+    integer("reward_scale_warmup_epochs", &R::reward_scale_warmup_epochs, L::algorithm, closed(0, kIntMax), all,
+            "update the return statistic only in the first n epochs, then keep it; 0 = every epoch (original)"),
+    boolean("timeout_bootstrap", &R::timeout_bootstrap, L::algorithm, all,
+            "bootstrap with V (V_C) of the next observation at a time-out (original); false: as a terminal"),
     // --- trust region (docs/algorithms.md#trust-region-tools) ---
     real("target_kl", &R::target_kl, L::algorithm, above(0), all,
          "delta: trust-region size (mean KL per action dimension, Q8)"),

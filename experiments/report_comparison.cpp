@@ -33,7 +33,7 @@ struct OurCell {
 OurCell our_cell(const Table1Row& row, const Table1Cell& cell) {
   OurCell ours;
   if (!cell.selected) return ours;
-  const std::optional<double> trpo = row.trpo_return();
+  const std::optional<double> trpo = row.trpo_return(cell.corrected_learner);
   if (trpo && *trpo != 0.0) ours.j_ratio = cell.score.mean_return / *trpo;
   if (std::isfinite(row.cost_limit) && row.cost_limit > 0.0) ours.h_ratio = cell.score.mean_cost / row.cost_limit;
   return ours;
@@ -61,11 +61,12 @@ std::string signed_number(double value) {
 // The CSV's alg field: the config spelling, or the column label for a PID
 // column (which the report does not have).
 std::string comparison_alg_name(const Table1Column& column) {
-  return column.pid_multiplier ? table1_column_label(column) : std::string(to_string(column.alg));
+  return column.pid_multiplier || column.corrected_learner ? table1_column_label(column)
+                                                           : std::string(to_string(column.alg));
 }
 
 const ReportCell* find(const ReportTable1& report, const std::string& env_id, const Table1Column& column) {
-  if (column.pid_multiplier) return nullptr;  // the report has no PID column
+  if (column.pid_multiplier || column.corrected_learner) return nullptr;  // the report has neither column
   const auto found = report.find({env_id, std::string(to_string(column.alg))});
   return found == report.end() ? nullptr : &found->second;
 }

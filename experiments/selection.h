@@ -52,6 +52,9 @@ struct ConfigurationResults {
   // TRPO-L or PDO with lambda_optimizer PID: a Table 1 column of its own
   // ("TRPO-PID", "PDO-PID"), selected apart from the SGD / Adam configurations.
   bool pid_multiplier = false;
+  // Trained with `learner: corrected` (docs/algorithms.md#quirk-switches): a
+  // column of its own ("TRPO corrected", ...), beside the faithful one.
+  bool corrected_learner = false;
   // "<env_id>/<alg>/<config>" relative to the sweep (or, for a table of
   // several sweeps, prefixed with its sweep); empty: built from the fields.
   std::string config_dir;

@@ -42,22 +42,38 @@ bool uses_pid_multiplier(const RunConfig& config) {
          config.lambda_optimizer == LambdaOptimizer::pid;
 }
 
+// The Table 1 column flags of a configuration.
+struct ColumnFlags {
+  bool pid_multiplier = false;
+  bool corrected_learner = false;
+};
+
+ColumnFlags column_flags(const RunConfig& config) {
+  return {uses_pid_multiplier(config), config.learner == Learner::corrected};
+}
+
+void set_column_flags(ConfigurationResults& results, ColumnFlags flags) {
+  results.pid_multiplier = flags.pid_multiplier;
+  results.corrected_learner = flags.corrected_learner;
+}
+
 // For configurations none of whose runs has a configuration file yet (not
-// started): whether the sweep's grid copy sets lambda_optimizer PID for it,
-// by configuration directory. Empty without a grid copy.
-std::map<std::string, bool> pid_configurations_of_grid_copy(const std::filesystem::path& sweep_dir) {
-  std::map<std::string, bool> pid;
+// started): whether the sweep's grid copy sets lambda_optimizer PID and
+// learner corrected for it, by configuration directory. Empty without a grid copy.
+std::map<std::string, ColumnFlags> column_flags_of_grid_copy(const std::filesystem::path& sweep_dir) {
+  std::map<std::string, ColumnFlags> flags;
   std::error_code error;
   const std::filesystem::path grid_copy = sweep_dir / kSweepGridCopyName;
-  if (!std::filesystem::is_regular_file(grid_copy, error)) return pid;
+  if (!std::filesystem::is_regular_file(grid_copy, error)) return flags;
   for (const GridRun& run : expand_grid(load_grid_file(grid_copy))) {
-    bool is_pid = false;  // the last lambda_optimizer setting wins, as with --set
+    ColumnFlags run_flags;  // the last setting wins, as with --set
     for (const std::string& setting : run.set_arguments) {
-      if (setting.starts_with("lambda_optimizer=")) is_pid = setting == "lambda_optimizer=PID";
+      if (setting.starts_with("lambda_optimizer=")) run_flags.pid_multiplier = setting == "lambda_optimizer=PID";
+      if (setting.starts_with("learner=")) run_flags.corrected_learner = setting == "learner=corrected";
     }
-    pid[run.relative_dir().parent_path().generic_string()] = is_pid;
+    flags[run.relative_dir().parent_path().generic_string()] = run_flags;
   }
-  return pid;
+  return flags;
 }
 
 bool is_run_directory(const std::filesystem::path& dir) {
@@ -119,7 +135,7 @@ std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path
     ConfigurationSlots& slots = slots_for(relative.parent_path().generic_string());
     slots.results.env_id = config->env_id;
     slots.results.alg = config->alg;
-    slots.results.pid_multiplier = uses_pid_multiplier(*config);
+    set_column_flags(slots.results, column_flags(*config));
     slots.results.config_name = run_dir.parent_path().filename().string();
     slots.runs.push_back({config->seed, run_dir});
   }
@@ -128,16 +144,16 @@ std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path
                              " and no run directory below it)");
   }
 
-  // 3. The finished runs' evaluations; d and the multiplier rule from the
-  // first run with a configuration file, else (not started) from the grid copy.
-  const std::map<std::string, bool> grid_pid = pid_configurations_of_grid_copy(sweep_dir);
+  // 3. The finished runs' evaluations; d, the multiplier rule and the learner
+  // from the first run with a configuration file, else (not started) from the grid copy.
+  const std::map<std::string, ColumnFlags> grid_flags = column_flags_of_grid_copy(sweep_dir);
   std::vector<ConfigurationResults> results;
   for (const std::string& name : order) {
     ConfigurationSlots& slots = configurations[name];
     ConfigurationResults& config = slots.results;
     config.seeds_expected = slots.runs.size();
     config.config_dir = name;
-    if (const auto found = grid_pid.find(name); found != grid_pid.end()) config.pid_multiplier = found->second;
+    if (const auto found = grid_flags.find(name); found != grid_flags.end()) set_column_flags(config, found->second);
     for (const RunSlot& run : slots.runs) {
       const RunDirectory directory(run.run_dir);
       if (std::isnan(config.cost_limit) && is_run_directory(run.run_dir)) {
@@ -146,7 +162,7 @@ std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path
           for (const ConstraintConfig& constraint : run_config->constraints) {
             config.constraint_limits.push_back(constraint.limit);
           }
-          config.pid_multiplier = uses_pid_multiplier(*run_config);
+          set_column_flags(config, column_flags(*run_config));
         }
       }
       const std::optional<RunEvaluation> evaluation = read_run_evaluation(directory);

@@ -5,8 +5,8 @@
 // the sweep directory but not in the manifest (or when there is none, e.g.
 // hand-made ones) are added; their configuration is read from config.yaml
 // (or run.yaml), and their configuration name is their parent's name.
-// Whether a configuration uses the PID multiplier (its own Table 1 column)
-// comes from its first run's configuration file or, before any has started,
+// Whether a configuration uses the PID multiplier or the corrected learner
+// (Table 1 columns of their own) comes from its first run's configuration file or, before any has started,
 // from the sweep's grid copy (grid.yaml).
 #pragma once
 

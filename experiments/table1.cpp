@@ -33,9 +33,14 @@ bool better_constrained(const Table1Cell& a, const Table1Cell& b) {
 
 }  // namespace
 
-std::optional<double> Table1Row::trpo_return() const {
-  for (const Table1Cell& cell : cells) {
-    if (cell.alg == Algorithm::trpo && cell.selected) return cell.score.mean_return;
+std::optional<double> Table1Row::trpo_return(bool corrected_learner) const {
+  for (const bool corrected : {false, true}) {
+    if (corrected && !corrected_learner) break;
+    for (const Table1Cell& cell : cells) {
+      if (cell.alg == Algorithm::trpo && cell.corrected_learner == corrected && cell.selected) {
+        return cell.score.mean_return;
+      }
+    }
   }
   return std::nullopt;
 }
@@ -49,7 +54,19 @@ std::string table1_row_label(const std::string& env_id) {
   return label;
 }
 
+Table1Column table1_column_of(const Table1Cell& cell) {
+  return Table1Column{cell.alg, cell.pid_multiplier, cell.corrected_learner};
+}
+
+Table1Column table1_column_of(const ConfigurationSummary& config) {
+  return Table1Column{config.alg, config.pid_multiplier, config.corrected_learner};
+}
+
 std::string table1_column_label(Table1Column column) {
+  if (column.corrected_learner) {
+    column.corrected_learner = false;
+    return table1_column_label(column) + " corrected";
+  }
   if (column.pid_multiplier) {
     if (column.alg == Algorithm::lag_trpo) return "TRPO-PID";
     return table1_column_label(column.alg) + "-PID";  // PDO-PID
@@ -74,9 +91,9 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
 
   // Group configurations by environment and column, keeping grid order.
   std::map<std::string, std::map<Table1Column, std::vector<ConfigurationResults>>> groups;
-  std::set<Table1Column> present;  // ordered by algorithm, then SGD/Adam before PID
+  std::set<Table1Column> present;  // faithful first; by algorithm, then SGD/Adam before PID
   for (const ConfigurationResults& config : results) {
-    const Table1Column column{config.alg, config.pid_multiplier};
+    const Table1Column column{config.alg, config.pid_multiplier, config.corrected_learner};
     groups[config.env_id][column].push_back(config);
     present.insert(column);
   }
@@ -97,6 +114,7 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
       Table1Cell cell;
       cell.alg = alg;
       cell.pid_multiplier = column.pid_multiplier;
+      cell.corrected_learner = column.corrected_learner;
       const auto found = groups[env_id].find(column);
       if (found != groups[env_id].end()) {
         const std::vector<ConfigurationResults>& candidates = found->second;
@@ -108,7 +126,8 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
           }
           ConfigurationSummary summary{config.env_id, alg, config.config_name, config.cost_limit,
                                        config.seeds.size(), config.seeds_expected, std::nullopt,
-                                       selection && selection->index == i, column.pid_multiplier};
+                                       selection && selection->index == i, column.pid_multiplier,
+                                       column.corrected_learner};
           if (!config.seeds.empty()) summary.score = score_configuration(config, score);
           table.configurations.push_back(std::move(summary));
         }

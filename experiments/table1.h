@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "common/run_config.h"
@@ -22,12 +23,18 @@ namespace bsg {
 struct Table1Column {
   Algorithm alg = Algorithm::trpo;
   bool pid_multiplier = false;
-  auto operator<=>(const Table1Column&) const = default;
+  bool corrected_learner = false;  // `learner: corrected`: after all the faithful columns
+  bool operator==(const Table1Column&) const = default;
+  auto operator<=>(const Table1Column& other) const {
+    return std::tie(corrected_learner, alg, pid_multiplier) <=>
+           std::tie(other.corrected_learner, other.alg, other.pid_multiplier);
+  }
 };
 
 struct Table1Cell {
   Algorithm alg = Algorithm::trpo;
   bool pid_multiplier = false;  // the PID column of TRPO-L or PDO
+  bool corrected_learner = false;  // a column of runs with `learner: corrected`
   bool selected = false;  // false: no finished run of any configuration (missing)
   std::string config_name;
   std::string config_dir;  // <env_id>/<alg>/<config>, relative to the sweep
@@ -42,8 +49,10 @@ struct Table1Row {
   std::string env_id;
   double cost_limit = 0.0;  // d; NaN if no run of the row has a configuration
   std::vector<Table1Cell> cells;  // one per Table1::columns entry
-  // J_TRPO, the mean return of TRPO's selected configuration, if it has one.
-  std::optional<double> trpo_return() const;
+  // J_TRPO, the mean return of the faithful TRPO's selected configuration, if
+  // it has one; for a corrected column (`corrected_learner`) without it, the
+  // corrected TRPO's. One reference makes the two learners' columns comparable.
+  std::optional<double> trpo_return(bool corrected_learner = false) const;
 };
 
 // One line of configurations.csv: every configuration and its score.
@@ -57,6 +66,7 @@ struct ConfigurationSummary {
   std::optional<ConfigurationScore> score;  // nullopt: no finished run
   bool selected = false;
   bool pid_multiplier = false;
+  bool corrected_learner = false;
 };
 
 struct Table1 {
@@ -72,8 +82,12 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
 
 // "BallCircle" for "SafetyBallCircle-v0" (the report's row labels).
 std::string table1_row_label(const std::string& env_id);
-// "TRPO", "TRPO-L", "CPO", "PDO", "PCPO"; "TRPO-PID", "PDO-PID".
+// "TRPO", "TRPO-L", "CPO", "PDO", "PCPO"; "TRPO-PID", "PDO-PID"; with the
+// corrected learner " corrected" appended ("TRPO-L corrected").
 std::string table1_column_label(Table1Column column);
+// The column a cell or a configuration belongs to.
+Table1Column table1_column_of(const Table1Cell& cell);
+Table1Column table1_column_of(const ConfigurationSummary& config);
 std::string table1_column_label(Algorithm alg);
 
 }  // namespace bsg

@@ -24,7 +24,7 @@ std::string csv_number(std::optional<double> value) {
 }
 
 std::optional<double> normalised_return(const Table1Row& row, const Table1Cell& cell) {
-  const std::optional<double> trpo = row.trpo_return();
+  const std::optional<double> trpo = row.trpo_return(cell.corrected_learner);
   if (!cell.selected || !trpo || *trpo == 0.0) return std::nullopt;
   return cell.score.mean_return / *trpo;  // J / J_TRPO
 }
@@ -128,7 +128,7 @@ std::string table1_csv(const Table1& table) {
               csv_number(normalised_cost(row, cell)) + "," +
               (cell.selected ? (cell.score.feasible ? "true" : "false") : "") + "," +
               (cell.best_constrained ? "true" : "false") + "," +
-              table1_column_label(Table1Column{cell.alg, cell.pid_multiplier}) + "\n";
+              table1_column_label(table1_column_of(cell)) + "\n";
     }
   }
   return text;
@@ -152,7 +152,7 @@ std::string configurations_csv(const Table1& table) {
             (config.score ? (config.score->feasible ? "true" : "false") : "") + "," +
             (config.score ? csv_number(config.score->score) : "") + "," +
             (config.selected ? "true" : "false") + "," +
-            table1_column_label(Table1Column{config.alg, config.pid_multiplier}) + "\n";
+            table1_column_label(table1_column_of(config)) + "\n";
   }
   return text;
 }

@@ -226,6 +226,39 @@ TEST(Table, SeveralSweepsMakeOneTableWrittenToOutput) {
   EXPECT_FALSE(fs::exists(report / "table1.md"));  // neither sweep's own table is overwritten
 }
 
+// Table 1 both ways: a faithful sweep and the same grid with `learner: corrected`
+// (configs/grids/report_corrected.yaml's shape). The corrected runs form
+// columns of their own, read from their config.yaml (or, before any has
+// started, from the grid copy), with J over the faithful TRPO's.
+TEST(Table, CorrectedLearnerSweepsGiveColumnsBesideTheFaithfulOnes) {
+  const TemporaryDirectory root;
+  const fs::path faithful = root.path() / "faithful";
+  const fs::path corrected = root.path() / "corrected";
+  const std::string algorithms = "envs: [SafetyBallRun-v0]\nseeds: [0]\nalgorithms:\n  trpo:\n  lag-trpo:\n";
+  const std::string corrected_grid = algorithms + "fixed: {learner: corrected}\n";
+  const std::vector<bsg::GridRun> faithful_runs = bsg::expand_grid(bsg::parse_grid(algorithms, "faithful grid"));
+  const std::vector<bsg::GridRun> corrected_runs = bsg::expand_grid(bsg::parse_grid(corrected_grid, "corrected grid"));
+  fs::create_directories(faithful);
+  fs::create_directories(corrected);
+  bsg::write_sweep_manifest(faithful, faithful_runs);
+  bsg::write_sweep_manifest(corrected, corrected_runs);
+  bsg::testing::write_text_file(corrected / bsg::kSweepGridCopyName, corrected_grid);
+  finish_run(faithful, faithful_runs, "SafetyBallRun-v0/trpo/default/seed=0", {400}, 230);
+  finish_run(faithful, faithful_runs, "SafetyBallRun-v0/lag-trpo/default/seed=0", {100}, 60);
+  finish_run(corrected, corrected_runs, "SafetyBallRun-v0/trpo/default/seed=0", {2000}, 230);
+
+  const fs::path out = root.path() / "both";
+  const auto result = run_bsg("table " + faithful.string() + " " + corrected.string() + " --output " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  // TRPO-L corrected has not started: its column comes from the grid copy.
+  EXPECT_NE(result.output.find("| Env | TRPO | TRPO-L | TRPO corrected | TRPO-L corrected |\n"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("| BallRun | 1.00 (9.20) | **0.25 (2.40)\u2020** | 5.00 (9.20) | missing |"),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(read_text_file(out / "table1.csv").find(",TRPO corrected\n"), std::string::npos);
+}
+
 TEST(Table, AMissingSweepDirectoryIsNamed) {
   const auto result = run_bsg("table /nonexistent/sweep");
   EXPECT_EQ(result.exit_code, 1);

@@ -175,5 +175,44 @@ TEST(Table1, PidMultiplierConfigurationsFormColumnsOfTheirOwn) {
   EXPECT_TRUE(contains(configurations_csv(table), "SafetyBallCircle-v0,lag-trpo,sgd,1,1,150.0,24.0,0.0,25.0,true,150.0,true,TRPO-L\n"));
 }
 
+TEST(Table1, CorrectedLearnerConfigurationsFormColumnsAfterTheFaithfulOnes) {
+  // A faithful and a corrected sweep of TRPO and TRPO-L on one environment:
+  // each corrected column holds its own selection, after every faithful
+  // column, and its J is normalised by the faithful TRPO's like every other
+  // column's (by the corrected TRPO's only in a table without a faithful one).
+  const std::string run = "SafetyBallRun-v0";
+  std::vector<ConfigurationResults> all = {
+      config(run, Algorithm::trpo, "default", {{0, 400, 230, {}}}, 1),
+      config(run, Algorithm::lag_trpo, "a", {{0, 100, 60, {}}}, 1),
+      config(run, Algorithm::trpo, "default", {{0, 2000, 230, {}}}, 1),
+      config(run, Algorithm::lag_trpo, "a", {{0, 500, 20, {}}}, 1),
+  };
+  all[2].corrected_learner = true;
+  all[3].corrected_learner = true;
+  const Table1 table = build_table1(all, SelectionScore::mean_return);
+  EXPECT_EQ(table.columns, (std::vector<Table1Column>{{Algorithm::trpo, false, false},
+                                                      {Algorithm::lag_trpo, false, false},
+                                                      {Algorithm::trpo, false, true},
+                                                      {Algorithm::lag_trpo, false, true}}));
+  const Table1Row& row = table.rows.at(0);
+  EXPECT_EQ(row.trpo_return(), 400.0);
+  EXPECT_EQ(row.trpo_return(true), 400.0);
+  EXPECT_TRUE(row.cells[3].best_constrained);  // within the limit, against 60 / 25
+  EXPECT_EQ(table1_column_label(Table1Column{Algorithm::lag_trpo, false, true}), "TRPO-L corrected");
+  const std::string markdown = table1_markdown(table);
+  // 100 / 400 = 0.25 with 60 / 25 = 2.40; 2000 / 400 = 5.00; 500 / 400 = 1.25 with 20 / 25 = 0.80.
+  EXPECT_TRUE(contains(markdown, "| Env | TRPO | TRPO-L | TRPO corrected | TRPO-L corrected |\n")) << markdown;
+  EXPECT_TRUE(contains(markdown, "| BallRun | 1.00 (9.20) | 0.25 (2.40)\u2020 | 5.00 (9.20) | **1.25 (0.80)** |"))
+      << markdown;
+  EXPECT_TRUE(contains(configurations_csv(table), "SafetyBallRun-v0,lag-trpo,a,1,1,500.0,20.0,25.0,true,500.0,true,"
+                                                  "TRPO-L corrected\n"));
+
+  // Only the corrected sweep: its own TRPO is the reference.
+  const Table1 corrected_only = build_table1({all[2], all[3]}, SelectionScore::mean_return);
+  EXPECT_EQ(corrected_only.rows.at(0).trpo_return(), std::nullopt);
+  EXPECT_EQ(corrected_only.rows.at(0).trpo_return(true), 2000.0);
+  EXPECT_TRUE(contains(table1_markdown(corrected_only), "| BallRun | 1.00 (9.20) | **0.25 (0.80)** |"));
+}
+
 }  // namespace
 }  // namespace bsg
