@@ -45,6 +45,10 @@ class PolicySurrogate {
 
   Eigen::Index num_samples() const { return observations_.rows(); }
   const Eigen::MatrixXd& observations() const { return observations_; }
+  const Eigen::MatrixXd& actions() const { return actions_; }
+  const Eigen::VectorXd& old_log_probs() const { return old_log_probs_; }
+  const Eigen::VectorXd& advantages() const { return advantages_; }
+  const Eigen::MatrixXd& cost_advantages() const { return cost_advantages_; }  // N x m
 
   // Stores mu_theta(s_i) at the policy's current parameters as mu_old for the KL.
   void set_reference_means(const GaussianPolicy& policy);

@@ -219,7 +219,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
                             cost_advantages_);
   const PolicyUpdateResult update = algorithm_->update(
       PolicyUpdateInputs{ac.policy, surrogate, constraints.front().mean_episode_cost, episodes.episode_length.mean,
-                         mpi_, constraints});
+                         mpi_, constraints, &shuffle_rng_});
   if (const auto loss = find_diagnostic(update, "Loss/Pi")) check_finite(epoch, "policy loss", *loss);
   check_parameters_finite(epoch);
 

@@ -72,7 +72,8 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
 
 // "BallCircle" for "SafetyBallCircle-v0" (the report's row labels).
 std::string table1_row_label(const std::string& env_id);
-// "TRPO", "TRPO-L", "CPO", "PDO", "PCPO"; "TRPO-PID", "PDO-PID".
+// "TRPO", "TRPO-L", "CPO", "PDO", "PCPO", "PPO", "PPO-Lag", "FOCOPS", "CUP";
+// "TRPO-PID", "PDO-PID", "CPPO-PID" (ppo-lag with PID), "FOCOPS-PID", "CUP-PID".
 std::string table1_column_label(Table1Column column);
 std::string table1_column_label(Algorithm alg);
 

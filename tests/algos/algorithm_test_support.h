@@ -136,7 +136,7 @@ inline RunConfig config_for(Algorithm alg) {
   config.alg = alg;
   config.target_kl = 0.01;
   config.cost_limit = 25.0;
-  config.use_cost_value_function = alg != Algorithm::trpo;
+  config.use_cost_value_function = !ignores_cost(alg);
   switch (alg) {
     case Algorithm::trpo: break;
     case Algorithm::lag_trpo:
@@ -149,6 +149,14 @@ inline RunConfig config_for(Algorithm alg) {
       config.lambda_lr = 0.001;
       break;
     case Algorithm::pcpo: config.backtrack_budget = 25; break;
+    case Algorithm::ppo:
+    case Algorithm::ppo_lag:
+    case Algorithm::focops:
+    case Algorithm::cup:  // the first-order defaults of configs/algorithms (OmniSafe's)
+      config.target_kl = 0.02;
+      config.lambda_optimizer = LambdaOptimizer::adam;
+      config.lambda_lr = 0.035;
+      break;
   }
   return config;
 }

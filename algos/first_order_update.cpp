@@ -1,0 +1,243 @@
+#include "algos/first_order_update.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "algos/shuffle.h"
+
+namespace bsg {
+namespace {
+
+constexpr const char* kAdamStep = "policy_adam/t";
+constexpr const char* kAdamFirstMoment = "policy_adam/m/";
+constexpr const char* kAdamSecondMoment = "policy_adam/v/";
+
+}  // namespace
+
+FirstOrderOptions first_order_options(const RunConfig& config) {
+  FirstOrderOptions options;
+  options.learning_rate = config.actor_lr;
+  options.passes = config.update_iters;
+  options.minibatch_size = config.policy_minibatch_size;
+  options.kl_early_stop = config.kl_early_stop;
+  options.target_kl = config.target_kl;
+  options.max_grad_norm = config.max_grad_norm;
+  return options;
+}
+
+Eigen::MatrixXd policy_means(const GaussianPolicy& policy, const Eigen::MatrixXd& observations) {
+  Eigen::MatrixXd means(observations.rows(), policy.action_size());
+  MlpBatchWorkspace workspace;
+  policy.mean_net().evaluate_batch(observations, means, workspace);
+  return means;
+}
+
+SampleLossBatch::SampleLossBatch(const PolicySurrogate& surrogate, const Eigen::MatrixXd& anchor_means)
+    : surrogate_(surrogate), anchor_means_(anchor_means) {
+  if (anchor_means.rows() != surrogate.num_samples() || anchor_means.cols() != surrogate.actions().cols()) {
+    throw std::invalid_argument("SampleLossBatch: anchor means are " + std::to_string(anchor_means.rows()) + " x " +
+                                std::to_string(anchor_means.cols()) + ", the batch has " +
+                                std::to_string(surrogate.num_samples()) + " samples of " +
+                                std::to_string(surrogate.actions().cols()) + "-d actions");
+  }
+}
+
+void SampleLossBatch::gather(std::span<const Eigen::Index> rows) {
+  const auto n = static_cast<Eigen::Index>(rows.size());
+  observations_.resize(n, surrogate_.observations().cols());
+  actions_.resize(n, surrogate_.actions().cols());
+  anchors_.resize(n, anchor_means_.cols());
+  means_.resize(n, anchor_means_.cols());
+  for (Eigen::Index r = 0; r < n; ++r) {
+    const Eigen::Index i = rows[static_cast<std::size_t>(r)];
+    if (i < 0 || i >= num_samples()) {
+      throw std::out_of_range("SampleLossBatch: row " + std::to_string(i) + " outside the batch of " +
+                              std::to_string(num_samples()));
+    }
+    observations_.row(r) = surrogate_.observations().row(i);
+    actions_.row(r) = surrogate_.actions().row(i);
+    anchors_.row(r) = anchor_means_.row(i);
+  }
+}
+
+double SampleLossBatch::loss(const GaussianPolicy& policy, std::span<const Eigen::Index> rows,
+                             const SampleLossFunction& sample_loss, Eigen::VectorXd* gradient) {
+  if (rows.empty()) throw std::invalid_argument("SampleLossBatch::loss: no rows");
+  gather(rows);
+  const double n = static_cast<double>(rows.size());
+  const double sigma_squared = policy.std() * policy.std();
+  const int action_size = policy.action_size();
+  Eigen::VectorXd log_probs;
+  double loss_sum = 0.0;
+  // Per gathered row r of a chunk: rho_r, KL_r, l_r, and (dl/dmu_r) / n.
+  const auto chunk = [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& means,
+                         Eigen::MatrixXd* output_gradients) {
+    const Eigen::Index count = means.rows();
+    log_probs.resize(count);
+    policy.log_prob_batch(means, actions_.middleRows(first, count), log_probs);
+    for (Eigen::Index r = 0; r < count; ++r) {
+      const Eigen::Index sample = rows[static_cast<std::size_t>(first + r)];
+      const double ratio = std::exp(log_probs[r] - surrogate_.old_log_probs()[sample]);
+      const auto difference = means.row(r) - anchors_.row(first + r);
+      const double kl = difference.squaredNorm() / (2.0 * sigma_squared);
+      const SampleLoss l = sample_loss(sample, ratio, kl);
+      loss_sum += l.value;
+      if (output_gradients != nullptr) {
+        // dl/dmu = dl/drho rho (a - mu) / sigma^2 + dl/dKL (mu - mu_anchor) / sigma^2, over n for the mean
+        output_gradients->row(r) =
+            (l.d_ratio * ratio * (actions_.row(first + r) - means.row(r)) + l.d_kl * difference) /
+            (sigma_squared * n);
+      }
+    }
+  };
+  if (gradient == nullptr) {
+    policy.mean_net().evaluate_batch(observations_, means_, workspace_);
+    chunk(0, means_, nullptr);
+  } else {
+    gradient->resize(policy.mean_net().num_parameters());
+    Eigen::MatrixXd chunk_gradients;
+    policy.mean_net().gradient_batch(
+        observations_,
+        [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& means,
+            Eigen::Ref<Eigen::MatrixXd> output_gradients) {
+          chunk_gradients.resize(means.rows(), action_size);
+          chunk(first, means, &chunk_gradients);
+          output_gradients = chunk_gradients;
+        },
+        workspace_, *gradient);
+  }
+  return loss_sum / n;
+}
+
+double SampleLossBatch::mean_kl(const GaussianPolicy& policy) {
+  means_.resize(num_samples(), anchor_means_.cols());
+  policy.mean_net().evaluate_batch(surrogate_.observations(), means_, workspace_);
+  // sum_i sum_j (mu_ij - mu_anchor,ij)^2 / (2 sigma^2) / N
+  return (means_ - anchor_means_).squaredNorm() / (2.0 * policy.std() * policy.std() * static_cast<double>(num_samples()));
+}
+
+PolicyAdam::PolicyAdam(double learning_rate) { options_.learning_rate = learning_rate; }
+
+void PolicyAdam::step(Mlp& net, const Eigen::VectorXd& gradient) {
+  if (!adam_) adam_.emplace(net.num_parameters(), options_);
+  if (adam_->num_parameters() != net.num_parameters()) {
+    throw std::invalid_argument("PolicyAdam: its state holds " + std::to_string(adam_->num_parameters()) +
+                                " parameters, the policy has " + std::to_string(net.num_parameters()));
+  }
+  adam_->step(net.mutable_parameters(), gradient);
+}
+
+std::vector<NamedScalar> PolicyAdam::state() const {
+  std::vector<NamedScalar> entries;
+  entries.push_back({kAdamStep, adam_ ? static_cast<double>(adam_->step_count()) : 0.0});
+  if (!adam_ || adam_->step_count() == 0) return entries;
+  const Eigen::Index p = adam_->num_parameters();
+  entries.reserve(static_cast<std::size_t>(1 + 2 * p));
+  for (Eigen::Index i = 0; i < p; ++i) entries.push_back({kAdamFirstMoment + std::to_string(i), adam_->first_moment()[i]});
+  for (Eigen::Index i = 0; i < p; ++i) entries.push_back({kAdamSecondMoment + std::to_string(i), adam_->second_moment()[i]});
+  return entries;
+}
+
+std::size_t PolicyAdam::saved_size(std::span<const NamedScalar> saved) {
+  for (std::size_t k = 0; k < saved.size(); ++k) {
+    if (saved[k].name == kAdamStep) return saved.size() - k;
+  }
+  return 0;
+}
+
+void PolicyAdam::restore_state(std::span<const NamedScalar> saved) {
+  if (saved.empty() || saved.front().name != kAdamStep) {
+    throw std::invalid_argument(std::string("policy Adam state: expected '") + kAdamStep + "' first, got " +
+                                (saved.empty() ? std::string("nothing") : "'" + saved.front().name + "'"));
+  }
+  const double t = saved.front().value;
+  if (!(t >= 0.0) || t != std::floor(t) || t > 9e15) {
+    throw std::invalid_argument("policy Adam state: step count " + std::to_string(t) + " is not a count");
+  }
+  if (t == 0.0) {
+    if (saved.size() != 1) throw std::invalid_argument("policy Adam state: moments saved before any step");
+    adam_.reset();
+    return;
+  }
+  if (saved.size() < 3 || (saved.size() - 1) % 2 != 0) {
+    throw std::invalid_argument("policy Adam state: " + std::to_string(saved.size() - 1) +
+                                " moment entries, expected two per parameter");
+  }
+  const auto p = static_cast<Eigen::Index>((saved.size() - 1) / 2);
+  Eigen::VectorXd first(p);
+  Eigen::VectorXd second(p);
+  for (Eigen::Index i = 0; i < p; ++i) {
+    const NamedScalar& m = saved[static_cast<std::size_t>(1 + i)];
+    const NamedScalar& v = saved[static_cast<std::size_t>(1 + p + i)];
+    if (m.name != kAdamFirstMoment + std::to_string(i) || v.name != kAdamSecondMoment + std::to_string(i)) {
+      throw std::invalid_argument("policy Adam state: unexpected entries '" + m.name + "', '" + v.name + "'");
+    }
+    first[i] = m.value;
+    second[i] = v.value;
+  }
+  adam_.emplace(p, options_);
+  adam_->set_state(first, second, static_cast<long long>(t));
+}
+
+MinibatchPassesResult minibatch_passes(const PolicyUpdateInputs& inputs, const FirstOrderOptions& options,
+                                       PolicyAdam& adam, SampleLossBatch& batch, const SampleLossFunction& sample_loss) {
+  if (inputs.minibatch_rng == nullptr) {
+    throw std::invalid_argument("minibatch_passes: the update needs a minibatch RNG (PolicyUpdateInputs::minibatch_rng)");
+  }
+  const Eigen::Index n = batch.num_samples();
+  const double all_samples = inputs.mpi.sum(static_cast<double>(n));
+  const auto minibatches =
+      std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::floor(all_samples / options.minibatch_size)));
+  if (n < minibatches) {
+    throw std::invalid_argument("policy_minibatch_size " + std::to_string(options.minibatch_size) + " cuts the batch into " +
+                                std::to_string(minibatches) + " minibatches, but this rank holds only " +
+                                std::to_string(n) + " samples");
+  }
+  Mlp& net = inputs.policy.mean_net();
+  std::vector<Eigen::Index> permutation(static_cast<std::size_t>(n));
+  Eigen::VectorXd gradient(net.num_parameters());
+  MinibatchPassesResult result;
+  for (int pass = 0; pass < options.passes; ++pass) {
+    shuffle_permutation(permutation, *inputs.minibatch_rng);
+    for (Eigen::Index k = 0; k < minibatches; ++k) {
+      // Minibatch k: permutation[floor(k N / K), floor((k + 1) N / K)).
+      const Eigen::Index begin = k * n / minibatches;
+      const Eigen::Index end = (k + 1) * n / minibatches;
+      batch.loss(inputs.policy, std::span<const Eigen::Index>(permutation.data() + begin, static_cast<std::size_t>(end - begin)),
+                 sample_loss, &gradient);
+      inputs.mpi.average_in_place(gradient);  // one allreduce per step
+      result.gradient_norm = gradient.norm();
+      if (options.max_grad_norm > 0.0 && result.gradient_norm > options.max_grad_norm) {
+        gradient *= options.max_grad_norm / result.gradient_norm;  // clip_grad_norm_ on the averaged gradient
+      }
+      adam.step(net, gradient);
+    }
+    result.passes = pass + 1;
+    if (options.kl_early_stop && inputs.mpi.average(batch.mean_kl(inputs.policy)) > options.target_kl) break;
+  }
+  return result;
+}
+
+std::vector<std::string> first_order_diagnostic_names() { return {"Misc/StopIter", "Misc/gradient_norm"}; }
+
+void append_first_order_diagnostics(std::vector<NamedScalar>& diagnostics, const MinibatchPassesResult& passes) {
+  diagnostics.push_back({"Misc/StopIter", static_cast<double>(passes.passes)});
+  diagnostics.push_back({"Misc/gradient_norm", passes.gradient_norm});
+}
+
+Eigen::VectorXd combined_advantages(const PolicySurrogate& surrogate, double reward_weight,
+                                    std::span<const double> cost_weights) {
+  if (static_cast<Eigen::Index>(cost_weights.size()) != surrogate.cost_advantages().cols()) {
+    throw std::invalid_argument("combined_advantages: " + std::to_string(cost_weights.size()) + " cost weights for " +
+                                std::to_string(surrogate.cost_advantages().cols()) + " constraints");
+  }
+  Eigen::VectorXd combined = reward_weight * surrogate.advantages();
+  for (Eigen::Index j = 0; j < surrogate.cost_advantages().cols(); ++j) {
+    combined += cost_weights[static_cast<std::size_t>(j)] * surrogate.cost_advantages().col(j);
+  }
+  return combined;
+}
+
+}  // namespace bsg
