@@ -1,9 +1,8 @@
 #include "algos/cup.h"
 
-#include <stdexcept>
-#include <string>
+#include <vector>
 
-#include "algos/ppo.h"
+#include "algos/ppo.h"  // clipped_surrogate_loss
 
 namespace bsg {
 
@@ -14,31 +13,18 @@ SampleLossFunction cup_projection_loss(const Eigen::VectorXd& weighted_cost_adva
   };
 }
 
-Cup::Cup(const RunConfig& config) : TrustRegionAlgorithm(config), multipliers_(config), adam_(config.actor_lr) {}
-
-std::vector<std::string> Cup::diagnostic_names() const {
-  std::vector<std::string> names = common_diagnostic_names();
-  for (std::string& name : first_order_diagnostic_names()) names.push_back(std::move(name));
-  names.push_back("Misc/SecondStepStopIter");
-  for (std::string& name : multipliers_.diagnostic_names()) names.push_back(std::move(name));
-  return names;
-}
-
-std::vector<NamedScalar> Cup::state() const { return first_order_state(&multipliers_, adam_); }
-
-void Cup::restore_state(std::span<const NamedScalar> saved) { restore_first_order_state(saved, &multipliers_, adam_); }
+Cup::Cup(const RunConfig& config) : FirstOrderAlgorithm(config, true, {"Misc/SecondStepStopIter"}) {}
 
 PolicyUpdateResult Cup::update(const PolicyUpdateInputs& inputs) {
-  check_mean_episode_cost(inputs, name());
   // 0. nu_j first.
-  const std::vector<double> nu = multipliers_.update(constraint_estimates(inputs, config()));
+  const std::vector<double> nu = update_multipliers(inputs);
   const FirstOrderOptions options = first_order_options(config());
 
   // 1. Performance step: PPO on the reward advantage, KL to pi_k.
   const PolicyUpdateStart start = begin_policy_update(inputs);
   SampleLossBatch performance_batch(inputs.surrogate, inputs.surrogate.reference_means());
   const MinibatchPassesResult performance =
-      minibatch_passes(inputs, options, adam_, performance_batch,
+      minibatch_passes(inputs, options, adam(), performance_batch,
                        clipped_surrogate_loss(inputs.surrogate.advantages(), config().clip));
 
   // 2. Projection step from pi_{k+1/2}: l_i = KL_i + c rho_i sum_j nu_j A^Cj_i.
@@ -49,14 +35,11 @@ PolicyUpdateResult Cup::update(const PolicyUpdateInputs& inputs) {
   const Eigen::MatrixXd half_step_means = policy_means(inputs.policy, inputs.surrogate.observations());
   SampleLossBatch projection_batch(inputs.surrogate, half_step_means);
   const MinibatchPassesResult projection =
-      minibatch_passes(inputs, options, adam_, projection_batch, cup_projection_loss(weighted_cost_advantages));
+      minibatch_passes(inputs, options, adam(), projection_batch, cup_projection_loss(weighted_cost_advantages));
 
-  PolicyUpdateResult result;
-  result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);  // Loss/Pi: the reward loss l_R
-  append_first_order_diagnostics(result.diagnostics, performance);
-  result.diagnostics.push_back({"Misc/SecondStepStopIter", static_cast<double>(projection.passes)});
-  for (NamedScalar& entry : multipliers_.diagnostics()) result.diagnostics.push_back(std::move(entry));
-  return result;
+  // Loss/Pi: the reward loss l_R.
+  return make_result(common_diagnostics(inputs, start.before, 1.0, 0.0), performance,
+                     {{"Misc/SecondStepStopIter", static_cast<double>(projection.passes)}});
 }
 
 }  // namespace bsg

@@ -15,9 +15,8 @@
 // keys (both steps share Adam and the pass options) and the multiplier keys.
 #pragma once
 
-#include "algos/algorithm.h"
+#include "algos/first_order_algorithm.h"
 #include "algos/first_order_update.h"
-#include "algos/lagrange_multipliers.h"
 #include "common/run_config.h"
 
 namespace bsg {
@@ -26,21 +25,12 @@ namespace bsg {
 // (which must outlive the function).
 SampleLossFunction cup_projection_loss(const Eigen::VectorXd& weighted_cost_advantages);
 
-class Cup final : public TrustRegionAlgorithm {
+class Cup final : public FirstOrderAlgorithm {
  public:
   explicit Cup(const RunConfig& config);
 
   std::string_view name() const override { return "cup"; }
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
-  std::vector<std::string> diagnostic_names() const override;
-  std::vector<NamedScalar> state() const override;
-  void restore_state(std::span<const NamedScalar> saved) override;
-
-  const LagrangeMultipliers& multipliers() const { return multipliers_; }
-
- private:
-  LagrangeMultipliers multipliers_;  // nu_1 .. nu_m
-  PolicyAdam adam_;
 };
 
 }  // namespace bsg

@@ -1,9 +1,6 @@
 #include "algos/focops.h"
 
-#include <stdexcept>
-#include <string>
-
-#include "algos/ppo.h"
+#include <vector>
 
 namespace bsg {
 
@@ -14,39 +11,21 @@ SampleLossFunction focops_loss(const Eigen::VectorXd& advantages, double tempera
   };
 }
 
-Focops::Focops(const RunConfig& config) : TrustRegionAlgorithm(config), multipliers_(config), adam_(config.actor_lr) {}
-
-std::vector<std::string> Focops::diagnostic_names() const {
-  std::vector<std::string> names = common_diagnostic_names();
-  for (std::string& name : first_order_diagnostic_names()) names.push_back(std::move(name));
-  for (std::string& name : multipliers_.diagnostic_names()) names.push_back(std::move(name));
-  return names;
-}
-
-std::vector<NamedScalar> Focops::state() const { return first_order_state(&multipliers_, adam_); }
-
-void Focops::restore_state(std::span<const NamedScalar> saved) { restore_first_order_state(saved, &multipliers_, adam_); }
+Focops::Focops(const RunConfig& config) : FirstOrderAlgorithm(config, true, {}) {}
 
 PolicyUpdateResult Focops::update(const PolicyUpdateInputs& inputs) {
-  check_mean_episode_cost(inputs, name());
   // 0. nu_j first, then A_hat = A - sum_j nu_j A^Cj.
-  const std::vector<double> nu = multipliers_.update(constraint_estimates(inputs, config()));
   std::vector<double> cost_weights;
-  for (double nu_j : nu) cost_weights.push_back(-nu_j);
+  for (double nu : update_multipliers(inputs)) cost_weights.push_back(-nu);
   const Eigen::VectorXd advantages = combined_advantages(inputs.surrogate, 1.0, cost_weights);
 
   const PolicyUpdateStart start = begin_policy_update(inputs);
   SampleLossBatch batch(inputs.surrogate, inputs.surrogate.reference_means());  // KL_i to pi_theta_k
   // 1. The masked loss's minibatch passes.
   const MinibatchPassesResult passes =
-      minibatch_passes(inputs, first_order_options(config()), adam_, batch,
+      minibatch_passes(inputs, first_order_options(config()), adam(), batch,
                        focops_loss(advantages, config().focops_lam, config().focops_eta));
-
-  PolicyUpdateResult result;
-  result.diagnostics = common_diagnostics(inputs, start.before, 1.0, std::span<const double>(cost_weights));
-  append_first_order_diagnostics(result.diagnostics, passes);
-  for (NamedScalar& entry : multipliers_.diagnostics()) result.diagnostics.push_back(std::move(entry));
-  return result;
+  return make_result(common_diagnostics(inputs, start.before, 1.0, std::span<const double>(cost_weights)), passes, {});
 }
 
 }  // namespace bsg

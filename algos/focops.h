@@ -15,9 +15,8 @@
 // first-order keys, and the multiplier keys (lambda_optimizer, lambda_lr, ...).
 #pragma once
 
-#include "algos/algorithm.h"
+#include "algos/first_order_algorithm.h"
 #include "algos/first_order_update.h"
-#include "algos/lagrange_multipliers.h"
 #include "common/run_config.h"
 
 namespace bsg {
@@ -26,21 +25,12 @@ namespace bsg {
 // (which must outlive the function).
 SampleLossFunction focops_loss(const Eigen::VectorXd& advantages, double temperature, double kl_bound);
 
-class Focops final : public TrustRegionAlgorithm {
+class Focops final : public FirstOrderAlgorithm {
  public:
   explicit Focops(const RunConfig& config);
 
   std::string_view name() const override { return "focops"; }
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
-  std::vector<std::string> diagnostic_names() const override;
-  std::vector<NamedScalar> state() const override;
-  void restore_state(std::span<const NamedScalar> saved) override;
-
-  const LagrangeMultipliers& multipliers() const { return multipliers_; }
-
- private:
-  LagrangeMultipliers multipliers_;  // nu_1 .. nu_m
-  PolicyAdam adam_;
 };
 
 }  // namespace bsg

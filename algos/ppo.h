@@ -18,9 +18,8 @@
 // lambda_lr 0.035 (OmniSafe's defaults) or the pid_* keys.
 #pragma once
 
-#include "algos/algorithm.h"
+#include "algos/first_order_algorithm.h"
 #include "algos/first_order_update.h"
-#include "algos/lagrange_multipliers.h"
 #include "common/run_config.h"
 
 namespace bsg {
@@ -29,26 +28,13 @@ namespace bsg {
 // (which must outlive the function); KL_i plays no part.
 SampleLossFunction clipped_surrogate_loss(const Eigen::VectorXd& advantages, double clip);
 
-// The first-order algorithms' saved state: the multipliers' entries (if any) then PolicyAdam's.
-std::vector<NamedScalar> first_order_state(const LagrangeMultipliers* multipliers, const PolicyAdam& adam);
-void restore_first_order_state(std::span<const NamedScalar> saved, LagrangeMultipliers* multipliers, PolicyAdam& adam);
-
-class Ppo final : public TrustRegionAlgorithm {
+class Ppo final : public FirstOrderAlgorithm {
  public:
+  // alg ppo or ppo-lag.
   explicit Ppo(const RunConfig& config);
 
-  std::string_view name() const override { return lagrangian_ ? "ppo-lag" : "ppo"; }
+  std::string_view name() const override { return multipliers() ? "ppo-lag" : "ppo"; }
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
-  std::vector<std::string> diagnostic_names() const override;
-  std::vector<NamedScalar> state() const override;
-  void restore_state(std::span<const NamedScalar> saved) override;
-
-  const LagrangeMultipliers* multipliers() const { return lagrangian_ ? &multipliers_ : nullptr; }
-
- private:
-  bool lagrangian_;  // ppo-lag
-  LagrangeMultipliers multipliers_;
-  PolicyAdam adam_;
 };
 
 }  // namespace bsg

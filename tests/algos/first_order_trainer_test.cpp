@@ -80,6 +80,12 @@ double mean_over(const std::vector<double>& column, std::size_t first, std::size
          static_cast<double>(last - first);
 }
 
+// 40 epochs of 5000 steps, seed 1, the shipped defaults except PPO-Lag's
+// multiplier step size: at OmniSafe's lambda_lr 0.035 its Adam multiplier
+// moves about 0.035 per epoch and is still rising after 40 epochs (cost about
+// 2.5 d there; the 150-epoch figures of docs/algorithms.md use the default),
+// so the test gives it lambda_lr 0.2. The longer runs' figures are in
+// docs/algorithms.md#first-order-updates.
 TEST(FirstOrderLearning, EachAlgorithmLearnsBallCircleOnAShortBudget) {
 #if defined(__SANITIZE_ADDRESS__)
   GTEST_SKIP() << "four training runs are too slow under the sanitizers; the updates run under them above";
@@ -92,6 +98,7 @@ TEST(FirstOrderLearning, EachAlgorithmLearnsBallCircleOnAShortBudget) {
     request.configs_dir = fs::path(BSG_SOURCE_DIR) / "configs";
     request.set_arguments = {"env_id=SafetyBallCircle-v0", std::string("alg=") + alg, "seed=1",
                              "epochs=" + std::to_string(kEpochs), "steps_per_epoch=5000", "eval_episodes=0"};
+    if (std::string(alg) == "ppo-lag") request.set_arguments.push_back("lambda_lr=0.2");
     const bsg::RunConfig config = bsg::resolve_run_config(request).config;
     const TemporaryDirectory directory;
     bsg::OnPolicyTrainer trainer(config, bsg::RunDirectory(directory.path() / "run"),
@@ -105,8 +112,10 @@ TEST(FirstOrderLearning, EachAlgorithmLearnsBallCircleOnAShortBudget) {
     const double last_cost = mean_over(costs, kEpochs - 10, kEpochs);
     std::printf("  %s: return %.1f -> %.1f, cost over the last 10 epochs %.1f\n", alg, first_return, last_return,
                 last_cost);
-    EXPECT_GT(last_return, first_return + 20.0);
-    if (std::string(alg) != "ppo") EXPECT_LT(last_cost, 2.0 * kCostLimit);
+    EXPECT_GT(last_return, first_return + 50.0);
+    if (std::string(alg) != "ppo") {
+      EXPECT_LT(last_cost, 1.5 * kCostLimit);
+    }
   }
 }
 
