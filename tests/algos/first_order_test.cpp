@@ -232,6 +232,31 @@ void add_ratio_gradient(const TinyBatch& t, double w, double b, const double coe
   }
 }
 
+// The parameters after `passes` hand-computed PPO passes of one minibatch on
+// advantages a_hat from (w0, b0), and how many sample-passes the clip held.
+struct HandPpo {
+  double w = 0, b = 0;
+  int held_count = 0;
+};
+HandPpo hand_ppo_passes(const TinyBatch& tiny, const double a_hat[2], double clip, double lr, int passes) {
+  HandAdam adam_w, adam_b;
+  HandPpo result{tiny.w0, tiny.b0, 0};
+  for (int pass = 0; pass < passes; ++pass) {
+    double coef[2];
+    for (int i = 0; i < 2; ++i) {
+      const double rho = tiny.ratio(i, result.w, result.b);
+      const bool held = (a_hat[i] > 0 && rho > 1 + clip) || (a_hat[i] < 0 && rho < 1 - clip);
+      result.held_count += held;
+      coef[i] = held ? 0.0 : -a_hat[i];  // d l_i / d rho_i of -min(rho A, clip(rho) A)
+    }
+    double gw = 0, gb = 0;
+    add_ratio_gradient(tiny, result.w, result.b, coef, gw, gb);
+    result.w += adam_w.step(gw, lr);
+    result.b += adam_b.step(gb, lr);
+  }
+  return result;
+}
+
 TEST(FirstOrderUpdates, PpoLagTakesTheHandComputedAdamSteps) {
   TinyBatch tiny;
   PolicySurrogate surrogate = tiny.surrogate();
@@ -242,25 +267,12 @@ TEST(FirstOrderUpdates, PpoLagTakesTheHandComputedAdamSteps) {
   // lambda = 0.001 + 0.05 (35 - 25) = 0.501; A_hat = (A - lambda A^C) / (1 + lambda).
   const double lambda = 0.501;
   const double a_hat[2] = {(1.0 - lambda * 0.5) / (1 + lambda), (-2.0 - lambda * 1.5) / (1 + lambda)};
-  HandAdam adam_w, adam_b;
-  double w = tiny.w0, b = tiny.b0;
-  for (int pass = 0; pass < 2; ++pass) {
-    double coef[2];
-    for (int i = 0; i < 2; ++i) {
-      const double rho = tiny.ratio(i, w, b);
-      const bool held = (a_hat[i] > 0 && rho > 1.2) || (a_hat[i] < 0 && rho < 0.8);
-      coef[i] = held ? 0.0 : -a_hat[i];  // d l_i / d rho_i of -min(rho A, clip(rho) A)
-    }
-    double gw = 0, gb = 0;
-    add_ratio_gradient(tiny, w, b, coef, gw, gb);
-    w += adam_w.step(gw, 0.01);
-    b += adam_b.step(gb, 0.01);
-  }
-  EXPECT_NEAR(tiny.policy.mean_net().parameters()[0], w, 1e-12);
-  EXPECT_NEAR(tiny.policy.mean_net().parameters()[1], b, 1e-12);
+  const HandPpo expected = hand_ppo_passes(tiny, a_hat, 0.2, 0.01, 2);
+  EXPECT_NEAR(tiny.policy.mean_net().parameters()[0], expected.w, 1e-12);
+  EXPECT_NEAR(tiny.policy.mean_net().parameters()[1], expected.b, 1e-12);
   EXPECT_NEAR(ppo_lag.multipliers()->value(0), lambda, 1e-15);
   // Adam's first steps move every parameter by about lr.
-  EXPECT_GT(std::abs(w - tiny.w0), 0.01);
+  EXPECT_GT(std::abs(expected.w - tiny.w0), 0.01);
 }
 
 TEST(FirstOrderUpdates, PpoClipsASampleOnceItsRatioLeavesTheRange) {
@@ -275,26 +287,11 @@ TEST(FirstOrderUpdates, PpoClipsASampleOnceItsRatioLeavesTheRange) {
   Ppo ppo(config);
   Rng shuffle(3);
   ppo.update(PolicyUpdateInputs{tiny.policy, surrogate, 0.0, 100.0, testing::single_process(), {}, &shuffle});
-  HandAdam adam_w, adam_b;
-  double w = tiny.w0, b = tiny.b0;
-  int held_count = 0;
-  for (int pass = 0; pass < 2; ++pass) {
-    double coef[2];
-    for (int i = 0; i < 2; ++i) {
-      const double a = tiny.advantages[i];
-      const double rho = tiny.ratio(i, w, b);
-      const bool held = (a > 0 && rho > 1.1) || (a < 0 && rho < 0.9);
-      held_count += held;
-      coef[i] = held ? 0.0 : -a;
-    }
-    double gw = 0, gb = 0;
-    add_ratio_gradient(tiny, w, b, coef, gw, gb);
-    w += adam_w.step(gw, 0.2);
-    b += adam_b.step(gb, 0.2);
-  }
-  EXPECT_EQ(held_count, 1);  // the clip held sample 0 in the second pass
-  EXPECT_NEAR(tiny.policy.mean_net().parameters()[0], w, 1e-12);
-  EXPECT_NEAR(tiny.policy.mean_net().parameters()[1], b, 1e-12);
+  const double a[2] = {tiny.advantages[0], tiny.advantages[1]};
+  const HandPpo expected = hand_ppo_passes(tiny, a, 0.1, 0.2, 2);
+  EXPECT_EQ(expected.held_count, 1);  // the clip held sample 0 in the second pass
+  EXPECT_NEAR(tiny.policy.mean_net().parameters()[0], expected.w, 1e-12);
+  EXPECT_NEAR(tiny.policy.mean_net().parameters()[1], expected.b, 1e-12);
 }
 
 TEST(FirstOrderUpdates, FocopsTakesTheHandComputedAdamSteps) {
