@@ -121,6 +121,7 @@ struct RunConfig {
   double lagrangian_multiplier_init = 0.001;
   double lambda_lr = 0.05;
   LambdaOptimizer lambda_optimizer = LambdaOptimizer::sgd;
+  double lagrangian_upper_bound = 0.0;  // FOCOPS's nu_max (every rule); 0 = none
   // PID multiplier (lambda_optimizer PID only; algos/pid_lagrangian.h)
   double pid_kp = 0.1;                  // K_P
   double pid_ki = 0.005;                // K_I (replaces lambda_lr)

@@ -186,6 +186,9 @@ const std::vector<SchemaRow>& schema_rows() {
            L::algorithm, kLagrangian,
            "update rule of the Lagrange multiplier: SGD or Adam step of lambda_lr on "
            "-lambda (J_C - d), or PID (Stooke et al. 2020) with the pid_* keys"),
+    real("lagrangian_upper_bound", &R::lagrangian_upper_bound, L::algorithm, at_least(0),
+         algorithm_bit(Algorithm::focops),
+         "FOCOPS's nu_max: each multiplier is projected onto [0, nu_max] after its update; 0 = no bound"),
     // --- PID Lagrange multiplier (lambda_optimizer PID; algos/pid_lagrangian.h) ---
     real("pid_kp", &R::pid_kp, L::algorithm, at_least(0), kLagrangian,
          "PID only: K_P, proportional gain on the (smoothed) violation J_C - d"),

@@ -329,6 +329,23 @@ TEST(FirstOrderUpdates, FocopsTakesTheHandComputedAdamSteps) {
   EXPECT_NEAR(focops.multipliers()->value(0), nu, 1e-15);
 }
 
+TEST(FirstOrderUpdates, FocopsProjectsNuOntoItsUpperBound) {
+  // nu = min(max(0, 0.001 + 0.05 (125 - 25)), 2) = 2 (unbounded it would be 5.001), then
+  // min(2 + 0.05 * 10, 2) = 2 again; with J_C = 5 it falls to 2 - 0.05 * 20 = 1.
+  TinyBatch tiny;
+  RunConfig config = tiny_config(Algorithm::focops);
+  config.lagrangian_upper_bound = 2.0;
+  Focops focops(config);
+  Rng shuffle(3);
+  const double expected[] = {2.0, 2.0, 1.0};
+  const double costs[] = {125.0, 35.0, 5.0};
+  for (int k = 0; k < 3; ++k) {
+    PolicySurrogate surrogate = tiny.surrogate();
+    focops.update(PolicyUpdateInputs{tiny.policy, surrogate, costs[k], 100.0, testing::single_process(), {}, &shuffle});
+    EXPECT_NEAR(focops.multipliers()->value(0), expected[k], 1e-15) << k;
+  }
+}
+
 TEST(FirstOrderUpdates, CupTakesThePerformanceThenTheProjectionStepsByHand) {
   TinyBatch tiny;
   PolicySurrogate surrogate = tiny.surrogate();

@@ -43,6 +43,7 @@ TEST(FirstOrderConfig, ShippedDefaults) {
   const RunConfig focops = resolve_run_config(shipped("focops", {})).config;
   EXPECT_EQ(focops.focops_lam, 1.5);
   EXPECT_EQ(focops.focops_eta, 0.02);
+  EXPECT_EQ(focops.lagrangian_upper_bound, 2.0);
   EXPECT_EQ(resolve_run_config(shipped("ppo", {})).config.clip, 0.2);
   EXPECT_EQ(resolve_run_config(shipped("cup", {})).config.clip, 0.2);
   // CPPO-PID is ppo-lag with the PID rule.
@@ -55,7 +56,8 @@ TEST(FirstOrderConfig, KeysOfTheOtherFamilyAreRejected) {
       {"trpo", "clip=0.1"},          {"cpo", "actor_lr=0.001"},     {"lag-trpo", "update_iters=10"},
       {"pdo", "kl_early_stop=false"}, {"ppo", "cg_iters=5"},         {"ppo-lag", "backtrack_budget=3"},
       {"focops", "clip=0.3"},         {"cup", "focops_eta=0.1"},     {"ppo", "lambda_lr=0.1"},
-      {"ppo", "focops_lam=2"},        {"focops", "fvp_subsample=2"}, {"cup", "kl_accept_factor=2"}};
+      {"ppo", "focops_lam=2"},        {"focops", "fvp_subsample=2"}, {"cup", "kl_accept_factor=2"},
+      {"lag-trpo", "lagrangian_upper_bound=2"}, {"ppo-lag", "lagrangian_upper_bound=2"}};
   for (const auto& [alg, setting] : cases) {
     SCOPED_TRACE(alg + " " + setting);
     const std::string m = testing::config_error_of(shipped(alg, {setting}));
@@ -81,6 +83,8 @@ TEST(FirstOrderConfig, OutOfRangeValuesAreRejectedNamingTheKey) {
     const std::string m = testing::config_error_of(shipped("focops", {setting}));
     EXPECT_TRUE(contains(m, "(0, inf)")) << m;
   }
+  const std::string bound = testing::config_error_of(shipped("focops", {"lagrangian_upper_bound=-1"}));
+  EXPECT_TRUE(contains(bound, "key 'lagrangian_upper_bound'") && contains(bound, "[0, inf)")) << bound;
   const std::string m = testing::config_error_of(
       shipped("ppo", {"constraints=[{terms: [cost_outside_bounds], limit: 20}, {terms: [cost_velocity_violation], limit: 5}]"}));
   EXPECT_TRUE(contains(m, "alg 'ppo' ignores cost")) << m;
