@@ -1,4 +1,4 @@
-// The factory and the interface contract shared by the five algorithms: the
+// The factory and the interface contract shared by the nine algorithms: the
 // right class per `alg`, the docs/algorithms.md#logged-columns column sets in order, a column set
 // that does not change between epochs, and the state round trip.
 #include "algos/make_algorithm.h"
