@@ -22,7 +22,7 @@ PolicyUpdateResult Cup::update(const PolicyUpdateInputs& inputs) {
 
   // 1. Performance step: PPO on the reward advantage, KL to pi_k.
   const PolicyUpdateStart start = begin_policy_update(inputs);
-  SampleLossBatch performance_batch(inputs.surrogate, inputs.surrogate.reference_means());
+  SampleLossBatch performance_batch(inputs.surrogate, inputs.surrogate.reference_means(), inputs.policy.log_stds());
   const MinibatchPassesResult performance =
       minibatch_passes(inputs, options, adam(), performance_batch,
                        clipped_surrogate_loss(inputs.surrogate.advantages(), config().clip));
@@ -33,7 +33,7 @@ PolicyUpdateResult Cup::update(const PolicyUpdateInputs& inputs) {
   for (double nu_j : nu) cost_weights.push_back(c * nu_j);
   const Eigen::VectorXd weighted_cost_advantages = combined_advantages(inputs.surrogate, 0.0, cost_weights);
   const Eigen::MatrixXd half_step_means = policy_means(inputs.policy, inputs.surrogate.observations());
-  SampleLossBatch projection_batch(inputs.surrogate, half_step_means);
+  SampleLossBatch projection_batch(inputs.surrogate, half_step_means, inputs.policy.log_stds());
   const MinibatchPassesResult projection =
       minibatch_passes(inputs, options, adam(), projection_batch, cup_projection_loss(weighted_cost_advantages));
 

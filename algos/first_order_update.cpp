@@ -34,8 +34,14 @@ Eigen::MatrixXd policy_means(const GaussianPolicy& policy, const Eigen::MatrixXd
   return means;
 }
 
-SampleLossBatch::SampleLossBatch(const PolicySurrogate& surrogate, const Eigen::MatrixXd& anchor_means)
-    : surrogate_(surrogate), anchor_means_(anchor_means) {
+SampleLossBatch::SampleLossBatch(const PolicySurrogate& surrogate, const Eigen::MatrixXd& anchor_means,
+                                 const Eigen::VectorXd& anchor_log_stds)
+    : surrogate_(surrogate), anchor_means_(anchor_means), anchor_log_stds_(anchor_log_stds) {
+  if (anchor_log_stds.size() != 0 && anchor_log_stds.size() != surrogate.actions().cols()) {
+    throw std::invalid_argument("SampleLossBatch: " + std::to_string(anchor_log_stds.size()) +
+                                " anchor log sigmas for " + std::to_string(surrogate.actions().cols()) +
+                                "-d actions");
+  }
   if (anchor_means.rows() != surrogate.num_samples() || anchor_means.cols() != surrogate.actions().cols()) {
     throw std::invalid_argument("SampleLossBatch: anchor means are " + std::to_string(anchor_means.rows()) + " x " +
                                 std::to_string(anchor_means.cols()) + ", the batch has " +
@@ -62,10 +68,76 @@ void SampleLossBatch::gather(std::span<const Eigen::Index> rows) {
   }
 }
 
+void SampleLossBatch::check_sigma_kind(const GaussianPolicy& policy) const {
+  if (policy.has_learned_std() != (anchor_log_stds_.size() != 0)) {
+    throw std::invalid_argument(policy.has_learned_std()
+                                    ? "SampleLossBatch: the policy learns log sigma but the anchor's is not given"
+                                    : "SampleLossBatch: an anchor log sigma is given but the policy's sigma is fixed");
+  }
+}
+
+double SampleLossBatch::learned_std_loss(const GaussianPolicy& policy, std::span<const Eigen::Index> rows,
+                                         const SampleLossFunction& sample_loss, Eigen::VectorXd* gradient) {
+  const double n = static_cast<double>(rows.size());
+  const int action_size = policy.action_size();
+  const Eigen::ArrayXd log_stds = policy.log_stds().array();
+  const Eigen::ArrayXd variances = (2.0 * log_stds).exp();                     // sigma_j^2
+  const Eigen::ArrayXd anchor_variances = (2.0 * anchor_log_stds_.array()).exp();  // sigma_a,j^2
+  // The part of KL_i that does not depend on the means: sum_j s_a,j - s_j + sigma_j^2 / (2 sigma_a,j^2) - 1/2.
+  const double kl_sigma_part = (anchor_log_stds_.array() - log_stds + variances / (2.0 * anchor_variances) - 0.5).sum();
+  const Eigen::ArrayXd kl_d_log_std = variances / anchor_variances - 1.0;  // d KL_i / d s_j
+  Eigen::VectorXd log_probs;
+  Eigen::ArrayXd log_std_gradient = Eigen::ArrayXd::Zero(action_size);
+  double loss_sum = 0.0;
+  const auto chunk = [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& means,
+                         Eigen::MatrixXd* output_gradients) {
+    const Eigen::Index count = means.rows();
+    log_probs.resize(count);
+    policy.log_prob_batch(means, actions_.middleRows(first, count), log_probs);
+    for (Eigen::Index r = 0; r < count; ++r) {
+      const Eigen::Index sample = rows[static_cast<std::size_t>(first + r)];
+      const double ratio = std::exp(log_probs[r] - surrogate_.old_log_probs()[sample]);
+      const Eigen::ArrayXd difference = (means.row(r) - anchors_.row(first + r)).transpose().array();
+      const Eigen::ArrayXd deviation = (actions_.row(first + r) - means.row(r)).transpose().array();  // a - mu
+      const double kl = kl_sigma_part + (difference.square() / (2.0 * anchor_variances)).sum();
+      const SampleLoss l = sample_loss(sample, ratio, kl);
+      loss_sum += l.value;
+      if (output_gradients != nullptr) {
+        output_gradients->row(r) =
+            ((l.d_ratio * ratio * deviation / variances + l.d_kl * difference / anchor_variances) / n).transpose().matrix();
+        log_std_gradient += (l.d_ratio * ratio * (deviation.square() / variances - 1.0) + l.d_kl * kl_d_log_std) / n;
+      }
+    }
+  };
+  if (gradient == nullptr) {
+    policy.mean_net().evaluate_batch(observations_, means_, workspace_);
+    chunk(0, means_, nullptr);
+  } else {
+    const Eigen::Index p = policy.mean_net().num_parameters();
+    Eigen::VectorXd mean_gradient(p);
+    Eigen::MatrixXd chunk_gradients;
+    policy.mean_net().gradient_batch(
+        observations_,
+        [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& means,
+            Eigen::Ref<Eigen::MatrixXd> output_gradients) {
+          chunk_gradients.resize(means.rows(), action_size);
+          chunk(first, means, &chunk_gradients);
+          output_gradients = chunk_gradients;
+        },
+        workspace_, mean_gradient);
+    gradient->resize(p + action_size);
+    gradient->head(p) = mean_gradient;
+    gradient->tail(action_size) = log_std_gradient.matrix();
+  }
+  return loss_sum / n;
+}
+
 double SampleLossBatch::loss(const GaussianPolicy& policy, std::span<const Eigen::Index> rows,
                              const SampleLossFunction& sample_loss, Eigen::VectorXd* gradient) {
   if (rows.empty()) throw std::invalid_argument("SampleLossBatch::loss: no rows");
+  check_sigma_kind(policy);
   gather(rows);
+  if (policy.has_learned_std()) return learned_std_loss(policy, rows, sample_loss, gradient);
   const double n = static_cast<double>(rows.size());
   const double sigma_squared = policy.std() * policy.std();
   const int action_size = policy.action_size();
@@ -114,6 +186,17 @@ double SampleLossBatch::loss(const GaussianPolicy& policy, std::span<const Eigen
 double SampleLossBatch::mean_kl(const GaussianPolicy& policy) {
   means_.resize(num_samples(), anchor_means_.cols());
   policy.mean_net().evaluate_batch(surrogate_.observations(), means_, workspace_);
+  check_sigma_kind(policy);
+  if (policy.has_learned_std()) {
+    // 1/N sum_i KL_i with the learned sigma's KL_i (this header's comment)
+    const Eigen::ArrayXd log_stds = policy.log_stds().array();
+    const Eigen::ArrayXd anchor_variances = (2.0 * anchor_log_stds_.array()).exp();
+    const double kl_sigma_part =
+        (anchor_log_stds_.array() - log_stds + (2.0 * log_stds).exp() / (2.0 * anchor_variances) - 0.5).sum();
+    const Eigen::RowVectorXd inverse_double_variances = (0.5 / anchor_variances).matrix().transpose();
+    return kl_sigma_part + ((means_ - anchor_means_).array().square().rowwise() * inverse_double_variances.array()).sum() /
+                               static_cast<double>(num_samples());
+  }
   // sum_i sum_j (mu_ij - mu_anchor,ij)^2 / (2 sigma^2) / N
   return (means_ - anchor_means_).squaredNorm() / (2.0 * policy.std() * policy.std() * static_cast<double>(num_samples()));
 }
@@ -127,6 +210,27 @@ void PolicyAdam::step(Mlp& net, const Eigen::VectorXd& gradient) {
                                 " parameters, the policy has " + std::to_string(net.num_parameters()));
   }
   adam_->step(net.mutable_parameters(), gradient);
+}
+
+void PolicyAdam::step(GaussianPolicy& policy, const Eigen::VectorXd& gradient) {
+  if (!policy.has_learned_std()) {
+    step(policy.mean_net(), gradient);
+    return;
+  }
+  Mlp& net = policy.mean_net();
+  const Eigen::Index p = net.num_parameters();
+  const Eigen::Index d = policy.action_size();
+  if (!adam_) adam_.emplace(p + d, options_);
+  if (adam_->num_parameters() != p + d || gradient.size() != p + d) {
+    throw std::invalid_argument("PolicyAdam: its state holds " + std::to_string(adam_->num_parameters()) +
+                                " parameters and the gradient " + std::to_string(gradient.size()) +
+                                ", the policy has " + std::to_string(p) + " + " + std::to_string(d) + " (log sigma)");
+  }
+  Eigen::VectorXd parameters(p + d);
+  parameters << net.parameters(), policy.log_stds();
+  adam_->step(parameters, gradient);
+  net.mutable_parameters() = parameters.head(p);
+  policy.set_log_stds(parameters.tail(d));
 }
 
 std::vector<NamedScalar> PolicyAdam::state() const {
@@ -195,9 +299,8 @@ MinibatchPassesResult minibatch_passes(const PolicyUpdateInputs& inputs, const F
                                 std::to_string(minibatches) + " minibatches, but this rank holds only " +
                                 std::to_string(n) + " samples");
   }
-  Mlp& net = inputs.policy.mean_net();
   std::vector<Eigen::Index> permutation(static_cast<std::size_t>(n));
-  Eigen::VectorXd gradient(net.num_parameters());
+  Eigen::VectorXd gradient;
   MinibatchPassesResult result;
   for (int pass = 0; pass < options.passes; ++pass) {
     shuffle_permutation(permutation, *inputs.minibatch_rng);
@@ -212,7 +315,7 @@ MinibatchPassesResult minibatch_passes(const PolicyUpdateInputs& inputs, const F
       if (options.max_grad_norm > 0.0 && result.gradient_norm > options.max_grad_norm) {
         gradient *= options.max_grad_norm / result.gradient_norm;  // clip_grad_norm_ on the averaged gradient
       }
-      adam.step(net, gradient);
+      adam.step(inputs.policy, gradient);
     }
     result.passes = pass + 1;
     if (options.kl_early_stop && inputs.mpi.average(batch.mean_kl(inputs.policy)) > options.target_kl) break;

@@ -15,6 +15,12 @@
 //   d rho_i / d mu_i = rho_i (a_i - mu_i) / sigma^2,   d KL_i / d mu_i = (mu_i - mu_anchor,i) / sigma^2
 // and one backward pass of the mean net give the parameter gradient.
 //
+// With a learned log sigma (s_j = log sigma_j, docs/algorithms.md#learned-log-sigma)
+// the parameters are [theta, s] and, sigma_a the anchor's,
+//   KL_i = sum_j s_a,j - s_j + (sigma_j^2 + (mu_ij - mu_anchor,ij)^2) / (2 sigma_a,j^2) - 1/2
+//   d rho_i / d mu_ij = rho_i (a_ij - mu_ij) / sigma_j^2,  d rho_i / d s_j = rho_i ((a_ij - mu_ij)^2 / sigma_j^2 - 1)
+//   d KL_i / d mu_ij = (mu_ij - mu_anchor,ij) / sigma_a,j^2, d KL_i / d s_j = sigma_j^2 / sigma_a,j^2 - 1.
+//
 // Parameters (RunConfig): actor_lr 3e-4, update_iters 40, policy_minibatch_size
 // 64, kl_early_stop true, target_kl 0.02, max_grad_norm 40 (OmniSafe's defaults).
 #pragma once
@@ -61,13 +67,16 @@ Eigen::MatrixXd policy_means(const GaussianPolicy& policy, const Eigen::MatrixXd
 // l_i over chosen rows and its gradient.
 class SampleLossBatch {
  public:
-  // Both must outlive this object; anchor_means is N x d_a.
-  SampleLossBatch(const PolicySurrogate& surrogate, const Eigen::MatrixXd& anchor_means);
+  // Both must outlive this object; anchor_means is N x d_a. anchor_log_stds:
+  // the anchor policy's learned log sigma (its log_stds()), empty for a fixed sigma.
+  SampleLossBatch(const PolicySurrogate& surrogate, const Eigen::MatrixXd& anchor_means,
+                  const Eigen::VectorXd& anchor_log_stds = Eigen::VectorXd());
 
   Eigen::Index num_samples() const { return surrogate_.num_samples(); }
 
   // 1/n sum_{i in rows} l_i at the policy's parameters (local); if `gradient`
-  // is given, it is overwritten with d/dtheta of that mean.
+  // is given, it is overwritten with d/dtheta of that mean (d/d[theta, s] with
+  // a learned log sigma).
   double loss(const GaussianPolicy& policy, std::span<const Eigen::Index> rows, const SampleLossFunction& sample_loss,
               Eigen::VectorXd* gradient);
 
@@ -76,9 +85,13 @@ class SampleLossBatch {
 
  private:
   void gather(std::span<const Eigen::Index> rows);
+  double learned_std_loss(const GaussianPolicy& policy, std::span<const Eigen::Index> rows,
+                          const SampleLossFunction& sample_loss, Eigen::VectorXd* gradient);
+  void check_sigma_kind(const GaussianPolicy& policy) const;
 
   const PolicySurrogate& surrogate_;
   const Eigen::MatrixXd& anchor_means_;
+  Eigen::VectorXd anchor_log_stds_;
   Eigen::MatrixXd observations_;  // the gathered rows
   Eigen::MatrixXd actions_;
   Eigen::MatrixXd anchors_;
@@ -96,6 +109,9 @@ class PolicyAdam {
 
   // One descent step of `net`'s parameters along the loss gradient.
   void step(Mlp& net, const Eigen::VectorXd& gradient);
+  // One step of the policy's parameters: theta, or [theta, s] with a learned log
+  // sigma (one Adam over both, as OmniSafe's over the actor's parameters).
+  void step(GaussianPolicy& policy, const Eigen::VectorXd& gradient);
 
   std::vector<NamedScalar> state() const;
   // Throws std::invalid_argument if the entries are not state()'s kind (nothing changes then).

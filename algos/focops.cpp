@@ -20,7 +20,7 @@ PolicyUpdateResult Focops::update(const PolicyUpdateInputs& inputs) {
   const Eigen::VectorXd advantages = combined_advantages(inputs.surrogate, 1.0, cost_weights);
 
   const PolicyUpdateStart start = begin_policy_update(inputs);
-  SampleLossBatch batch(inputs.surrogate, inputs.surrogate.reference_means());  // KL_i to pi_theta_k
+  SampleLossBatch batch(inputs.surrogate, inputs.surrogate.reference_means(), inputs.policy.log_stds());  // KL_i to pi_theta_k
   // 1. The masked loss's minibatch passes.
   const MinibatchPassesResult passes =
       minibatch_passes(inputs, first_order_options(config()), adam(), batch,

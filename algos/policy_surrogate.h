@@ -82,6 +82,7 @@ class PolicySurrogate {
   Eigen::MatrixXd cost_advantages_;  // N x m
   Eigen::VectorXd combined_weights_;  // w_R A + sum_j w_j A^Cj (several constraints)
   Eigen::MatrixXd reference_means_;
+  Eigen::VectorXd reference_log_stds_;  // the reference policy's learned log sigma; empty for a fixed sigma
   bool has_reference_means_ = false;
   MlpBatchWorkspace workspace_;
   Eigen::MatrixXd means_;  // mu_theta(s_i) at the last evaluation

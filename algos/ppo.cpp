@@ -33,7 +33,7 @@ PolicyUpdateResult Ppo::update(const PolicyUpdateInputs& inputs) {
   const Eigen::VectorXd advantages = combined_advantages(inputs.surrogate, weights.reward, weights.costs);
 
   const PolicyUpdateStart start = begin_policy_update(inputs);
-  SampleLossBatch batch(inputs.surrogate, inputs.surrogate.reference_means());  // KL_i to theta_old
+  SampleLossBatch batch(inputs.surrogate, inputs.surrogate.reference_means(), inputs.policy.log_stds());  // KL_i to theta_old
   // 1. The clipped surrogate's minibatch passes.
   const MinibatchPassesResult passes = minibatch_passes(inputs, first_order_options(config()), adam(), batch,
                                                         clipped_surrogate_loss(advantages, config().clip));

@@ -188,9 +188,12 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   ActorCritic& ac = *actor_critic_;
   const int rank = mpi_.rank();
 
-  // 1. Exploration noise of this epoch (docs/algorithms.md#exploration-noise).
-  ac.policy.set_std(config_.use_exploration_noise_anneal ? GaussianPolicy::annealed_std(epoch, config_.epochs)
-                                                         : GaussianPolicy::kInitialStd);
+  // 1. Exploration noise of this epoch (docs/algorithms.md#exploration-noise); a learned
+  // log sigma is the update's to change (docs/algorithms.md#learned-log-sigma).
+  if (!ac.policy.has_learned_std()) {
+    ac.policy.set_std(config_.use_exploration_noise_anneal ? GaussianPolicy::annealed_std(epoch, config_.epochs)
+                                                           : GaussianPolicy::kInitialStd);
+  }
   noise_rng_.seed(stream_seed(config_, SeedStream::action_noise, rank, epoch));
   shuffle_rng_.seed(stream_seed(config_, SeedStream::minibatch_shuffle, rank, epoch));
 

@@ -147,6 +147,8 @@ struct RunConfig {
   double clip = 0.2;               // PPO's epsilon (ppo, ppo-lag, cup's first step)
   double focops_lam = 1.5;         // FOCOPS's temperature lambda
   double focops_eta = 0.02;        // FOCOPS's per-sample KL mask threshold
+  bool learn_log_std = false;      // learn a state-independent log sigma per action dimension
+  double learned_std_init = 0.509; // its initial sigma (the annealing's first)
 
   // --- value networks (docs/algorithms.md#value-fits) ---
   bool use_cost_value_function = false;

@@ -235,6 +235,10 @@ const std::vector<SchemaRow>& schema_rows() {
          "FOCOPS's temperature lambda: the loss is KL - rho (A - nu A^C) / lambda"),
     real("focops_eta", &R::focops_eta, L::algorithm, above(0), algorithm_bit(Algorithm::focops),
          "FOCOPS's mask: samples whose KL to the old policy exceeds eta leave the loss"),
+    boolean("learn_log_std", &R::learn_log_std, L::algorithm, kFirstOrder,
+            "learn a log sigma per action dimension with the policy's Adam (replaces the annealed sigma)"),
+    real("learned_std_init", &R::learned_std_init, L::algorithm, above(0), kFirstOrder,
+         "initial sigma of every dimension with learn_log_std"),
     // --- value networks (docs/algorithms.md#value-fits) ---
     boolean("use_cost_value_function", &R::use_cost_value_function, L::algorithm, all,
             "train the cost value net V_C"),

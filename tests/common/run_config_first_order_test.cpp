@@ -32,6 +32,8 @@ TEST(FirstOrderConfig, ShippedDefaults) {
     EXPECT_EQ(config.target_kl, 0.02);
     EXPECT_TRUE(config.kl_early_stop);
     EXPECT_EQ(config.max_grad_norm, 40.0);
+    EXPECT_FALSE(config.learn_log_std);  // the annealed sigma, as before the key existed
+    EXPECT_EQ(config.learned_std_init, 0.509);
     EXPECT_TRUE(config.use_standardized_advantages);
     EXPECT_EQ(config.use_cost_value_function, std::string(alg) != "ppo");
     if (std::string(alg) != "ppo") {
@@ -57,7 +59,8 @@ TEST(FirstOrderConfig, KeysOfTheOtherFamilyAreRejected) {
       {"pdo", "kl_early_stop=false"}, {"ppo", "cg_iters=5"},         {"ppo-lag", "backtrack_budget=3"},
       {"focops", "clip=0.3"},         {"cup", "focops_eta=0.1"},     {"ppo", "lambda_lr=0.1"},
       {"ppo", "focops_lam=2"},        {"focops", "fvp_subsample=2"}, {"cup", "kl_accept_factor=2"},
-      {"lag-trpo", "lagrangian_upper_bound=2"}, {"ppo-lag", "lagrangian_upper_bound=2"}};
+      {"lag-trpo", "lagrangian_upper_bound=2"}, {"ppo-lag", "lagrangian_upper_bound=2"},
+      {"trpo", "learn_log_std=true"},  {"cpo", "learn_log_std=false"}, {"pcpo", "learned_std_init=0.5"}};
   for (const auto& [alg, setting] : cases) {
     SCOPED_TRACE(alg + " " + setting);
     const std::string m = testing::config_error_of(shipped(alg, {setting}));
@@ -71,7 +74,10 @@ TEST(FirstOrderConfig, OutOfRangeValuesAreRejectedNamingTheKey) {
       {"actor_lr=0", "(0, inf)"},           {"update_iters=0", "[1, 10000]"},
       {"policy_minibatch_size=0", "[1, "}, {"max_grad_norm=-1", "[0, inf)"},
       {"clip=1", "(0, 1)"},                {"clip=0", "(0, 1)"},
-      {"kl_early_stop=maybe", "true or false"}, {"update_iters=2.5", "an integer"}};
+      {"kl_early_stop=maybe", "true or false"}, {"update_iters=2.5", "an integer"},
+      {"learn_log_std=maybe", "true or false"}, {"learned_std_init=0", "(0, inf)"},
+      {"learned_std_init=-0.5", "(0, inf)"},    {"learned_std_init=inf", "(0, inf)"},
+      {"learned_std_init=nan", "(0, inf)"}};
   for (const auto& [setting, valid] : cases) {
     SCOPED_TRACE(setting);
     const std::string m = testing::config_error_of(shipped("ppo-lag", {setting}));
