@@ -6,7 +6,9 @@
 // passes together.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
+#include <string>
 
 #include "algorithm_test_support.h"
 #include "algos/make_algorithm.h"
@@ -35,12 +37,17 @@ RunConfig config_of(Algorithm alg) {
 TEST(FirstOrderMpi, TwoRanksWithHalvesTakeTheStepsOfOneProcessOnTheWholeBatch) {
   const MpiContext mpi = MpiContext::world();
   ASSERT_EQ(mpi.size(), 2);
+  for (const bool learned : {false, true})
   for (Algorithm alg : {Algorithm::ppo, Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup}) {
-    SCOPED_TRACE(std::string(to_string(alg)));
+    SCOPED_TRACE(std::string(to_string(alg)) + (learned ? " learned log sigma" : ""));
     RunConfig config = config_of(alg);
     config.policy_minibatch_size = 1000;  // one minibatch per pass
     SyntheticBatch whole(64, 21, 22);
     SyntheticBatch half(64, 21, 22);  // same policy and data
+    if (learned) {  // docs/algorithms.md#learned-log-sigma: s is averaged and stepped with theta
+      whole.policy.learn_log_std(0.4);
+      half.policy.learn_log_std(0.4);
+    }
     PolicySurrogate all = whole.surrogate();
     PolicySurrogate mine = rows_of(half, 32 * mpi.rank(), 32);
     Rng shuffle_single(1), shuffle_rank(2 + mpi.rank());  // the shuffle cannot matter with one minibatch
@@ -53,6 +60,12 @@ TEST(FirstOrderMpi, TwoRanksWithHalvesTakeTheStepsOfOneProcessOnTheWholeBatch) {
       const Eigen::VectorXd b = half.policy.mean_net().parameters();
       EXPECT_LT((a - b).norm(), 1e-12 * a.norm());
       EXPECT_EQ(mpi.min(b.sum()), mpi.max(b.sum()));
+      if (learned) {
+        const Eigen::VectorXd s_whole = whole.policy.log_stds(), s_half = half.policy.log_stds();
+        EXPECT_LT((s_whole - s_half).norm(), 1e-12 * s_whole.norm());
+        EXPECT_EQ(mpi.min(s_half.sum()), mpi.max(s_half.sum()));
+        EXPECT_GT((s_whole.array() - std::log(0.4)).abs().maxCoeff(), 1e-3);  // it moved
+      }
     }
   }
 }
