@@ -110,26 +110,36 @@ double SampleLossBatch::learned_std_loss(const GaussianPolicy& policy, std::span
     }
   };
   if (gradient == nullptr) {
-    policy.mean_net().evaluate_batch(observations_, means_, workspace_);
-    chunk(0, means_, nullptr);
+    run_mean_net(policy, chunk, nullptr);
   } else {
     const Eigen::Index p = policy.mean_net().num_parameters();
-    Eigen::VectorXd mean_gradient(p);
-    Eigen::MatrixXd chunk_gradients;
-    policy.mean_net().gradient_batch(
-        observations_,
-        [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& means,
-            Eigen::Ref<Eigen::MatrixXd> output_gradients) {
-          chunk_gradients.resize(means.rows(), action_size);
-          chunk(first, means, &chunk_gradients);
-          output_gradients = chunk_gradients;
-        },
-        workspace_, mean_gradient);
+    Eigen::VectorXd mean_gradient;
+    run_mean_net(policy, chunk, &mean_gradient);
     gradient->resize(p + action_size);
     gradient->head(p) = mean_gradient;
     gradient->tail(action_size) = log_std_gradient.matrix();
   }
   return loss_sum / n;
+}
+
+void SampleLossBatch::run_mean_net(const GaussianPolicy& policy, const ChunkLosses& chunk,
+                                   Eigen::VectorXd* mean_gradient) {
+  if (mean_gradient == nullptr) {
+    policy.mean_net().evaluate_batch(observations_, means_, workspace_);
+    chunk(0, means_, nullptr);
+    return;
+  }
+  mean_gradient->resize(policy.mean_net().num_parameters());
+  Eigen::MatrixXd chunk_gradients;
+  policy.mean_net().gradient_batch(
+      observations_,
+      [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& means,
+          Eigen::Ref<Eigen::MatrixXd> output_gradients) {
+        chunk_gradients.resize(means.rows(), policy.action_size());
+        chunk(first, means, &chunk_gradients);
+        output_gradients = chunk_gradients;
+      },
+      workspace_, *mean_gradient);
 }
 
 double SampleLossBatch::loss(const GaussianPolicy& policy, std::span<const Eigen::Index> rows,
@@ -140,7 +150,6 @@ double SampleLossBatch::loss(const GaussianPolicy& policy, std::span<const Eigen
   if (policy.has_learned_std()) return learned_std_loss(policy, rows, sample_loss, gradient);
   const double n = static_cast<double>(rows.size());
   const double sigma_squared = policy.std() * policy.std();
-  const int action_size = policy.action_size();
   Eigen::VectorXd log_probs;
   double loss_sum = 0.0;
   // Per gathered row r of a chunk: rho_r, KL_r, l_r, and (dl/dmu_r) / n.
@@ -164,22 +173,7 @@ double SampleLossBatch::loss(const GaussianPolicy& policy, std::span<const Eigen
       }
     }
   };
-  if (gradient == nullptr) {
-    policy.mean_net().evaluate_batch(observations_, means_, workspace_);
-    chunk(0, means_, nullptr);
-  } else {
-    gradient->resize(policy.mean_net().num_parameters());
-    Eigen::MatrixXd chunk_gradients;
-    policy.mean_net().gradient_batch(
-        observations_,
-        [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& means,
-            Eigen::Ref<Eigen::MatrixXd> output_gradients) {
-          chunk_gradients.resize(means.rows(), action_size);
-          chunk(first, means, &chunk_gradients);
-          output_gradients = chunk_gradients;
-        },
-        workspace_, *gradient);
-  }
+  run_mean_net(policy, chunk, gradient);
   return loss_sum / n;
 }
 

@@ -88,6 +88,12 @@ class SampleLossBatch {
   double learned_std_loss(const GaussianPolicy& policy, std::span<const Eigen::Index> rows,
                           const SampleLossFunction& sample_loss, Eigen::VectorXd* gradient);
   void check_sigma_kind(const GaussianPolicy& policy) const;
+  // Per chunk of gathered rows (first row, their means): the losses, and if the
+  // matrix is given, d(mean loss)/d mu of each row into it.
+  using ChunkLosses = std::function<void(Eigen::Index, const Eigen::Ref<const Eigen::MatrixXd>&, Eigen::MatrixXd*)>;
+  // Runs the mean net over the gathered rows with `chunk`; with `mean_gradient`,
+  // back-propagates the chunks' output gradients into it (d/dtheta).
+  void run_mean_net(const GaussianPolicy& policy, const ChunkLosses& chunk, Eigen::VectorXd* mean_gradient);
 
   const PolicySurrogate& surrogate_;
   const Eigen::MatrixXd& anchor_means_;

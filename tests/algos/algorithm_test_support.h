@@ -7,6 +7,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <numeric>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -118,6 +119,13 @@ inline void expect_passes_constrained_tests(const SyntheticBatch& batch,
   if (c < 0.0) {
     EXPECT_GE(batch.reward_surrogate(), before.reward_surrogate);
   }
+}
+
+// The row indices 0 .. n-1 (a minibatch of the whole batch).
+inline std::vector<Eigen::Index> all_rows(Eigen::Index n) {
+  std::vector<Eigen::Index> rows(static_cast<std::size_t>(n));
+  std::iota(rows.begin(), rows.end(), Eigen::Index{0});
+  return rows;
 }
 
 inline const MpiContext& single_process() {

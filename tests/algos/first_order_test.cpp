@@ -22,6 +22,7 @@ namespace bsg {
 namespace {
 
 using testing::SyntheticBatch;
+using testing::all_rows;
 
 // Hand-written per-sample KL(pi_theta || pi_anchor)[s_i], summed over action dimensions.
 Eigen::VectorXd sample_kls(const SyntheticBatch& batch, const Eigen::MatrixXd& anchor) {
@@ -54,12 +55,6 @@ double hand_focops_loss(const SyntheticBatch& batch, const Eigen::MatrixXd& anch
 
 double hand_cup_loss(const SyntheticBatch& batch, const Eigen::MatrixXd& anchor, const Eigen::VectorXd& a) {
   return (sample_kls(batch, anchor) + batch.ratios().cwiseProduct(a)).mean();
-}
-
-std::vector<Eigen::Index> all_rows(Eigen::Index n) {
-  std::vector<Eigen::Index> rows(static_cast<std::size_t>(n));
-  std::iota(rows.begin(), rows.end(), Eigen::Index{0});
-  return rows;
 }
 
 // Central differences of `loss` (a function of the policy's parameters) at the current parameters.

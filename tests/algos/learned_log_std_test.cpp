@@ -27,6 +27,7 @@ namespace bsg {
 namespace {
 
 using testing::SyntheticBatch;
+using testing::all_rows;
 
 const double kHalfLog2Pi = 0.5 * std::log(2.0 * std::numbers::pi);
 
@@ -58,12 +59,6 @@ Eigen::VectorXd hand_kls(const SyntheticBatch& batch, const Eigen::VectorXd& s, 
     }
   }
   return kl;
-}
-
-std::vector<Eigen::Index> all_rows(Eigen::Index n) {
-  std::vector<Eigen::Index> rows(static_cast<std::size_t>(n));
-  std::iota(rows.begin(), rows.end(), Eigen::Index{0});
-  return rows;
 }
 
 // Central differences of `loss(s)` over [theta, s] at the policy's current parameters.
