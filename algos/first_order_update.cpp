@@ -86,17 +86,15 @@ double SampleLossBatch::learned_std_loss(const GaussianPolicy& policy, std::span
   // The part of KL_i that does not depend on the means: sum_j s_a,j - s_j + sigma_j^2 / (2 sigma_a,j^2) - 1/2.
   const double kl_sigma_part = (anchor_log_stds_.array() - log_stds + variances / (2.0 * anchor_variances) - 0.5).sum();
   const Eigen::ArrayXd kl_d_log_std = variances / anchor_variances - 1.0;  // d KL_i / d s_j
-  Eigen::VectorXd log_probs;
   Eigen::ArrayXd log_std_gradient = Eigen::ArrayXd::Zero(action_size);
   double loss_sum = 0.0;
   const auto chunk = [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& means,
                          Eigen::MatrixXd* output_gradients) {
     const Eigen::Index count = means.rows();
-    log_probs.resize(count);
-    policy.log_prob_batch(means, actions_.middleRows(first, count), log_probs);
+    chunk_ratios(policy, rows, first, means);
     for (Eigen::Index r = 0; r < count; ++r) {
       const Eigen::Index sample = rows[static_cast<std::size_t>(first + r)];
-      const double ratio = std::exp(log_probs[r] - surrogate_.old_log_probs()[sample]);
+      const double ratio = ratios_[r];
       const Eigen::ArrayXd difference = (means.row(r) - anchors_.row(first + r)).transpose().array();
       const Eigen::ArrayXd deviation = (actions_.row(first + r) - means.row(r)).transpose().array();  // a - mu
       const double kl = kl_sigma_part + (difference.square() / (2.0 * anchor_variances)).sum();
@@ -120,6 +118,17 @@ double SampleLossBatch::learned_std_loss(const GaussianPolicy& policy, std::span
     gradient->tail(action_size) = log_std_gradient.matrix();
   }
   return loss_sum / n;
+}
+
+void SampleLossBatch::chunk_ratios(const GaussianPolicy& policy, std::span<const Eigen::Index> rows, Eigen::Index first,
+                                   const Eigen::Ref<const Eigen::MatrixXd>& means) {
+  const Eigen::Index count = means.rows();
+  ratios_.resize(count);
+  policy.log_prob_batch(means, actions_.middleRows(first, count), ratios_);
+  for (Eigen::Index r = 0; r < count; ++r) {
+    // rho_r = exp(log pi_theta(a|s) - log pi_old)
+    ratios_[r] = std::exp(ratios_[r] - surrogate_.old_log_probs()[rows[static_cast<std::size_t>(first + r)]]);
+  }
 }
 
 void SampleLossBatch::run_mean_net(const GaussianPolicy& policy, const ChunkLosses& chunk,
@@ -150,17 +159,15 @@ double SampleLossBatch::loss(const GaussianPolicy& policy, std::span<const Eigen
   if (policy.has_learned_std()) return learned_std_loss(policy, rows, sample_loss, gradient);
   const double n = static_cast<double>(rows.size());
   const double sigma_squared = policy.std() * policy.std();
-  Eigen::VectorXd log_probs;
   double loss_sum = 0.0;
   // Per gathered row r of a chunk: rho_r, KL_r, l_r, and (dl/dmu_r) / n.
   const auto chunk = [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& means,
                          Eigen::MatrixXd* output_gradients) {
     const Eigen::Index count = means.rows();
-    log_probs.resize(count);
-    policy.log_prob_batch(means, actions_.middleRows(first, count), log_probs);
+    chunk_ratios(policy, rows, first, means);
     for (Eigen::Index r = 0; r < count; ++r) {
       const Eigen::Index sample = rows[static_cast<std::size_t>(first + r)];
-      const double ratio = std::exp(log_probs[r] - surrogate_.old_log_probs()[sample]);
+      const double ratio = ratios_[r];
       const auto difference = means.row(r) - anchors_.row(first + r);
       const double kl = difference.squaredNorm() / (2.0 * sigma_squared);
       const SampleLoss l = sample_loss(sample, ratio, kl);

@@ -94,6 +94,9 @@ class SampleLossBatch {
   // Runs the mean net over the gathered rows with `chunk`; with `mean_gradient`,
   // back-propagates the chunks' output gradients into it (d/dtheta).
   void run_mean_net(const GaussianPolicy& policy, const ChunkLosses& chunk, Eigen::VectorXd* mean_gradient);
+  // rho of the chunk's rows (gathered rows first, first + 1, ...) into ratios_.
+  void chunk_ratios(const GaussianPolicy& policy, std::span<const Eigen::Index> rows, Eigen::Index first,
+                    const Eigen::Ref<const Eigen::MatrixXd>& means);
 
   const PolicySurrogate& surrogate_;
   const Eigen::MatrixXd& anchor_means_;
@@ -102,6 +105,7 @@ class SampleLossBatch {
   Eigen::MatrixXd actions_;
   Eigen::MatrixXd anchors_;
   Eigen::MatrixXd means_;
+  Eigen::VectorXd ratios_;  // of the current chunk
   MlpBatchWorkspace workspace_;
 };
 

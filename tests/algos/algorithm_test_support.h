@@ -121,6 +121,20 @@ inline void expect_passes_constrained_tests(const SyntheticBatch& batch,
   }
 }
 
+// Adam's update of one parameter after steps with gradients g[0..t-1].
+struct HandAdam {
+  double m = 0, v = 0;
+  int t = 0;
+  double step(double g, double lr) {
+    ++t;
+    m = 0.9 * m + 0.1 * g;
+    v = 0.999 * v + 0.001 * g * g;
+    const double m_hat = m / (1 - std::pow(0.9, t));
+    const double v_hat = v / (1 - std::pow(0.999, t));
+    return -lr * m_hat / (std::sqrt(v_hat) + 1e-8);
+  }
+};
+
 // The row indices 0 .. n-1 (a minibatch of the whole batch).
 inline std::vector<Eigen::Index> all_rows(Eigen::Index n) {
   std::vector<Eigen::Index> rows(static_cast<std::size_t>(n));

@@ -23,6 +23,7 @@ namespace {
 
 using testing::SyntheticBatch;
 using testing::all_rows;
+using testing::HandAdam;
 
 // Hand-written per-sample KL(pi_theta || pi_anchor)[s_i], summed over action dimensions.
 Eigen::VectorXd sample_kls(const SyntheticBatch& batch, const Eigen::MatrixXd& anchor) {
@@ -187,20 +188,6 @@ struct TinyBatch {
   double ratio(int i, double w, double b) const { return std::exp(log_prob(i, w, b) - old_log_probs[i]); }
   PolicySurrogate surrogate() const {
     return PolicySurrogate(observations, actions, old_log_probs, advantages, cost_advantages);
-  }
-};
-
-// Adam's update of one parameter after steps with gradients g[0..t-1].
-struct HandAdam {
-  double m = 0, v = 0;
-  int t = 0;
-  double step(double g, double lr) {
-    ++t;
-    m = 0.9 * m + 0.1 * g;
-    v = 0.999 * v + 0.001 * g * g;
-    const double m_hat = m / (1 - std::pow(0.9, t));
-    const double v_hat = v / (1 - std::pow(0.999, t));
-    return -lr * m_hat / (std::sqrt(v_hat) + 1e-8);
   }
 };
 

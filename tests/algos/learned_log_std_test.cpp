@@ -28,6 +28,7 @@ namespace {
 
 using testing::SyntheticBatch;
 using testing::all_rows;
+using testing::HandAdam;
 
 const double kHalfLog2Pi = 0.5 * std::log(2.0 * std::numbers::pi);
 
@@ -198,17 +199,6 @@ TEST(LearnedLogStd, TheAnchorsSigmaKindMustMatchThePolicys) {
 // ---------------------------------------------------------------------------
 // PPO on a tiny batch: mu = w s + b (1 -> 1, no hidden layer), sigma = exp(s_log)
 // learned from 0.5, two samples, one minibatch per pass, two passes.
-
-struct HandAdam {
-  double m = 0, v = 0;
-  int t = 0;
-  double step(double g, double lr) {
-    ++t;
-    m = 0.9 * m + 0.1 * g;
-    v = 0.999 * v + 0.001 * g * g;
-    return -lr * (m / (1 - std::pow(0.9, t))) / (std::sqrt(v / (1 - std::pow(0.999, t))) + 1e-8);
-  }
-};
 
 TEST(LearnedLogStd, PpoTakesTheHandComputedAdamStepsOnMeanAndLogSigma) {
   const double obs[2] = {0.5, -1.0}, act[2] = {0.3, -0.2}, adv[2] = {1.0, -2.0};
