@@ -80,6 +80,7 @@ ActorCritic::ActorCritic(int observation_size, int action_size, const RunConfig&
     extra_cost_values.emplace_back(observation_size, config.hidden_sizes, init_rng, init_options(config),
                                    value_adam_options(config));
   }
+  if (config.learn_log_std) policy.learn_log_std(config.learned_std_init);  // docs/algorithms.md#learned-log-sigma
 }
 
 void ActorCritic::normalize_observation(const Eigen::Ref<const Eigen::VectorXd>& raw,
@@ -118,6 +119,7 @@ double ActorCritic::parameter_sum() const {
 
 const char* ActorCritic::first_non_finite() const {
   if (!policy.mean_net().parameters().allFinite()) return "policy parameters";
+  if (!policy.log_stds().allFinite()) return "policy log sigma";
   if (!value.net().parameters().allFinite()) return "value-net parameters";
   if (!cost_value.net().parameters().allFinite()) return "cost value-net parameters";
   if (!value.optimizer().first_moment().allFinite() || !value.optimizer().second_moment().allFinite()) {
@@ -155,6 +157,11 @@ void ActorCritic::save(BinaryWriter& writer) const {
     writer.write_section("cost value net " + std::to_string(i + 2));
     save_value_function(extra_cost_values[i], writer);
   }
+  // Only with a learned log sigma, so that a checkpoint of the annealed sigma is unchanged.
+  if (policy.has_learned_std()) {
+    writer.write_section("policy log sigma");
+    writer.write_vector(policy.log_stds());
+  }
 }
 
 void ActorCritic::load(BinaryReader& reader) {
@@ -172,6 +179,10 @@ void ActorCritic::load(BinaryReader& reader) {
     const std::string name = "cost value net " + std::to_string(i + 2);
     reader.expect_section(name);
     load_value_function(extra_cost_values[i], reader, name);
+  }
+  if (policy.has_learned_std()) {
+    reader.expect_section("policy log sigma");
+    policy.set_log_stds(reader.read_vector("policy log sigma", policy.action_size()));
   }
 }
 

@@ -28,6 +28,7 @@
 #include "algos/line_search.h"
 #include "algos/policy_surrogate.h"
 #include "common/mpi_context.h"
+#include "common/random.h"
 #include "common/run_config.h"
 
 namespace bsg {
@@ -55,6 +56,9 @@ struct PolicyUpdateInputs {
   // All m constraints in the surrogate's order; empty: the single constraint
   // {mean_episode_cost, cost_limit}. constraint_estimates() gives them either way.
   std::span<const ConstraintEstimate> constraints = {};
+  // The rank's minibatch shuffles of the first-order updates (first_order_update.h;
+  // the trainer's per-epoch shuffle stream); the trust-region updates draw nothing.
+  Rng* minibatch_rng = nullptr;
 };
 
 // The update's constraints: inputs.constraints, or the single {J_C, cost_limit}.

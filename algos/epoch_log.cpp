@@ -72,6 +72,8 @@ std::string progress_column_name(std::string_view diagnostic_name) {
       {"Misc/Lambda_star", "cpo_lambda_star"},
       {"Misc/Nu_star", "cpo_nu_star"},
       {"Misc/OptimCase", "cpo_optim_case"},
+      {"Misc/StopIter", "policy_passes"},
+      {"Misc/SecondStepStopIter", "projection_passes"},
   };
   if (const auto found = kNames.find(diagnostic_name); found != kNames.end()) return std::string(found->second);
   std::string name(diagnostic_name);

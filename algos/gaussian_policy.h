@@ -1,7 +1,9 @@
 // The Gaussian policy pi(a|s) = N(mu_theta(s), sigma^2 I) of docs/algorithms.md#gaussian-policy: an MLP
 // for the mean and a fixed, non-trainable scalar standard deviation sigma,
 // linearly annealed per epoch. theta is the mean net's flat parameter vector;
-// sigma is not part of it.
+// sigma is not part of it. With learn_log_std() (first-order algorithms,
+// docs/algorithms.md#learned-log-sigma) sigma becomes a state-independent vector
+// exp(s), s = log sigma_j one per action dimension, trained beside theta.
 //
 // Parameters:
 //   observation_size, action_size   d_o, d_a
@@ -31,9 +33,20 @@ class GaussianPolicy {
   Mlp& mean_net() { return mean_net_; }
   const Mlp& mean_net() const { return mean_net_; }
 
-  double std() const { return std_; }
+  // The scalar sigma; with a learned log sigma, the mean of the sigma_j (OmniSafe's `std`).
+  double std() const;
+  // log sigma; with a learned log sigma, the mean of the s_j.
   double log_std() const;
+  // Throws with a learned log sigma (nothing sets it from outside then).
   void set_std(double std);
+
+  // Switches to the learned per-dimension log sigma, every s_j = log(initial_std).
+  void learn_log_std(double initial_std);
+  bool has_learned_std() const { return log_stds_.size() > 0; }
+  // s (d_a entries) with a learned log sigma, empty otherwise.
+  const Eigen::VectorXd& log_stds() const { return log_stds_; }
+  // Throws std::invalid_argument unless `log_stds` has d_a finite entries and the policy learns log sigma.
+  void set_log_stds(const Eigen::Ref<const Eigen::VectorXd>& log_stds);
 
   // sigma_k = 0.499 (1 - k/E) + 0.01 for epoch k of E (docs/algorithms.md#exploration-noise, Q2).
   static double annealed_std(int epoch, int epochs);
@@ -46,7 +59,7 @@ class GaussianPolicy {
   double sample_action(const Eigen::Ref<const Eigen::VectorXd>& observation, Eigen::Ref<Eigen::VectorXd> action,
                        Rng& rng, MlpSampleWorkspace& workspace) const;
 
-  // log pi = -1/2 sum_j (a_j - mu_j)^2 / sigma^2 - d_a log sigma - d_a/2 log 2 pi
+  // log pi = -1/2 sum_j (a_j - mu_j)^2 / sigma_j^2 - sum_j log sigma_j - d_a/2 log 2 pi
   double log_prob(const Eigen::Ref<const Eigen::VectorXd>& mean, const Eigen::Ref<const Eigen::VectorXd>& action) const;
   // Row-wise log-probabilities of `actions` under `means` (both N x d_a) into `log_probs` (N).
   void log_prob_batch(const Eigen::Ref<const Eigen::MatrixXd>& means, const Eigen::Ref<const Eigen::MatrixXd>& actions,
@@ -59,10 +72,15 @@ class GaussianPolicy {
   // 1/(N d_a) sum_ij (mu_old,ij - mu_new,ij)^2 / (2 sigma^2), with this policy's sigma.
   double mean_kl(const Eigen::Ref<const Eigen::MatrixXd>& old_means,
                  const Eigen::Ref<const Eigen::MatrixXd>& new_means) const;
+  // With a learned log sigma, the same mean of KL(old || new) when the old policy's
+  // log sigma was old_log_stds: 1/(N d_a) sum_ij s_j - s_old,j + (sigma_old,j^2 + (mu_old,ij - mu_ij)^2) / (2 sigma_j^2) - 1/2.
+  double mean_kl(const Eigen::Ref<const Eigen::MatrixXd>& old_means, const Eigen::Ref<const Eigen::MatrixXd>& new_means,
+                 const Eigen::VectorXd& old_log_stds) const;
 
  private:
   Mlp mean_net_;
   double std_ = kInitialStd;
+  Eigen::VectorXd log_stds_;  // s_j = log sigma_j when learned; empty: the scalar std_
 };
 
 }  // namespace bsg

@@ -39,7 +39,9 @@ LagrangeMultiplier::LagrangeMultiplier(double initial_value, LambdaOptimizer opt
 
 LagrangeMultiplier::LagrangeMultiplier(const RunConfig& config)
     : LagrangeMultiplier(config.lagrangian_multiplier_init, config.lambda_optimizer, config.lambda_lr,
-                         pid_lagrangian_options(config)) {}
+                         pid_lagrangian_options(config)) {
+  upper_bound_ = config.lagrangian_upper_bound;
+}
 
 double LagrangeMultiplier::update(double mean_episode_cost, double cost_limit) {
   if (!std::isfinite(mean_episode_cost)) {
@@ -48,6 +50,7 @@ double LagrangeMultiplier::update(double mean_episode_cost, double cost_limit) {
   }
   if (optimizer_ == LambdaOptimizer::pid) {
     lambda_ = pid_.update(mean_episode_cost, cost_limit).lambda;  // max(0, P + I + D), at most lambda_max
+    if (upper_bound_ > 0.0) lambda_ = std::min(lambda_, upper_bound_);
     return lambda_;
   }
   const double violation = mean_episode_cost - cost_limit;  // J_C - d
@@ -59,6 +62,7 @@ double LagrangeMultiplier::update(double mean_episode_cost, double cost_limit) {
     lambda_ = parameter[0];
   }
   lambda_ = std::max(lambda_, 0.0);  // projection onto lambda >= 0, after the step
+  if (upper_bound_ > 0.0) lambda_ = std::min(lambda_, upper_bound_);  // FOCOPS: onto [0, nu_max]
   return lambda_;
 }
 

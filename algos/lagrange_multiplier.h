@@ -14,6 +14,8 @@
 //   optimizer       lambda_optimizer: SGD (TRPO-L), Adam (PDO, beta 0.9/0.999, eps 1e-8) or PID
 //   learning_rate   lambda_lr: alpha_lambda (SGD, Adam)
 //   pid             the pid_* keys (PID only)
+//   upper_bound     lagrangian_upper_bound (FOCOPS's nu_max, any rule): lambda <- min(lambda, bound)
+//                   after the update; 0 (every other algorithm): none
 #pragma once
 
 #include <span>
@@ -57,6 +59,7 @@ class LagrangeMultiplier {
   double learning_rate_;
   Adam adam_;          // used only with LambdaOptimizer::adam
   PidLagrangian pid_;  // used only with LambdaOptimizer::pid
+  double upper_bound_ = 0.0;  // lagrangian_upper_bound (FOCOPS's nu_max); 0: none
 };
 
 }  // namespace bsg

@@ -4,9 +4,12 @@
 #include <string>
 
 #include "algos/cpo.h"
+#include "algos/cup.h"
+#include "algos/focops.h"
 #include "algos/lag_trpo.h"
 #include "algos/pcpo.h"
 #include "algos/pdo.h"
+#include "algos/ppo.h"
 #include "algos/trpo.h"
 
 namespace bsg {
@@ -18,6 +21,10 @@ std::unique_ptr<TrustRegionAlgorithm> make_algorithm(const RunConfig& config) {
     case Algorithm::cpo: return std::make_unique<Cpo>(config);
     case Algorithm::pdo: return std::make_unique<Pdo>(config);
     case Algorithm::pcpo: return std::make_unique<Pcpo>(config);
+    case Algorithm::ppo:
+    case Algorithm::ppo_lag: return std::make_unique<Ppo>(config);
+    case Algorithm::focops: return std::make_unique<Focops>(config);
+    case Algorithm::cup: return std::make_unique<Cup>(config);
   }
   throw std::invalid_argument("make_algorithm: unknown alg value " + std::to_string(static_cast<int>(config.alg)));
 }

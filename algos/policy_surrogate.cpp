@@ -46,6 +46,7 @@ void PolicySurrogate::set_reference_means(const GaussianPolicy& policy) {
   check_policy(policy, "PolicySurrogate::set_reference_means");
   reference_means_.resize(num_samples(), policy.action_size());
   policy.mean_net().evaluate_batch(observations_, reference_means_, workspace_);
+  reference_log_stds_ = policy.log_stds();
   has_reference_means_ = true;
 }
 
@@ -68,7 +69,8 @@ SurrogateValues PolicySurrogate::evaluate(const GaussianPolicy& policy) {
   }
   values.mean_ratio = ratios_.mean();
   if (has_reference_means_) {
-    values.kl = policy.mean_kl(reference_means_, means_);
+    values.kl = policy.has_learned_std() ? policy.mean_kl(reference_means_, means_, reference_log_stds_)
+                                         : policy.mean_kl(reference_means_, means_);
   }
   return values;
 }

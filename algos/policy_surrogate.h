@@ -45,6 +45,10 @@ class PolicySurrogate {
 
   Eigen::Index num_samples() const { return observations_.rows(); }
   const Eigen::MatrixXd& observations() const { return observations_; }
+  const Eigen::MatrixXd& actions() const { return actions_; }
+  const Eigen::VectorXd& old_log_probs() const { return old_log_probs_; }
+  const Eigen::VectorXd& advantages() const { return advantages_; }
+  const Eigen::MatrixXd& cost_advantages() const { return cost_advantages_; }  // N x m
 
   // Stores mu_theta(s_i) at the policy's current parameters as mu_old for the KL.
   void set_reference_means(const GaussianPolicy& policy);
@@ -78,6 +82,7 @@ class PolicySurrogate {
   Eigen::MatrixXd cost_advantages_;  // N x m
   Eigen::VectorXd combined_weights_;  // w_R A + sum_j w_j A^Cj (several constraints)
   Eigen::MatrixXd reference_means_;
+  Eigen::VectorXd reference_log_stds_;  // the reference policy's learned log sigma; empty for a fixed sigma
   bool has_reference_means_ = false;
   MlpBatchWorkspace workspace_;
   Eigen::MatrixXd means_;  // mu_theta(s_i) at the last evaluation

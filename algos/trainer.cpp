@@ -198,9 +198,12 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   ActorCritic& ac = *actor_critic_;
   const int rank = mpi_.rank();
 
-  // 1. Exploration noise of this epoch (docs/algorithms.md#exploration-noise).
-  ac.policy.set_std(config_.use_exploration_noise_anneal ? GaussianPolicy::annealed_std(epoch, config_.epochs)
-                                                         : GaussianPolicy::kInitialStd);
+  // 1. Exploration noise of this epoch (docs/algorithms.md#exploration-noise); a learned
+  // log sigma is the update's to change (docs/algorithms.md#learned-log-sigma).
+  if (!ac.policy.has_learned_std()) {
+    ac.policy.set_std(config_.use_exploration_noise_anneal ? GaussianPolicy::annealed_std(epoch, config_.epochs)
+                                                           : GaussianPolicy::kInitialStd);
+  }
   noise_rng_.seed(stream_seed(config_, SeedStream::action_noise, rank, epoch));
   shuffle_rng_.seed(stream_seed(config_, SeedStream::minibatch_shuffle, rank, epoch));
 
@@ -229,7 +232,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
                             cost_advantages_);
   const PolicyUpdateResult update = algorithm_->update(
       PolicyUpdateInputs{ac.policy, surrogate, constraints.front().mean_episode_cost, episodes.episode_length.mean,
-                         mpi_, constraints});
+                         mpi_, constraints, &shuffle_rng_});
   if (const auto loss = find_diagnostic(update, "Loss/Pi")) check_finite(epoch, "policy loss", *loss);
   check_parameters_finite(epoch);
 

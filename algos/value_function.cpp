@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include "algos/shuffle.h"
+
 namespace bsg {
 namespace {
 
@@ -129,12 +131,7 @@ std::vector<ValueFitStats> fit_value_functions(std::span<const ValueFitJob> jobs
   std::vector<Eigen::Index> permutation(static_cast<std::size_t>(n));
   int adam_steps = 0;
   for (int pass = 0; pass < options.iterations; ++pass) {
-    // Fisher–Yates shuffle with the rank's RNG (not NumPy's permutation stream).
-    std::iota(permutation.begin(), permutation.end(), Eigen::Index{0});
-    for (Eigen::Index i = n - 1; i > 0; --i) {
-      const auto j = static_cast<Eigen::Index>(uniform_index(rng, static_cast<std::uint64_t>(i + 1)));
-      std::swap(permutation[static_cast<std::size_t>(i)], permutation[static_cast<std::size_t>(j)]);
-    }
+    shuffle_permutation(permutation, rng);
     for (Eigen::Index start = 0; start < n; start += mini_batch_size) {
       const Eigen::Index rows = std::min(mini_batch_size, n - start);
       for (Eigen::Index i = 0; i < rows; ++i) {

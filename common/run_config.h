@@ -22,11 +22,22 @@
 
 namespace bsg {
 
-// The five algorithms, spelled in configs as the original code spells them
-// (plus "pcpo", which the original lacks).
-enum class Algorithm { trpo, lag_trpo, cpo, pdo, pcpo };
-inline constexpr std::array<std::string_view, 5> kAlgorithmNames = {"trpo", "lag-trpo", "cpo",
-                                                                    "pdo", "pcpo"};
+// The algorithms: the five trust-region ones spelled in configs as the
+// original code spells them (plus "pcpo", which the original lacks), then the
+// first-order baselines spelled as OmniSafe spells them (docs/algorithms.md#first-order-updates).
+enum class Algorithm { trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup };
+inline constexpr std::array<std::string_view, 9> kAlgorithmNames = {"trpo", "lag-trpo", "cpo", "pdo", "pcpo",
+                                                                    "ppo",  "ppo-lag",  "focops", "cup"};
+
+// Whether the algorithm maximises the return alone (TRPO, PPO): its cost
+// only judges the policy, it is not constrained.
+constexpr bool ignores_cost(Algorithm alg) { return alg == Algorithm::trpo || alg == Algorithm::ppo; }
+
+// Whether the algorithm takes the first-order update (first_order_update.h)
+// rather than the trust-region step.
+constexpr bool is_first_order(Algorithm alg) {
+  return alg == Algorithm::ppo || alg == Algorithm::ppo_lag || alg == Algorithm::focops || alg == Algorithm::cup;
+}
 
 // Update rule of the Lagrange multiplier (docs/algorithms.md#trpo-l SGD for
 // TRPO-L, docs/algorithms.md#pdo Adam for PDO; PID: the PID Lagrangian of Stooke, Achiam and Abbeel 2020, with
@@ -123,6 +134,7 @@ struct RunConfig {
   double lagrangian_multiplier_init = 0.001;
   double lambda_lr = 0.05;
   LambdaOptimizer lambda_optimizer = LambdaOptimizer::sgd;
+  double lagrangian_upper_bound = 0.0;  // FOCOPS's nu_max (every rule); 0 = none
   // PID multiplier (lambda_optimizer PID only; algos/pid_lagrangian.h)
   double pid_kp = 0.1;                  // K_P
   double pid_ki = 0.005;                // K_I (replaces lambda_lr)
@@ -138,6 +150,18 @@ struct RunConfig {
   PcpoProjection pcpo_projection = PcpoProjection::kl;
   bool pcpo_line_search = true;
   bool pdo_line_search = true;               // Q14
+
+  // --- first-order updates (PPO, PPO-Lag, FOCOPS, CUP; docs/algorithms.md#first-order-updates) ---
+  double actor_lr = 3e-4;          // Adam step size on the policy
+  int update_iters = 40;           // passes over the batch per update
+  int policy_minibatch_size = 64;  // samples per minibatch, summed over ranks
+  bool kl_early_stop = true;       // stop the passes once the KL exceeds target_kl
+  double max_grad_norm = 40.0;     // 0: no gradient rescaling
+  double clip = 0.2;               // PPO's epsilon (ppo, ppo-lag, cup's first step)
+  double focops_lam = 1.5;         // FOCOPS's temperature lambda
+  double focops_eta = 0.02;        // FOCOPS's per-sample KL mask threshold
+  bool learn_log_std = false;      // learn a state-independent log sigma per action dimension
+  double learned_std_init = 0.509; // its initial sigma (the annealing's first)
 
   // --- value networks (docs/algorithms.md#value-fits) ---
   bool use_cost_value_function = false;

@@ -64,11 +64,12 @@ void check_env_id(const std::string& env_id, const std::string& origin,
 }
 
 void check_run_config_relations(const RunConfig& config, const ConfigOrigins& origins) {
-  if (config.alg == Algorithm::trpo && config.constraints.size() > 1) {
+  if (ignores_cost(config.alg) && config.constraints.size() > 1) {
+    const std::string alg(to_string(config.alg));
     throw ConfigError(origin_of(origins, "constraints") + ": key 'constraints' lists " +
-                      std::to_string(config.constraints.size()) +
-                      " constraints, but alg 'trpo' ignores cost (it maximises the return alone); use lag-trpo, "
-                      "pdo, cpo or pcpo, or give one constraint to judge TRPO's policy by");
+                      std::to_string(config.constraints.size()) + " constraints, but alg '" + alg +
+                      "' ignores cost (it maximises the return alone); use lag-trpo, pdo, cpo, pcpo, ppo-lag, "
+                      "focops or cup, or give one constraint to judge the policy by");
   }
   if (config.max_ep_len > config.steps_per_epoch) {
     throw ConfigError("max_ep_len = " + std::to_string(config.max_ep_len) + " (" +

@@ -58,8 +58,15 @@ NumericRange closed_open(double min, double max) { return {min, max, true, false
 NumericRange at_least(double min) { return {min, kInf, true, false}; }
 NumericRange above(double min) { return {min, kInf, false, false}; }
 
-constexpr AlgorithmSet kLagrangian = algorithm_bit(Algorithm::lag_trpo) |
-                                     algorithm_bit(Algorithm::pdo);
+constexpr AlgorithmSet kLagrangian = algorithm_bit(Algorithm::lag_trpo) | algorithm_bit(Algorithm::pdo) |
+                                     algorithm_bit(Algorithm::ppo_lag) | algorithm_bit(Algorithm::focops) |
+                                     algorithm_bit(Algorithm::cup);
+constexpr AlgorithmSet kTrustRegion = algorithm_bit(Algorithm::trpo) | algorithm_bit(Algorithm::lag_trpo) |
+                                      algorithm_bit(Algorithm::cpo) | algorithm_bit(Algorithm::pdo) |
+                                      algorithm_bit(Algorithm::pcpo);
+constexpr AlgorithmSet kFirstOrder = kAllAlgorithms & ~kTrustRegion;
+constexpr AlgorithmSet kClipped = algorithm_bit(Algorithm::ppo) | algorithm_bit(Algorithm::ppo_lag) |
+                                  algorithm_bit(Algorithm::cup);
 
 SchemaRow boolean(std::string_view key, bool RunConfig::*member, ConfigLayer layer,
                   AlgorithmSet used_by, std::string_view description) {
@@ -103,7 +110,7 @@ const std::vector<SchemaRow>& schema_rows() {
     text("env_id", &R::env_id, L::run,
          "environment id, e.g. SafetyBallCircle-v0 (report Table 3)"),
     choice("alg", enum_access<&R::alg>(), kAlgorithmNames, L::run, all,
-           "algorithm: trpo, lag-trpo (TRPO-L), cpo, pdo or pcpo"),
+           "algorithm: trpo, lag-trpo (TRPO-L), cpo, pdo, pcpo, or the first-order ppo, ppo-lag, focops, cup"),
     integer("seed", &R::seed, L::run, closed(0, 4294967295.0), all,
             "base seed; per-rank and per-environment seeds are derived from it (seeding.h)"),
     text("log_dir", &R::log_dir, L::run,
@@ -169,18 +176,19 @@ const std::vector<SchemaRow>& schema_rows() {
             "bootstrap with V (V_C) of the next observation at a time-out (original); false: as a terminal"),
     // --- trust region (docs/algorithms.md#trust-region-tools) ---
     real("target_kl", &R::target_kl, L::algorithm, above(0), all,
-         "delta: trust-region size (mean KL per action dimension, Q8)"),
-    real("cg_damping", &R::cg_damping, L::algorithm, at_least(0), all,
+         "delta: trust-region size (mean KL per action dimension, Q8); first-order algorithms: the "
+         "early-stop KL (per sample summed over action dimensions, averaged over samples)"),
+    real("cg_damping", &R::cg_damping, L::algorithm, at_least(0), kTrustRegion,
          "damping added to the Fisher-vector product"),
-    integer("cg_iters", &R::cg_iters, L::algorithm, closed(1, 1000), all,
+    integer("cg_iters", &R::cg_iters, L::algorithm, closed(1, 1000), kTrustRegion,
             "conjugate-gradient iterations"),
-    integer("fvp_subsample", &R::fvp_subsample, L::algorithm, closed(1, 1000), all,
+    integer("fvp_subsample", &R::fvp_subsample, L::algorithm, closed(1, 1000), kTrustRegion,
             "the Fisher-vector product uses every k-th observation of the batch"),
-    integer("backtrack_budget", &R::backtrack_budget, L::algorithm, closed(1, 1000), all,
+    integer("backtrack_budget", &R::backtrack_budget, L::algorithm, closed(1, 1000), kTrustRegion,
             "Q11: line-search steps (original: 15, CPO 20; report: CPO and PCPO 25)"),
-    real("backtrack_decay", &R::backtrack_decay, L::algorithm, open(0, 1), all,
+    real("backtrack_decay", &R::backtrack_decay, L::algorithm, open(0, 1), kTrustRegion,
          "line-search step shrink factor"),
-    real("kl_accept_factor", &R::kl_accept_factor, L::algorithm, above(0), all,
+    real("kl_accept_factor", &R::kl_accept_factor, L::algorithm, above(0), kTrustRegion,
          "Q13: the line search accepts a step with KL <= kl_accept_factor * target_kl"),
     // --- Lagrange multiplier (docs/algorithms.md#trpo-l, #pdo) ---
     real("lagrangian_multiplier_init", &R::lagrangian_multiplier_init, L::algorithm,
@@ -191,6 +199,9 @@ const std::vector<SchemaRow>& schema_rows() {
            L::algorithm, kLagrangian,
            "update rule of the Lagrange multiplier: SGD or Adam step of lambda_lr on "
            "-lambda (J_C - d), or PID (Stooke et al. 2020) with the pid_* keys"),
+    real("lagrangian_upper_bound", &R::lagrangian_upper_bound, L::algorithm, at_least(0),
+         algorithm_bit(Algorithm::focops),
+         "FOCOPS's nu_max: each multiplier is projected onto [0, nu_max] after its update; 0 = no bound"),
     // --- PID Lagrange multiplier (lambda_optimizer PID; algos/pid_lagrangian.h) ---
     real("pid_kp", &R::pid_kp, L::algorithm, at_least(0), kLagrangian,
          "PID only: K_P, proportional gain on the (smoothed) violation J_C - d"),
@@ -220,6 +231,27 @@ const std::vector<SchemaRow>& schema_rows() {
             "run the constrained line search on PCPO's step (false: apply it directly)"),
     boolean("pdo_line_search", &R::pdo_line_search, L::algorithm, algorithm_bit(Algorithm::pdo),
             "Q14: run the TRPO line search on PDO's reward loss (original); false: apply step"),
+    // --- first-order updates (docs/algorithms.md#first-order-updates) ---
+    real("actor_lr", &R::actor_lr, L::algorithm, above(0), kFirstOrder,
+         "Adam step size on the policy (first-order updates)"),
+    integer("update_iters", &R::update_iters, L::algorithm, closed(1, 10000), kFirstOrder,
+            "passes over the batch per policy update (fewer after a KL early stop)"),
+    integer("policy_minibatch_size", &R::policy_minibatch_size, L::algorithm, closed(1, kIntMax), kFirstOrder,
+            "samples per policy minibatch, summed over ranks: floor(B / size) minibatches per pass"),
+    boolean("kl_early_stop", &R::kl_early_stop, L::algorithm, kFirstOrder,
+            "end the passes after one whose mean KL to the update's start exceeds target_kl"),
+    real("max_grad_norm", &R::max_grad_norm, L::algorithm, at_least(0), kFirstOrder,
+         "rescale the rank-averaged policy gradient to at most this norm; 0 = never"),
+    real("clip", &R::clip, L::algorithm, open(0, 1), kClipped,
+         "epsilon of PPO's clipped surrogate (ppo, ppo-lag, cup's performance step)"),
+    real("focops_lam", &R::focops_lam, L::algorithm, above(0), algorithm_bit(Algorithm::focops),
+         "FOCOPS's temperature lambda: the loss is KL - rho (A - nu A^C) / lambda"),
+    real("focops_eta", &R::focops_eta, L::algorithm, above(0), algorithm_bit(Algorithm::focops),
+         "FOCOPS's mask: samples whose KL to the old policy exceeds eta leave the loss"),
+    boolean("learn_log_std", &R::learn_log_std, L::algorithm, kFirstOrder,
+            "learn a log sigma per action dimension with the policy's Adam (replaces the annealed sigma)"),
+    real("learned_std_init", &R::learned_std_init, L::algorithm, above(0), kFirstOrder,
+         "initial sigma of every dimension with learn_log_std"),
     // --- value networks (docs/algorithms.md#value-fits) ---
     boolean("use_cost_value_function", &R::use_cost_value_function, L::algorithm, all,
             "train the cost value net V_C"),

@@ -82,7 +82,7 @@ std::optional<Selection> select_configuration(const std::vector<ConfigurationRes
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (candidates[i].seeds.empty()) continue;  // missing, not zero
     const ConfigurationScore s = score_configuration(candidates[i], score);
-    const bool counts_as_feasible = candidates[i].alg == Algorithm::trpo || s.feasible;
+    const bool counts_as_feasible = ignores_cost(candidates[i].alg) || s.feasible;
     if (counts_as_feasible) {
       if (!best_feasible || s.score > best_feasible->score.score) best_feasible = Selection{i, s, true};
     } else if (!least_violating || s.mean_cost < least_violating->score.mean_cost) {

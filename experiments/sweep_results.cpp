@@ -38,7 +38,8 @@ std::optional<RunConfig> read_run_directory_config(const std::filesystem::path& 
 
 // Whether a run uses the PID multiplier (a Table 1 column of its own).
 bool uses_pid_multiplier(const RunConfig& config) {
-  return (config.alg == Algorithm::lag_trpo || config.alg == Algorithm::pdo) &&
+  return (config.alg == Algorithm::lag_trpo || config.alg == Algorithm::pdo || config.alg == Algorithm::ppo_lag ||
+          config.alg == Algorithm::focops || config.alg == Algorithm::cup) &&
          config.lambda_optimizer == LambdaOptimizer::pid;
 }
 

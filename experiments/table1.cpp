@@ -69,6 +69,7 @@ std::string table1_column_label(Table1Column column) {
   }
   if (column.pid_multiplier) {
     if (column.alg == Algorithm::lag_trpo) return "TRPO-PID";
+    if (column.alg == Algorithm::ppo_lag) return "CPPO-PID";  // Stooke, Achiam and Abbeel's name
     return table1_column_label(column.alg) + "-PID";  // PDO-PID
   }
   return table1_column_label(column.alg);
@@ -81,6 +82,10 @@ std::string table1_column_label(Algorithm alg) {
     case Algorithm::cpo: return "CPO";
     case Algorithm::pdo: return "PDO";
     case Algorithm::pcpo: return "PCPO";
+    case Algorithm::ppo: return "PPO";
+    case Algorithm::ppo_lag: return "PPO-Lag";
+    case Algorithm::focops: return "FOCOPS";
+    case Algorithm::cup: return "CUP";
   }
   return "?";
 }
@@ -148,7 +153,7 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
     }
     Table1Cell* best = nullptr;
     for (Table1Cell& cell : row.cells) {
-      if (cell.alg == Algorithm::trpo || !cell.selected) continue;
+      if (ignores_cost(cell.alg) || !cell.selected) continue;
       if (best == nullptr || better_constrained(cell, *best)) best = &cell;
     }
     if (best != nullptr) best->best_constrained = true;

@@ -82,8 +82,9 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
 
 // "BallCircle" for "SafetyBallCircle-v0" (the report's row labels).
 std::string table1_row_label(const std::string& env_id);
-// "TRPO", "TRPO-L", "CPO", "PDO", "PCPO"; "TRPO-PID", "PDO-PID"; with the
-// corrected learner " corrected" appended ("TRPO-L corrected").
+// "TRPO", "TRPO-L", "CPO", "PDO", "PCPO", "PPO", "PPO-Lag", "FOCOPS", "CUP";
+// "TRPO-PID", "PDO-PID", "CPPO-PID" (ppo-lag with PID), "FOCOPS-PID", "CUP-PID";
+// with the corrected learner " corrected" appended ("TRPO-L corrected").
 std::string table1_column_label(Table1Column column);
 // The column a cell or a configuration belongs to.
 Table1Column table1_column_of(const Table1Cell& cell);

@@ -43,7 +43,7 @@ std::string cell_text(const Table1Row& row, const Table1Cell& cell, Format forma
   std::string text = j ? short_number(*j) : "J=" + short_number(cell.score.mean_return);
   text += " (" + (h ? short_number(*h) : "H=" + short_number(cell.score.mean_cost)) + ")";
   if (show_cost_rate) text += " r=" + short_number(cell.score.mean_cost_rate);  // Safety Gym's cost rate
-  if (cell.alg != Algorithm::trpo && !cell.constraint_met) {
+  if (!ignores_cost(cell.alg) && !cell.constraint_met) {
     text += format == Format::latex ? "$^\\dagger$" : "\u2020";
   }
   if (cell.seeds_finished < cell.seeds_expected) {
@@ -111,7 +111,7 @@ std::string table1_csv(const Table1& table) {
   for (const Table1Row& row : table.rows) {
     for (const Table1Cell& cell : row.cells) {
       const std::string status = !cell.selected                ? "missing"
-                                 : cell.alg == Algorithm::trpo ? "unconstrained"
+                                 : ignores_cost(cell.alg)      ? "unconstrained"
                                  : cell.constraint_met         ? "feasible"
                                                                : "infeasible";
       text += row.env_id + "," + std::string(to_string(cell.alg)) + "," + status + "," +

@@ -49,10 +49,12 @@ EPOCH_COLUMNS = ("epoch", "Epoch")
 RETURN_COLUMNS = ("episode_return_mean", "EpRet/Mean")
 COST_COLUMNS = ("episode_cost_mean", "EpCosts/Mean")
 
-ALGORITHM_LABELS = {"trpo": "TRPO", "lag-trpo": "TRPO-L", "cpo": "CPO", "pdo": "PDO", "pcpo": "PCPO"}
-ALGORITHM_ORDER = ["trpo", "lag-trpo", "cpo", "pdo", "pcpo"]
+ALGORITHM_LABELS = {"trpo": "TRPO", "lag-trpo": "TRPO-L", "cpo": "CPO", "pdo": "PDO", "pcpo": "PCPO",
+                    "ppo": "PPO", "ppo-lag": "PPO-Lag", "focops": "FOCOPS", "cup": "CUP"}
+ALGORITHM_ORDER = ["trpo", "lag-trpo", "cpo", "pdo", "pcpo", "ppo", "ppo-lag", "focops", "cup"]
 ALGORITHM_COLORS = {"trpo": "tab:blue", "lag-trpo": "tab:orange", "cpo": "tab:green",
-                    "pdo": "tab:red", "pcpo": "tab:purple"}
+                    "pdo": "tab:red", "pcpo": "tab:purple", "ppo": "tab:gray", "ppo-lag": "tab:brown",
+                    "focops": "tab:pink", "cup": "tab:olive"}
 
 
 class PlotError(Exception):

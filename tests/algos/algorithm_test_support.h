@@ -7,6 +7,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <numeric>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -120,6 +121,27 @@ inline void expect_passes_constrained_tests(const SyntheticBatch& batch,
   }
 }
 
+// Adam's update of one parameter after steps with gradients g[0..t-1].
+struct HandAdam {
+  double m = 0, v = 0;
+  int t = 0;
+  double step(double g, double lr) {
+    ++t;
+    m = 0.9 * m + 0.1 * g;
+    v = 0.999 * v + 0.001 * g * g;
+    const double m_hat = m / (1 - std::pow(0.9, t));
+    const double v_hat = v / (1 - std::pow(0.999, t));
+    return -lr * m_hat / (std::sqrt(v_hat) + 1e-8);
+  }
+};
+
+// The row indices 0 .. n-1 (a minibatch of the whole batch).
+inline std::vector<Eigen::Index> all_rows(Eigen::Index n) {
+  std::vector<Eigen::Index> rows(static_cast<std::size_t>(n));
+  std::iota(rows.begin(), rows.end(), Eigen::Index{0});
+  return rows;
+}
+
 inline const MpiContext& single_process() {
   static const MpiContext context = MpiContext::single_process();
   return context;
@@ -136,7 +158,7 @@ inline RunConfig config_for(Algorithm alg) {
   config.alg = alg;
   config.target_kl = 0.01;
   config.cost_limit = 25.0;
-  config.use_cost_value_function = alg != Algorithm::trpo;
+  config.use_cost_value_function = !ignores_cost(alg);
   switch (alg) {
     case Algorithm::trpo: break;
     case Algorithm::lag_trpo:
@@ -149,6 +171,14 @@ inline RunConfig config_for(Algorithm alg) {
       config.lambda_lr = 0.001;
       break;
     case Algorithm::pcpo: config.backtrack_budget = 25; break;
+    case Algorithm::ppo:
+    case Algorithm::ppo_lag:
+    case Algorithm::focops:
+    case Algorithm::cup:  // the first-order defaults of configs/algorithms (OmniSafe's)
+      config.target_kl = 0.02;
+      config.lambda_optimizer = LambdaOptimizer::adam;
+      config.lambda_lr = 0.035;
+      break;
   }
   return config;
 }

@@ -25,17 +25,19 @@ bool same_on_all_ranks(const MpiContext& mpi, const Eigen::VectorXd& values) {
 TEST(AlgorithmsUnderMpi, DifferentLocalBatchesGiveIdenticalParametersOnAllRanks) {
   const MpiContext mpi = MpiContext::world();
   ASSERT_EQ(mpi.size(), 2);
-  for (Algorithm alg : {Algorithm::trpo, Algorithm::lag_trpo, Algorithm::cpo, Algorithm::pdo, Algorithm::pcpo}) {
+  for (Algorithm alg : {Algorithm::trpo, Algorithm::lag_trpo, Algorithm::cpo, Algorithm::pdo, Algorithm::pcpo,
+                        Algorithm::ppo, Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup}) {
     for (double mean_episode_cost : {10.0, 40.0}) {
       // Same policy seed on both ranks (the loop broadcasts rank 0's parameters),
       // different batch seeds.
       SyntheticBatch batch(48, 17, 100 + mpi.rank());
       const auto algorithm = make_algorithm(testing::config_for(alg));
       const Eigen::VectorXd theta_old = batch.policy.mean_net().parameters();
+      Rng shuffle(31 + mpi.rank());  // each rank shuffles its own batch (first-order updates)
       for (int epoch = 0; epoch < 2; ++epoch) {
         PolicySurrogate surrogate = batch.surrogate();
         const PolicyUpdateResult result = algorithm->update(
-            PolicyUpdateInputs{batch.policy, surrogate, mean_episode_cost, 60.0, mpi});
+            PolicyUpdateInputs{batch.policy, surrogate, mean_episode_cost, 60.0, mpi, {}, &shuffle});
         EXPECT_TRUE(same_on_all_ranks(mpi, batch.policy.mean_net().parameters()))
             << algorithm->name() << " J_C=" << mean_episode_cost << " epoch " << epoch;
         // The rank-identical columns agree too (the first five are local values).

@@ -1,4 +1,4 @@
-// The factory and the interface contract shared by the five algorithms: the
+// The factory and the interface contract shared by the nine algorithms: the
 // right class per `alg`, the docs/algorithms.md#logged-columns column sets in order, a column set
 // that does not change between epochs, and the state round trip.
 #include "algos/make_algorithm.h"
@@ -26,6 +26,18 @@ std::vector<std::string> with_common(std::vector<std::string> specific) {
 const std::vector<std::string> kCpoColumns = {"Misc/cost_gradient_norm", "Misc/A", "Misc/B", "Misc/q", "Misc/r",
                                               "Misc/s", "Misc/Lambda_star", "Misc/Nu_star", "Misc/OptimCase"};
 
+const std::vector<std::string> kFirstOrderColumns = {"Loss/Pi", "Loss/DeltaPi", "Entropy", "KL", "PolicyRatio",
+                                                     "Misc/StopIter", "Misc/gradient_norm"};
+std::vector<std::string> first_order_with(std::vector<std::string> specific) {
+  std::vector<std::string> names = kFirstOrderColumns;
+  names.insert(names.end(), specific.begin(), specific.end());
+  return names;
+}
+
+constexpr Algorithm kAllAlgorithmsInOrder[] = {Algorithm::trpo, Algorithm::lag_trpo, Algorithm::cpo,
+                                               Algorithm::pdo,  Algorithm::pcpo,     Algorithm::ppo,
+                                               Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup};
+
 TEST(MakeAlgorithm, BuildsEachAlgorithmWithTheSpecColumns) {
   const struct {
     Algorithm alg;
@@ -38,6 +50,11 @@ TEST(MakeAlgorithm, BuildsEachAlgorithmWithTheSpecColumns) {
       {Algorithm::cpo, "cpo", with_common(kCpoColumns), 0},
       {Algorithm::pdo, "pdo", with_common({"Misc/cost_gradient_norm", "LagrangeMultiplier"}), 4},
       {Algorithm::pcpo, "pcpo", with_common(kCpoColumns), 0},
+      // First-order: the multiplier's Adam state (4), then PolicyAdam's step count (1) before any step.
+      {Algorithm::ppo, "ppo", kFirstOrderColumns, 1},
+      {Algorithm::ppo_lag, "ppo-lag", first_order_with({"LagrangeMultiplier"}), 5},
+      {Algorithm::focops, "focops", first_order_with({"LagrangeMultiplier"}), 5},
+      {Algorithm::cup, "cup", first_order_with({"Misc/SecondStepStopIter", "LagrangeMultiplier"}), 5},
   };
   for (const auto& entry : expected) {
     const RunConfig config = testing::config_for(entry.alg);
@@ -46,17 +63,20 @@ TEST(MakeAlgorithm, BuildsEachAlgorithmWithTheSpecColumns) {
     EXPECT_EQ(algorithm->name(), entry.name);
     EXPECT_EQ(algorithm->diagnostic_names(), entry.columns) << entry.name;
     EXPECT_EQ(algorithm->state().size(), entry.state_size) << entry.name;
-    EXPECT_EQ(algorithm->uses_cost_value_function(), entry.alg != Algorithm::trpo);
+    EXPECT_EQ(algorithm->uses_cost_value_function(), !ignores_cost(entry.alg));
   }
 }
 
 TEST(MakeAlgorithm, EveryUpdateReportsTheSameColumnsInOrderEveryEpoch) {
-  for (Algorithm alg : {Algorithm::trpo, Algorithm::lag_trpo, Algorithm::cpo, Algorithm::pdo, Algorithm::pcpo}) {
+  for (Algorithm alg : kAllAlgorithmsInOrder) {
     const auto algorithm = make_algorithm(testing::config_for(alg));
     SyntheticBatch batch(64, 7, 8);
     for (double mean_episode_cost : {40.0, 5.0, 30.0}) {
       PolicySurrogate surrogate = batch.surrogate();
-      const PolicyUpdateResult result = algorithm->update(testing::inputs_for(batch, surrogate, mean_episode_cost, 50.0));
+      Rng shuffle(5);
+      PolicyUpdateInputs inputs = testing::inputs_for(batch, surrogate, mean_episode_cost, 50.0);
+      inputs.minibatch_rng = &shuffle;
+      const PolicyUpdateResult result = algorithm->update(inputs);
       std::vector<std::string> names;
       for (const NamedScalar& entry : result.diagnostics) names.push_back(entry.name);
       EXPECT_EQ(names, algorithm->diagnostic_names()) << algorithm->name();
@@ -68,12 +88,15 @@ TEST(MakeAlgorithm, EveryUpdateReportsTheSameColumnsInOrderEveryEpoch) {
 }
 
 TEST(MakeAlgorithm, StateRoundTripsForEveryAlgorithm) {
-  for (Algorithm alg : {Algorithm::trpo, Algorithm::lag_trpo, Algorithm::cpo, Algorithm::pdo, Algorithm::pcpo}) {
+  for (Algorithm alg : kAllAlgorithmsInOrder) {
     const RunConfig config = testing::config_for(alg);
     const auto original = make_algorithm(config);
     SyntheticBatch batch(64, 7, 8);
     PolicySurrogate surrogate = batch.surrogate();
-    original->update(testing::inputs_for(batch, surrogate, 33.0, 50.0));
+    Rng shuffle(5);
+    PolicyUpdateInputs inputs = testing::inputs_for(batch, surrogate, 33.0, 50.0);
+    inputs.minibatch_rng = &shuffle;
+    original->update(inputs);
     const auto restored = make_algorithm(config);
     restored->restore_state(original->state());
     EXPECT_EQ(restored->state(), original->state()) << original->name();

@@ -137,6 +137,26 @@ TEST(GridExpansion, ThePidGridRunsTheReportProtocolWithThePidMultiplier) {
   }
 }
 
+TEST(GridExpansion, TheFirstOrderGridRunsTheReportProtocolWithTheFourConstrainedBaselines) {
+  const GridSpec report = load_grid_file(kConfigs / "grids" / "report.yaml");
+  const GridSpec grid = load_grid_file(kConfigs / "grids" / "first_order.yaml");
+  EXPECT_EQ(grid.env_ids, report.env_ids);
+  EXPECT_EQ(grid.seeds, report.seeds);
+  ASSERT_EQ(grid.algorithms.size(), 3u);
+  EXPECT_EQ(grid.algorithms[0].alg, Algorithm::ppo_lag);
+  EXPECT_EQ(grid.algorithms[1].alg, Algorithm::focops);
+  EXPECT_EQ(grid.algorithms[2].alg, Algorithm::cup);
+  const std::vector<GridRun> runs = expand_grid(grid);
+  EXPECT_EQ(runs.size(), 4u * 16u * 4u);
+  int pid = 0;
+  for (const GridRun& run : runs) {
+    if (run.seed != 0) continue;
+    const RunConfig config = resolve_grid_run(run, kConfigs, "first_order.yaml");
+    pid += config.lambda_optimizer == LambdaOptimizer::pid;
+  }
+  EXPECT_EQ(pid, 16);  // CPPO-PID on every environment
+}
+
 TEST(GridExpansion, TheQuickGridIsTwoConfigurationsTimesTwoSeeds) {
   const std::vector<GridRun> runs = expand_grid(load_grid_file(kConfigs / "grids" / "quick.yaml"));
   ASSERT_EQ(runs.size(), 4u);

@@ -214,5 +214,31 @@ TEST(Table1, CorrectedLearnerConfigurationsFormColumnsAfterTheFaithfulOnes) {
   EXPECT_TRUE(contains(table1_markdown(corrected_only), "| BallRun | 1.00 (9.20) | **0.25 (0.80)** |"));
 }
 
+TEST(Table1, FirstOrderColumnsCppoPidAndPpoAsAnUnconstrainedColumn) {
+  // PPO, like TRPO, is judged without the limit ("unconstrained", no dagger)
+  // and is never the best constrained cell; ppo-lag with PID is CPPO-PID.
+  EXPECT_EQ(table1_column_label(Algorithm::ppo), "PPO");
+  EXPECT_EQ(table1_column_label(Algorithm::focops), "FOCOPS");
+  EXPECT_EQ(table1_column_label(Algorithm::cup), "CUP");
+  const std::string circle = "SafetyBallCircle-v0";
+  std::vector<ConfigurationResults> all = {
+      config(circle, Algorithm::trpo, "default", {{0, 200, 80, {}}}, 1),
+      config(circle, Algorithm::ppo, "default", {{0, 300, 90, {}}}, 1),
+      config(circle, Algorithm::ppo_lag, "default", {{0, 150, 24, {}}}, 1),
+      config(circle, Algorithm::ppo_lag, "pid", {{0, 160, 30, {}}}, 1),
+      config(circle, Algorithm::focops, "default", {{0, 120, 20, {}}}, 1),
+      config(circle, Algorithm::cup, "default", {{0, 180, 25, {}}}, 1),
+  };
+  all[3].pid_multiplier = true;
+  const Table1 table = build_table1(all, SelectionScore::mean_return);
+  const std::string markdown = table1_markdown(table);
+  EXPECT_TRUE(contains(markdown, "| Env | TRPO | PPO | PPO-Lag | CPPO-PID | FOCOPS | CUP |\n")) << markdown;
+  // J and H relative to TRPO's return and the limit; CPPO-PID's H = 30 / 25 breaks the limit.
+  EXPECT_TRUE(contains(markdown, "| BallCircle | 1.00 (3.20) | 1.50 (3.60) | 0.75 (0.96) | 0.80 (1.20)\u2020 | "
+                                 "0.60 (0.80) | **0.90 (1.00)** |"))
+      << markdown;
+  EXPECT_TRUE(contains(table1_csv(table), "SafetyBallCircle-v0,ppo,unconstrained,"));
+}
+
 }  // namespace
 }  // namespace bsg
