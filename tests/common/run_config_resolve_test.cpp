@@ -290,11 +290,11 @@ TEST_F(ScratchConfigs, UnknownEnvIdListsTheValidOnes) {
 }
 
 TEST_F(ScratchConfigs, UnknownAlgListsTheValidOnes) {
-  const fs::path run = write_run("env_id: SafetyBallCircle-v0\nalg: ppo\n");
+  const fs::path run = write_run("env_id: SafetyBallCircle-v0\nalg: sac\n");
   const std::string m = error_of(request(run));
   EXPECT_TRUE(contains(m, run.string() + ":2:1"));
-  EXPECT_TRUE(contains(m, "'alg' = 'ppo' is not valid"));
-  EXPECT_TRUE(contains(m, "trpo | lag-trpo | cpo | pdo | pcpo"));
+  EXPECT_TRUE(contains(m, "'alg' = 'sac' is not valid"));
+  EXPECT_TRUE(contains(m, "trpo | lag-trpo | cpo | pdo | pcpo | ppo | ppo-lag | focops | cup"));
 }
 
 TEST_F(ScratchConfigs, MissingEnvIdOrAlgSaysWhereToSetIt) {
