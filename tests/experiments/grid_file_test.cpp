@@ -94,10 +94,10 @@ TEST(GridFile, UnknownKeyInsideAnAlgorithmIsNamed) {
 }
 
 TEST(GridFile, UnknownAlgorithmIsNamed) {
-  const std::string message = parse_error("envs: [SafetyBallCircle-v0]\nseeds: [0]\nalgorithms:\n  ppo:\n");
+  const std::string message = parse_error("envs: [SafetyBallCircle-v0]\nseeds: [0]\nalgorithms:\n  sac:\n");
   EXPECT_TRUE(contains(message, "g.yaml:4:3"));
-  EXPECT_TRUE(contains(message, "unknown algorithm 'ppo'"));
-  EXPECT_TRUE(contains(message, "lag-trpo"));
+  EXPECT_TRUE(contains(message, "unknown algorithm 'sac'"));
+  EXPECT_TRUE(contains(message, "trpo | lag-trpo | cpo | pdo | pcpo | ppo | ppo-lag | focops | cup"));
 }
 
 TEST(GridFile, KeyOfAnotherAlgorithmIsRejected) {

@@ -204,7 +204,7 @@ TEST(Table1, CorrectedLearnerConfigurationsFormColumnsAfterTheFaithfulOnes) {
   EXPECT_TRUE(contains(markdown, "| Env | TRPO | TRPO-L | TRPO corrected | TRPO-L corrected |\n")) << markdown;
   EXPECT_TRUE(contains(markdown, "| BallRun | 1.00 (9.20) | 0.25 (2.40)\u2020 | 5.00 (9.20) | **1.25 (0.80)** |"))
       << markdown;
-  EXPECT_TRUE(contains(configurations_csv(table), "SafetyBallRun-v0,lag-trpo,a,1,1,500.0,20.0,25.0,true,500.0,true,"
+  EXPECT_TRUE(contains(configurations_csv(table), "SafetyBallRun-v0,lag-trpo,a,1,1,500.0,20.0,0.0,25.0,true,500.0,true,"
                                                   "TRPO-L corrected\n"));
 
   // Only the corrected sweep: its own TRPO is the reference.
