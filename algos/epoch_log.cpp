@@ -4,6 +4,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "algos/constraint_costs.h"
+
 namespace bsg {
 namespace {
 
@@ -82,6 +84,50 @@ std::string progress_column_name(std::string_view diagnostic_name) {
 }
 
 bool is_timing_column(std::string_view column) { return column.starts_with("time_") || column == "fps"; }
+
+std::vector<std::string> epoch_log_columns(const EpochLogLayout& layout) {
+  std::vector<std::string> columns{"epoch", "total_env_steps"};
+  const auto pooled = [&columns](const std::string& prefix, bool with_std) {
+    columns.push_back(prefix + "_mean");
+    if (with_std) columns.push_back(prefix + "_std");
+    columns.push_back(prefix + "_min");
+    columns.push_back(prefix + "_max");
+  };
+  pooled("episode_return", true);
+  pooled("episode_cost", true);
+  pooled("episode_length", true);
+  columns.emplace_back("episodes");
+  pooled("value", false);
+  pooled("advantage", false);
+  pooled("cost_value", false);
+  columns.insert(columns.end(), {"value_loss", "value_loss_delta"});
+  if (layout.cost_value_loss) columns.insert(columns.end(), {"cost_value_loss", "cost_value_loss_delta"});
+  columns.insert(columns.end(), {"exploration_std", "reward_scale_mean", "reward_scale_std"});
+  for (const std::string& name : layout.diagnostic_names) columns.push_back(progress_column_name(name));
+  for (int i = 1; i <= layout.per_constraint; ++i) {
+    const std::string prefix = "constraint_" + std::to_string(i) + "_";
+    for (const char* suffix : {"cost", "limit", "cumulative_cost", "cost_rate", "epochs_over_limit"}) {
+      columns.push_back(prefix + suffix);
+    }
+    if (layout.constraint_cost_value_losses) {
+      columns.push_back(prefix + "cost_value_loss");
+      columns.push_back(prefix + "cost_value_loss_delta");
+    }
+  }
+  columns.insert(columns.end(), {"time_collect_s", "time_update_s", "time_s", "fps"});
+  if (layout.training_cost) columns.insert(columns.end(), {"cumulative_cost", "cost_rate"});
+  return columns;
+}
+
+EpochLogLayout epoch_log_layout(const RunConfig& config, const TrustRegionAlgorithm& algorithm) {
+  EpochLogLayout layout;
+  layout.cost_value_loss = algorithm.uses_cost_value_function();
+  layout.diagnostic_names = algorithm.diagnostic_names();
+  const bool several = !config.constraints.empty();  // the trainer's per-constraint columns (trainer.cpp)
+  layout.per_constraint = several ? constraint_count(config) : 0;
+  layout.constraint_cost_value_losses = several && algorithm.uses_cost_value_function();
+  return layout;
+}
 
 std::vector<NamedScalar> make_epoch_log_row(const EpochLogInputs& in, const MpiContext& mpi) {
   if (in.episodes == nullptr || in.buffer == nullptr || in.update == nullptr || in.value_fit == nullptr ||
@@ -166,6 +212,17 @@ std::vector<NamedScalar> make_epoch_log_row(const EpochLogInputs& in, const MpiC
     add(row, "cumulative_cost", in.training_cost->cumulative_cost);
     add(row, "cost_rate", TrainingCost::rate(in.training_cost->cumulative_cost, in.total_env_steps));
   }
+  // The layout a checkpoint's log is checked against must be the one written here.
+  EpochLogLayout layout;
+  layout.cost_value_loss = in.cost_value_fit != nullptr;
+  for (const NamedScalar& diagnostic : in.update->diagnostics) layout.diagnostic_names.push_back(diagnostic.name);
+  layout.per_constraint = static_cast<int>(in.constraints.size());
+  layout.constraint_cost_value_losses = !in.constraint_cost_value_fits.empty();
+  layout.training_cost = in.training_cost != nullptr;
+  const std::vector<std::string> expected = epoch_log_columns(layout);
+  bool same = expected.size() == row.size();
+  for (std::size_t i = 0; same && i < row.size(); ++i) same = expected[i] == row[i].name;
+  if (!same) throw std::logic_error("make_epoch_log_row: the row's columns differ from epoch_log_columns()");
   return row;
 }
 

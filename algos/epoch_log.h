@@ -94,7 +94,22 @@ struct EpochLogInputs {
 };
 
 // Collective (every rank takes part in the reductions); every rank gets the row.
+// Throws std::logic_error if the row's columns are not epoch_log_columns() of its inputs' layout.
 std::vector<NamedScalar> make_epoch_log_row(const EpochLogInputs& inputs, const MpiContext& mpi);
+
+// What decides a run's progress.csv columns.
+struct EpochLogLayout {
+  bool cost_value_loss = false;               // the algorithm trains V_C
+  std::vector<std::string> diagnostic_names;  // the algorithm's, in order
+  int per_constraint = 0;                     // m with `constraints:`, else 0
+  bool constraint_cost_value_losses = false;  // per-constraint V_Ci losses (with `constraints:` and V_C)
+  bool training_cost = true;                  // the trailing safety columns (every trainer run)
+};
+// The columns of make_epoch_log_row for that layout, in order; a checkpoint's
+// progress log must have exactly these (training_checkpoint.cpp).
+std::vector<std::string> epoch_log_columns(const EpochLogLayout& layout);
+// The layout of a trainer run of `config` with `algorithm`.
+EpochLogLayout epoch_log_layout(const RunConfig& config, const TrustRegionAlgorithm& algorithm);
 
 // The progress.csv column of an algorithm diagnostic ("Loss/Pi" -> "policy_loss", ...);
 // unknown names are lower-cased with '/' turned into '_'.

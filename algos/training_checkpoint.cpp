@@ -5,7 +5,9 @@
 #include <stdexcept>
 
 #include "algos/progress_csv.h"
+#include "algos/epoch_log.h"
 #include "algos/progress_csv_reader.h"
+#include "common/message_text.h"
 #include "common/run_config_yaml.h"
 
 namespace bsg {
@@ -15,7 +17,7 @@ namespace {
 // run's step counts, and its last time_s is the checkpoint's elapsed time
 // (both are written from the same number at the end of that epoch).
 void check_progress_log(const BinaryReader& reader, const std::string& text, const TrainingProgress& progress,
-                        const RunConfig& config) {
+                        const RunConfig& config, const TrustRegionAlgorithm& algorithm) {
   ProgressLogText log;
   try {
     log = read_progress_log(text, "its progress log", config.steps_per_epoch);
@@ -30,11 +32,15 @@ void check_progress_log(const BinaryReader& reader, const std::string& text, con
   }
   if (log.rows.empty()) return;
   const std::vector<std::string> columns = split_csv_line(log.header);
-  // The trainer writes these three columns in every run (epoch_log.cpp); a
-  // header without one of them was not written by it.
-  for (const char* required : {"epoch", "total_env_steps", "time_s"}) {
-    if (std::find(columns.begin(), columns.end(), required) == columns.end()) {
-      reader.fail(std::string("its progress log's header has no column ") + required);
+  // The columns this run's trainer writes (epoch_log.cpp): a header with any
+  // other column, missing or renamed, was not written by a run of this config.
+  const std::vector<std::string> expected = epoch_log_columns(epoch_log_layout(config, algorithm));
+  for (std::size_t i = 0; i < std::max(columns.size(), expected.size()); ++i) {
+    const std::string got = i < columns.size() ? columns[i] : "(none)";
+    const std::string want = i < expected.size() ? expected[i] : "(none)";
+    if (got != want) {
+      reader.fail("its progress log's column " + std::to_string(i + 1) + " is " + printable_excerpt(got) +
+                  ", this run writes " + want);
     }
   }
   const std::vector<std::string> last = split_csv_line(log.rows.back());
@@ -106,7 +112,7 @@ TrainingProgress decode_training_checkpoint(std::string_view payload, const std:
   }
   if (format_version >= 2) {
     progress.progress_log = reader.read_string("progress log");
-    check_progress_log(reader, *progress.progress_log, progress, config);
+    check_progress_log(reader, *progress.progress_log, progress, config, algorithm);
   }
   actor_critic.load(reader);
   reader.expect_section("algorithm");

@@ -11,6 +11,7 @@
 
 #include "../test_support.h"
 #include "algos/actor_critic.h"
+#include "algos/epoch_log.h"
 #include "algos/make_algorithm.h"
 #include "algos/progress_csv.h"
 #include "algos/training_checkpoint.h"
@@ -69,11 +70,22 @@ void expect_same(const bsg::ActorCritic& a, const bsg::ActorCritic& b) {
 // value, time_s), the last time_s being `elapsed`; the text a checkpoint records.
 std::string progress_log(int epochs, double elapsed, const bsg::RunConfig& config) {
   if (epochs == 0) return "";
-  std::string text = "epoch,total_env_steps,x,time_s\n";
+  const std::vector<std::string> columns =
+      bsg::epoch_log_columns(bsg::epoch_log_layout(config, *bsg::make_algorithm(config)));
+  std::string text;
+  for (std::size_t i = 0; i < columns.size(); ++i) text += (i > 0 ? "," : "") + columns[i];
+  text += "\n";
   for (int k = 0; k < epochs; ++k) {
     const double time = k == epochs - 1 ? elapsed : elapsed * (k + 1) / (epochs + 1);
-    text += std::to_string(k) + "," + std::to_string(static_cast<long long>(k + 1) * config.steps_per_epoch) + ",0.5," +
-            bsg::format_csv_number(time) + "\n";
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      const std::string value =
+          columns[i] == "epoch"             ? std::to_string(k)
+          : columns[i] == "total_env_steps" ? std::to_string(static_cast<long long>(k + 1) * config.steps_per_epoch)
+          : columns[i] == "time_s"          ? bsg::format_csv_number(time)
+                                            : std::string("0.5");
+      text += (i > 0 ? "," : "") + value;
+    }
+    text += "\n";
   }
   return text;
 }

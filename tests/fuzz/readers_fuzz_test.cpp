@@ -18,6 +18,7 @@
 
 #include "../test_support.h"
 #include "algos/actor_critic.h"
+#include "algos/epoch_log.h"
 #include "algos/make_algorithm.h"
 #include "algos/progress_csv.h"
 #include "algos/progress_csv_reader.h"
@@ -69,13 +70,26 @@ bsg::RunConfig small_config() {
   return config;
 }
 
-// A progress log of `epochs` rows as the trainer writes it; the last time_s is `elapsed`.
+// A progress log of `epochs` rows with the columns a run of small_config()
+// writes; the last time_s is `elapsed`, the other values vary by row and column.
 std::string progress_log(int epochs, double elapsed, long long steps_per_epoch) {
-  std::string text = "epoch,total_env_steps,episode_return_mean,kl,time_s,fps\n";
+  const bsg::RunConfig config = small_config();
+  const std::vector<std::string> columns =
+      bsg::epoch_log_columns(bsg::epoch_log_layout(config, *bsg::make_algorithm(config)));
+  std::string text;
+  for (std::size_t i = 0; i < columns.size(); ++i) text += (i > 0 ? "," : "") + columns[i];
+  text += "\n";
   for (int k = 0; k < epochs; ++k) {
-    text += std::to_string(k) + "," + std::to_string((k + 1) * steps_per_epoch) + "," +
-            bsg::format_csv_number(-3.25 + k * 1.5) + "," + bsg::format_csv_number(0.0071 * (k + 1)) + "," +
-            bsg::format_csv_number(k == epochs - 1 ? elapsed : 0.5 * (k + 1)) + ",nan\n";
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      const std::string& column = columns[i];
+      const std::string value = column == "epoch"             ? std::to_string(k)
+                                : column == "total_env_steps" ? std::to_string((k + 1) * steps_per_epoch)
+                                : column == "time_s"  ? bsg::format_csv_number(k == epochs - 1 ? elapsed : 0.5 * (k + 1))
+                                : column == "fps"     ? std::string("nan")
+                                                      : bsg::format_csv_number(-3.25 + k * 1.5 + 0.0071 * static_cast<double>(i));
+      text += (i > 0 ? "," : "") + value;
+    }
+    text += "\n";
   }
   return text;
 }
