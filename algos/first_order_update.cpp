@@ -76,50 +76,6 @@ void SampleLossBatch::check_sigma_kind(const GaussianPolicy& policy) const {
   }
 }
 
-double SampleLossBatch::learned_std_loss(const GaussianPolicy& policy, std::span<const Eigen::Index> rows,
-                                         const SampleLossFunction& sample_loss, Eigen::VectorXd* gradient) {
-  const double n = static_cast<double>(rows.size());
-  const int action_size = policy.action_size();
-  const Eigen::ArrayXd log_stds = policy.log_stds().array();
-  const Eigen::ArrayXd variances = (2.0 * log_stds).exp();                     // sigma_j^2
-  const Eigen::ArrayXd anchor_variances = (2.0 * anchor_log_stds_.array()).exp();  // sigma_a,j^2
-  // The part of KL_i that does not depend on the means: sum_j s_a,j - s_j + sigma_j^2 / (2 sigma_a,j^2) - 1/2.
-  const double kl_sigma_part = (anchor_log_stds_.array() - log_stds + variances / (2.0 * anchor_variances) - 0.5).sum();
-  const Eigen::ArrayXd kl_d_log_std = variances / anchor_variances - 1.0;  // d KL_i / d s_j
-  Eigen::ArrayXd log_std_gradient = Eigen::ArrayXd::Zero(action_size);
-  double loss_sum = 0.0;
-  const auto chunk = [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& means,
-                         Eigen::MatrixXd* output_gradients) {
-    const Eigen::Index count = means.rows();
-    chunk_ratios(policy, rows, first, means);
-    for (Eigen::Index r = 0; r < count; ++r) {
-      const Eigen::Index sample = rows[static_cast<std::size_t>(first + r)];
-      const double ratio = ratios_[r];
-      const Eigen::ArrayXd difference = (means.row(r) - anchors_.row(first + r)).transpose().array();
-      const Eigen::ArrayXd deviation = (actions_.row(first + r) - means.row(r)).transpose().array();  // a - mu
-      const double kl = kl_sigma_part + (difference.square() / (2.0 * anchor_variances)).sum();
-      const SampleLoss l = sample_loss(sample, ratio, kl);
-      loss_sum += l.value;
-      if (output_gradients != nullptr) {
-        output_gradients->row(r) =
-            ((l.d_ratio * ratio * deviation / variances + l.d_kl * difference / anchor_variances) / n).transpose().matrix();
-        log_std_gradient += (l.d_ratio * ratio * (deviation.square() / variances - 1.0) + l.d_kl * kl_d_log_std) / n;
-      }
-    }
-  };
-  if (gradient == nullptr) {
-    run_mean_net(policy, chunk, nullptr);
-  } else {
-    const Eigen::Index p = policy.mean_net().num_parameters();
-    Eigen::VectorXd mean_gradient;
-    run_mean_net(policy, chunk, &mean_gradient);
-    gradient->resize(p + action_size);
-    gradient->head(p) = mean_gradient;
-    gradient->tail(action_size) = log_std_gradient.matrix();
-  }
-  return loss_sum / n;
-}
-
 void SampleLossBatch::chunk_ratios(const GaussianPolicy& policy, std::span<const Eigen::Index> rows, Eigen::Index first,
                                    const Eigen::Ref<const Eigen::MatrixXd>& means) {
   const Eigen::Index count = means.rows();
@@ -156,11 +112,25 @@ double SampleLossBatch::loss(const GaussianPolicy& policy, std::span<const Eigen
   if (rows.empty()) throw std::invalid_argument("SampleLossBatch::loss: no rows");
   check_sigma_kind(policy);
   gather(rows);
-  if (policy.has_learned_std()) return learned_std_loss(policy, rows, sample_loss, gradient);
   const double n = static_cast<double>(rows.size());
-  const double sigma_squared = policy.std() * policy.std();
+  const bool learned = policy.has_learned_std();
+  const int action_size = policy.action_size();
+  // A fixed sigma is the learned case with s = s_a = log sigma in every dimension: the sigma part of
+  // KL_i is then 0 and nothing is accumulated for s.
+  const Eigen::ArrayXd variances =
+      learned ? Eigen::ArrayXd((2.0 * policy.log_stds().array()).exp())
+              : Eigen::ArrayXd::Constant(action_size, policy.std() * policy.std());  // sigma_j^2
+  const Eigen::ArrayXd anchor_variances =
+      learned ? Eigen::ArrayXd((2.0 * anchor_log_stds_.array()).exp()) : variances;  // sigma_a,j^2
+  // The part of KL_i that does not depend on the means: sum_j s_a,j - s_j + sigma_j^2 / (2 sigma_a,j^2) - 1/2.
+  const double kl_sigma_part =
+      learned ? (anchor_log_stds_.array() - policy.log_stds().array() + variances / (2.0 * anchor_variances) - 0.5).sum()
+              : 0.0;
+  const Eigen::ArrayXd kl_d_log_std = variances / anchor_variances - 1.0;  // d KL_i / d s_j
+  Eigen::ArrayXd log_std_gradient = Eigen::ArrayXd::Zero(action_size);
   double loss_sum = 0.0;
-  // Per gathered row r of a chunk: rho_r, KL_r, l_r, and (dl/dmu_r) / n.
+  Eigen::ArrayXd difference(action_size), deviation(action_size);  // sized once: no allocation per sample
+  // Per gathered row r of a chunk: rho_r, KL_r, l_r, and (dl/dmu_r) / n (and dl/ds / n summed).
   const auto chunk = [&](Eigen::Index first, const Eigen::Ref<const Eigen::MatrixXd>& means,
                          Eigen::MatrixXd* output_gradients) {
     const Eigen::Index count = means.rows();
@@ -168,19 +138,31 @@ double SampleLossBatch::loss(const GaussianPolicy& policy, std::span<const Eigen
     for (Eigen::Index r = 0; r < count; ++r) {
       const Eigen::Index sample = rows[static_cast<std::size_t>(first + r)];
       const double ratio = ratios_[r];
-      const auto difference = means.row(r) - anchors_.row(first + r);
-      const double kl = difference.squaredNorm() / (2.0 * sigma_squared);
+      difference = (means.row(r) - anchors_.row(first + r)).transpose().array();
+      const double kl = kl_sigma_part + (difference.square() / (2.0 * anchor_variances)).sum();
       const SampleLoss l = sample_loss(sample, ratio, kl);
       loss_sum += l.value;
       if (output_gradients != nullptr) {
-        // dl/dmu = dl/drho rho (a - mu) / sigma^2 + dl/dKL (mu - mu_anchor) / sigma^2, over n for the mean
+        deviation = (actions_.row(first + r) - means.row(r)).transpose().array();  // a - mu
+        // dl/dmu = dl/drho rho (a - mu) / sigma^2 + dl/dKL (mu - mu_anchor) / sigma_a^2, over n for the mean
         output_gradients->row(r) =
-            (l.d_ratio * ratio * (actions_.row(first + r) - means.row(r)) + l.d_kl * difference) /
-            (sigma_squared * n);
+            ((l.d_ratio * ratio * deviation / variances + l.d_kl * difference / anchor_variances) / n).transpose().matrix();
+        if (learned) {
+          log_std_gradient += (l.d_ratio * ratio * (deviation.square() / variances - 1.0) + l.d_kl * kl_d_log_std) / n;
+        }
       }
     }
   };
-  run_mean_net(policy, chunk, gradient);
+  if (gradient == nullptr || !learned) {
+    run_mean_net(policy, chunk, gradient);
+  } else {
+    const Eigen::Index p = policy.mean_net().num_parameters();
+    Eigen::VectorXd mean_gradient;
+    run_mean_net(policy, chunk, &mean_gradient);
+    gradient->resize(p + action_size);
+    gradient->head(p) = mean_gradient;
+    gradient->tail(action_size) = log_std_gradient.matrix();
+  }
   return loss_sum / n;
 }
 

@@ -85,8 +85,6 @@ class SampleLossBatch {
 
  private:
   void gather(std::span<const Eigen::Index> rows);
-  double learned_std_loss(const GaussianPolicy& policy, std::span<const Eigen::Index> rows,
-                          const SampleLossFunction& sample_loss, Eigen::VectorXd* gradient);
   void check_sigma_kind(const GaussianPolicy& policy) const;
   // Per chunk of gathered rows (first row, their means): the losses, and if the
   // matrix is given, d(mean loss)/d mu of each row into it.
