@@ -8,6 +8,7 @@
 #include <new>
 #include <ostream>
 
+#include "algos/advantage_normalization.h"
 #include "algos/constraint_costs.h"
 #include "algos/epoch_log.h"
 #include "algos/epoch_statistics.h"
@@ -181,17 +182,6 @@ void OnPolicyTrainer::check_ranks_agree(int epoch) const {
   }
 }
 
-void OnPolicyTrainer::standardize_advantages() {
-  // A <- (A - mean) / (std + 1e-8) and A^C <- A^C - mean^C, with the means and
-  // std pooled over ranks (what the original's disabled code would do, Q6).
-  const PooledStatistics reward = pool_statistics(advantages_, mpi_);
-  advantages_ = (advantages_.array() - reward.mean) / (reward.std + 1e-8);
-  for (Eigen::Index i = 0; i < cost_advantages_.cols(); ++i) {
-    const PooledStatistics cost = pool_statistics(cost_advantages_.col(i), mpi_);
-    cost_advantages_.col(i).array() -= cost.mean;
-  }
-}
-
 void OnPolicyTrainer::run_epoch(int epoch) {
   const auto epoch_start = Clock::now();
   const double epoch_cpu_start = process_cpu_seconds();
@@ -226,7 +216,11 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   ac.normalize_observations(buffer_.observations(), normalized_observations_);
   advantages_ = buffer_.advantages();
   cost_advantages_ = buffer_.constraint_cost_advantages();
-  if (config_.use_standardized_advantages) standardize_advantages();
+  if (config_.use_standardized_advantages) {
+    standardize_advantages(advantages_, cost_advantages_, mpi_);
+  } else if (config_.center_advantages) {
+    center_advantages(advantages_, cost_advantages_, mpi_);
+  }
   const auto policy_start = Clock::now();
   PolicySurrogate surrogate(normalized_observations_, buffer_.actions(), buffer_.log_probs(), advantages_,
                             cost_advantages_);

@@ -13,7 +13,7 @@
 //      prints a line), save a checkpoint every save_freq epochs and after the
 //      last epoch.
 // Advantages enter the update unnormalised (Q6) unless
-// use_standardized_advantages is set.
+// use_standardized_advantages is set, and uncentred unless center_advantages (Q20) is.
 // After the last epoch: the deterministic evaluation (evaluation.h) and its files.
 //
 // Seeding (common/seeding.h, derive_seed(run seed, stream, rank, index)):
@@ -115,7 +115,6 @@ class OnPolicyTrainer {
 
  private:
   void run_epoch(int epoch);
-  void standardize_advantages();
   void check_rollout_finite(int epoch) const;
   void check_finite(int epoch, const char* quantity, double value) const;
   void check_parameters_finite(int epoch) const;
@@ -134,7 +133,7 @@ class OnPolicyTrainer {
   RolloutCollector collector_;
   Eigen::MatrixXd normalized_observations_;
   Eigen::MatrixXd returns_column_;
-  Eigen::VectorXd advantages_;       // A_t as the update sees them (copy, optionally standardised)
+  Eigen::VectorXd advantages_;       // A_t as the update sees them (copy, optionally standardised or centred)
   Eigen::MatrixXd cost_advantages_;  // A^Ci_t likewise, one column per constraint
   Rng noise_rng_;
   Rng shuffle_rng_;
