@@ -71,6 +71,8 @@ class SampleLossBatch {
   // the anchor policy's learned log sigma (its log_stds()), empty for a fixed sigma.
   SampleLossBatch(const PolicySurrogate& surrogate, const Eigen::MatrixXd& anchor_means,
                   const Eigen::VectorXd& anchor_log_stds = Eigen::VectorXd());
+  // Temporary anchor means would dangle (the batch keeps a reference), so they do not compile.
+  SampleLossBatch(const PolicySurrogate&, Eigen::MatrixXd&&, const Eigen::VectorXd& = Eigen::VectorXd()) = delete;
 
   Eigen::Index num_samples() const { return surrogate_.num_samples(); }
 

@@ -167,7 +167,8 @@ TEST(LearnedLogStd, FocopsAndCupLossGradientsWithTheKlTermMatchFiniteDifferences
   EXPECT_NEAR(losses.mean_kl(b.batch.policy), hand_kls(b.batch, b.batch.policy.log_stds(), b.anchor, b.anchor_s).mean(),
               1e-13);
   // With the policy at its anchor the KL is zero (the sigma part included).
-  SampleLossBatch at_self(surrogate, b.batch.means(), b.batch.policy.log_stds());
+  const Eigen::MatrixXd own_means = b.batch.means();  // the batch keeps a reference: it must outlive it
+  SampleLossBatch at_self(surrogate, own_means, b.batch.policy.log_stds());
   EXPECT_NEAR(at_self.mean_kl(b.batch.policy), 0.0, 1e-15);
 }
 
