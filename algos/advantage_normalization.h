@@ -1,10 +1,10 @@
 // What the trainer may do to the advantages between GAE and the policy update
-// (docs/algorithms.md#advantages). The original does neither (Q6, Q20).
+// (docs/algorithms.md#advantages). The original does neither (Q6).
 //
 //   standardize_advantages: A <- (A - mean) / (std + 1e-8), A^C_i <- A^C_i - mean_i
 //                           (Q6: the original's switch, never used; OmniSafe's default);
 //   center_advantages:      A <- A - mean,                  A^C_i <- A^C_i - mean_i
-//                           (Q20: the batch mean goes, the relative size of reward and cost
+//                           (also Q6: the batch mean goes, the relative size of reward and cost
 //                           advantages that the Lagrangian and CPO-style updates weigh stays).
 //
 // Means and std are pooled over ranks (collective: every rank calls them).

@@ -13,7 +13,7 @@
 //      prints a line), save a checkpoint every save_freq epochs and after the
 //      last epoch.
 // Advantages enter the update unnormalised (Q6) unless
-// use_standardized_advantages is set, and uncentred unless center_advantages (Q20) is.
+// use_standardized_advantages is set, and uncentred unless center_advantages is.
 // After the last epoch: the deterministic evaluation (evaluation.h) and its files.
 //
 // Seeding (common/seeding.h, derive_seed(run seed, stream, rank, index)):

@@ -9,7 +9,6 @@ const std::vector<std::pair<std::string_view, std::string_view>>& corrected_lear
       {"consistent_return_statistic", "true"},  // Q5: the statistic in raw units throughout
       {"cpo_r_sign", "corrected"},              // Q10: CPO's dual with the right sign of r
       {"rescale_value_output", "true"},         // Q19: V's predictions kept when the statistic changes
-      {"center_advantages", "true"},            // Q20: V's bias no longer shifts every advantage
   };
   return settings;
 }

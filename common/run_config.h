@@ -114,7 +114,7 @@ struct RunConfig {
   bool use_standardized_obs = true;
   bool use_reward_scaling = true;
   bool use_standardized_advantages = false;  // Q6
-  bool center_advantages = false;            // Q20: subtract the pooled mean of every advantage
+  bool center_advantages = false;            // Q6 too: subtract the pooled mean of every advantage
   double obs_clip = 0.0;                     // Q3: 0 = no clipping
   bool exact_parallel_variance = false;      // Q4
   bool consistent_return_statistic = false;  // Q5: the statistic's bootstrap value in raw units

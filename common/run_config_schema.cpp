@@ -161,7 +161,7 @@ const std::vector<SchemaRow>& schema_rows() {
     boolean("use_standardized_advantages", &R::use_standardized_advantages, L::algorithm, all,
             "Q6: standardise advantages (the original never does)"),
     boolean("center_advantages", &R::center_advantages, L::algorithm, all,
-            "Q20: subtract the batch mean of the reward and cost advantages, keeping their scale "
+            "Q6: subtract the batch mean of the reward and cost advantages, keeping their scale "
             "(original: not centred; implied by use_standardized_advantages)"),
     real("obs_clip", &R::obs_clip, L::algorithm, at_least(0), all,
          "Q3: clip normalised observations to +-obs_clip; 0 = no clipping (original)"),

@@ -1,4 +1,4 @@
-// Standardising (Q6) and centring (Q20) the advantages against hand-computed
+// Standardising (Q6) and centring (also Q6) the advantages against hand-computed
 // batches: centring removes each column's mean and keeps its scale.
 #include "algos/advantage_normalization.h"
 

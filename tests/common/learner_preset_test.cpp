@@ -1,5 +1,5 @@
 // The `learner:` preset (common/learner_preset.h, docs/algorithms.md#quirk-switches):
-// `corrected` turns on Q1, Q4, Q5, Q10 (CPO only), Q19 and Q20 over the shipped
+// `corrected` turns on Q1, Q4, Q5, Q10 (CPO only) and Q19 over the shipped
 // algorithm files; a switch named in the run file or with --set keeps its
 // value; `faithful` and no preset resolve to the same configuration.
 #include "common/learner_preset.h"
@@ -45,13 +45,13 @@ TEST(LearnerPreset, CorrectedTurnsOnEveryCorrectedSwitch) {
   EXPECT_TRUE(trpo.exact_parallel_variance);      // Q4
   EXPECT_TRUE(trpo.consistent_return_statistic);  // Q5
   EXPECT_TRUE(trpo.rescale_value_output);         // Q19
-  EXPECT_TRUE(trpo.center_advantages);            // Q20
+  EXPECT_FALSE(trpo.center_advantages);           // a choice (Q6), not a correction
   EXPECT_EQ(trpo.cpo_r_sign, CpoRSign::original);  // Q10 is CPO's only
   // Everything else as without the preset.
   RunConfig expected = resolve("trpo", {});
   expected.learner = Learner::corrected;
   expected.zero_bias_init = expected.exact_parallel_variance = true;
-  expected.consistent_return_statistic = expected.rescale_value_output = expected.center_advantages = true;
+  expected.consistent_return_statistic = expected.rescale_value_output = true;
   EXPECT_EQ(trpo, expected);
 
   const RunConfig cpo = resolve("cpo", {"learner=corrected"});
