@@ -32,7 +32,7 @@ TEST(FirstOrderConfig, ShippedDefaults) {
     EXPECT_EQ(config.target_kl, 0.02);
     EXPECT_TRUE(config.kl_early_stop);
     EXPECT_EQ(config.max_grad_norm, 40.0);
-    EXPECT_FALSE(config.learn_log_std);  // the annealed sigma, as before the key existed
+    EXPECT_TRUE(config.learn_log_std);  // OmniSafe's learned log sigma (docs/algorithms.md#learned-log-sigma)
     EXPECT_EQ(config.learned_std_init, 0.509);
     EXPECT_TRUE(config.use_standardized_advantages);
     EXPECT_EQ(config.use_cost_value_function, std::string(alg) != "ppo");
