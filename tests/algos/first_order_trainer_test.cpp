@@ -83,7 +83,8 @@ double mean_over(const std::vector<double>& column, std::size_t first, std::size
 // 40 epochs of 5000 steps, seed 1, the shipped defaults except PPO-Lag's
 // multiplier step size: at OmniSafe's lambda_lr 0.035 its Adam multiplier
 // moves about 0.035 per epoch and is still rising after 40 epochs (cost about
-// 2.5 d there; the 150-epoch figures of docs/algorithms.md use the default),
+// 2.5 d there, measured with the annealed sigma; the 150-epoch figures of
+// docs/algorithms.md use the default),
 // so the test gives it lambda_lr 0.2. The longer runs' figures are in
 // docs/algorithms.md#first-order-updates.
 TEST(FirstOrderLearning, EachAlgorithmLearnsBallCircleOnAShortBudget) {
