@@ -115,17 +115,10 @@ double SampleLossBatch::loss(const GaussianPolicy& policy, std::span<const Eigen
   const double n = static_cast<double>(rows.size());
   const bool learned = policy.has_learned_std();
   const int action_size = policy.action_size();
-  // A fixed sigma is the learned case with s = s_a = log sigma in every dimension: the sigma part of
-  // KL_i is then 0 and nothing is accumulated for s.
-  const Eigen::ArrayXd variances =
-      learned ? Eigen::ArrayXd((2.0 * policy.log_stds().array()).exp())
-              : Eigen::ArrayXd::Constant(action_size, policy.std() * policy.std());  // sigma_j^2
-  const Eigen::ArrayXd anchor_variances =
-      learned ? Eigen::ArrayXd((2.0 * anchor_log_stds_.array()).exp()) : variances;  // sigma_a,j^2
-  // The part of KL_i that does not depend on the means: sum_j s_a,j - s_j + sigma_j^2 / (2 sigma_a,j^2) - 1/2.
-  const double kl_sigma_part =
-      learned ? (anchor_log_stds_.array() - policy.log_stds().array() + variances / (2.0 * anchor_variances) - 0.5).sum()
-              : 0.0;
+  const SigmaTerms sigma = sigma_terms(policy);
+  const Eigen::ArrayXd& variances = sigma.variances;
+  const Eigen::ArrayXd& anchor_variances = sigma.anchor_variances;
+  const double kl_sigma_part = sigma.kl_sigma_part;
   const Eigen::ArrayXd kl_d_log_std = variances / anchor_variances - 1.0;  // d KL_i / d s_j
   Eigen::ArrayXd log_std_gradient = Eigen::ArrayXd::Zero(action_size);
   double loss_sum = 0.0;
@@ -166,22 +159,33 @@ double SampleLossBatch::loss(const GaussianPolicy& policy, std::span<const Eigen
   return loss_sum / n;
 }
 
+SampleLossBatch::SigmaTerms SampleLossBatch::sigma_terms(const GaussianPolicy& policy) const {
+  // A fixed sigma is the learned case with s = s_a = log sigma in every dimension: the sigma part of
+  // KL_i is then 0 (and the loss accumulates nothing for s).
+  SigmaTerms terms;
+  if (!policy.has_learned_std()) {
+    terms.variances = Eigen::ArrayXd::Constant(policy.action_size(), policy.std() * policy.std());
+    terms.anchor_variances = terms.variances;
+    return terms;
+  }
+  terms.variances = (2.0 * policy.log_stds().array()).exp();
+  terms.anchor_variances = (2.0 * anchor_log_stds_.array()).exp();
+  terms.kl_sigma_part =
+      (anchor_log_stds_.array() - policy.log_stds().array() + terms.variances / (2.0 * terms.anchor_variances) - 0.5)
+          .sum();
+  return terms;
+}
+
 double SampleLossBatch::mean_kl(const GaussianPolicy& policy) {
+  check_sigma_kind(policy);
   means_.resize(num_samples(), anchor_means_.cols());
   policy.mean_net().evaluate_batch(surrogate_.observations(), means_, workspace_);
-  check_sigma_kind(policy);
-  if (policy.has_learned_std()) {
-    // 1/N sum_i KL_i with the learned sigma's KL_i (this header's comment)
-    const Eigen::ArrayXd log_stds = policy.log_stds().array();
-    const Eigen::ArrayXd anchor_variances = (2.0 * anchor_log_stds_.array()).exp();
-    const double kl_sigma_part =
-        (anchor_log_stds_.array() - log_stds + (2.0 * log_stds).exp() / (2.0 * anchor_variances) - 0.5).sum();
-    const Eigen::RowVectorXd inverse_double_variances = (0.5 / anchor_variances).matrix().transpose();
-    return kl_sigma_part + ((means_ - anchor_means_).array().square().rowwise() * inverse_double_variances.array()).sum() /
-                               static_cast<double>(num_samples());
-  }
-  // sum_i sum_j (mu_ij - mu_anchor,ij)^2 / (2 sigma^2) / N
-  return (means_ - anchor_means_).squaredNorm() / (2.0 * policy.std() * policy.std() * static_cast<double>(num_samples()));
+  // 1/N sum_i KL_i = sigma part + 1/N sum_i sum_j (mu_ij - mu_anchor,ij)^2 / (2 sigma_a,j^2)
+  const SigmaTerms sigma = sigma_terms(policy);
+  const Eigen::RowVectorXd inverse_double_variances = (0.5 / sigma.anchor_variances).matrix().transpose();
+  return sigma.kl_sigma_part +
+         ((means_ - anchor_means_).array().square().rowwise() * inverse_double_variances.array()).sum() /
+             static_cast<double>(num_samples());
 }
 
 PolicyAdam::PolicyAdam(double learning_rate) { options_.learning_rate = learning_rate; }

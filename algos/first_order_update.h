@@ -87,6 +87,14 @@ class SampleLossBatch {
 
  private:
   void gather(std::span<const Eigen::Index> rows);
+  // sigma_j^2, sigma_a,j^2 and the part of KL_i that does not depend on the means,
+  // sum_j s_a,j - s_j + sigma_j^2 / (2 sigma_a,j^2) - 1/2 (0 for a fixed sigma).
+  struct SigmaTerms {
+    Eigen::ArrayXd variances;
+    Eigen::ArrayXd anchor_variances;
+    double kl_sigma_part = 0.0;
+  };
+  SigmaTerms sigma_terms(const GaussianPolicy& policy) const;
   void check_sigma_kind(const GaussianPolicy& policy) const;
   // Per chunk of gathered rows (first row, their means): the losses, and if the
   // matrix is given, d(mean loss)/d mu of each row into it.
