@@ -1,6 +1,7 @@
 #include "algos/actor_critic.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 namespace bsg {
@@ -58,6 +59,16 @@ void load_normalizer(RunningMeanStd& normalizer, BinaryReader& reader, const std
   normalizer.set_state(mean, std, count);
 }
 
+int value_input_size_of(int observation_size, const RunConfig& config) {
+  return observation_size + (config.value_time_input ? 1 : 0);
+}
+
+// (T - t)/T: 1 at a reset, 1/T on the last step before a time-out, 0 at the
+// time-out's bootstrap observation.
+double time_left_fraction(int episode_step, int time_limit) {
+  return static_cast<double>(time_limit - episode_step) / static_cast<double>(time_limit);
+}
+
 void broadcast_value_function(ValueFunction& value, const MpiContext& mpi) {
   mpi.broadcast_from_root(value.net().mutable_parameters());
 }
@@ -68,19 +79,44 @@ void broadcast_normalizer(RunningMeanStd& normalizer, const MpiContext& mpi) { n
 
 ActorCritic::ActorCritic(int observation_size, int action_size, const RunConfig& config, Rng& init_rng)
     : policy(observation_size, action_size, config.hidden_sizes, init_rng, init_options(config)),
-      value(observation_size, config.hidden_sizes, init_rng, init_options(config), value_adam_options(config)),
-      cost_value(observation_size, config.hidden_sizes, init_rng, init_options(config),
+      value(value_input_size_of(observation_size, config), config.hidden_sizes, init_rng, init_options(config),
+            value_adam_options(config)),
+      cost_value(value_input_size_of(observation_size, config), config.hidden_sizes, init_rng, init_options(config),
                  value_adam_options(config)),
       observation_normalizer(observation_size, observation_normalizer_options(config)),
       return_normalizer(1, return_normalizer_options(config)),
-      standardize_observations(config.use_standardized_obs) {
+      standardize_observations(config.use_standardized_obs),
+      value_time_limit(config.value_time_input ? config.max_ep_len : 0) {
+  if (config.value_time_input && config.max_ep_len <= 0) {
+    throw std::invalid_argument("value_time_input needs a positive max_ep_len, got " +
+                                std::to_string(config.max_ep_len));
+  }
   const int constraints = std::max<int>(1, static_cast<int>(config.constraints.size()));
   extra_cost_values.reserve(static_cast<std::size_t>(constraints - 1));
   for (int i = 1; i < constraints; ++i) {
-    extra_cost_values.emplace_back(observation_size, config.hidden_sizes, init_rng, init_options(config),
-                                   value_adam_options(config));
+    extra_cost_values.emplace_back(value_input_size_of(observation_size, config), config.hidden_sizes, init_rng,
+                                   init_options(config), value_adam_options(config));
   }
   if (config.learn_log_std) policy.learn_log_std(config.learned_std_init);  // docs/algorithms.md#learned-log-sigma
+}
+
+void ActorCritic::value_input(const Eigen::Ref<const Eigen::VectorXd>& normalized, int episode_step,
+                              Eigen::Ref<Eigen::VectorXd> input) const {
+  const Eigen::Index d = normalized.size();
+  input.head(d) = normalized;
+  if (value_time_limit > 0) input[d] = time_left_fraction(episode_step, value_time_limit);
+}
+
+void ActorCritic::value_inputs(const Eigen::Ref<const Eigen::MatrixXd>& normalized,
+                               const Eigen::Ref<const Eigen::VectorXi>& episode_steps,
+                               Eigen::Ref<Eigen::MatrixXd> inputs) const {
+  const Eigen::Index d = normalized.cols();
+  inputs.leftCols(d) = normalized;
+  if (value_time_limit > 0) {
+    for (Eigen::Index i = 0; i < inputs.rows(); ++i) {
+      inputs(i, d) = time_left_fraction(episode_steps[i], value_time_limit);
+    }
+  }
 }
 
 void ActorCritic::normalize_observation(const Eigen::Ref<const Eigen::VectorXd>& raw,

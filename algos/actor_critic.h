@@ -10,6 +10,7 @@
 //   vf_lr                                 Adam learning rate of V and V_C
 //   use_standardized_obs, obs_clip,       observation normalisation (docs/algorithms.md#observation-normaliser, Q3, Q4)
 //   exact_parallel_variance
+//   value_time_input, max_ep_len          V and V_C also see the time left (docs/algorithms.md#value-time-input)
 #pragma once
 
 #include <Eigen/Core>
@@ -40,6 +41,10 @@ struct ActorCritic {
   RunningMeanStd observation_normalizer;
   RunningMeanStd return_normalizer;
   bool standardize_observations = true;
+  // With value_time_input, the time limit T in steps: V and every V_Ci see the
+  // normalised observation and, as one more input, the fraction of the time
+  // limit left, (T - t)/T at episode step t. 0: they see the observation alone.
+  int value_time_limit = 0;
 
   int observation_size() const { return policy.observation_size(); }
   int action_size() const { return policy.action_size(); }
@@ -55,6 +60,16 @@ struct ActorCritic {
                              Eigen::Ref<Eigen::VectorXd> normalized) const;
   void normalize_observations(const Eigen::Ref<const Eigen::MatrixXd>& raw,
                               Eigen::Ref<Eigen::MatrixXd> normalized) const;
+
+  // The input size of V and V_Ci: d_o, or d_o + 1 with the time input.
+  int value_input_size() const { return observation_size() + (value_time_limit > 0 ? 1 : 0); }
+  // V's input for a normalised observation at episode step t (`input` holds
+  // value_input_size() entries); the observation alone without the time input.
+  void value_input(const Eigen::Ref<const Eigen::VectorXd>& normalized, int episode_step,
+                   Eigen::Ref<Eigen::VectorXd> input) const;
+  // The same for a batch, one observation per row.
+  void value_inputs(const Eigen::Ref<const Eigen::MatrixXd>& normalized, const Eigen::Ref<const Eigen::VectorXi>& episode_steps,
+                    Eigen::Ref<Eigen::MatrixXd> inputs) const;
 
   // Every rank takes rank 0's parameters and statistics (docs/algorithms.md#set-up, step 5).
   void broadcast_from_root(const MpiContext& mpi);

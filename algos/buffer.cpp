@@ -46,6 +46,7 @@ Buffer::Buffer(Eigen::Index capacity, int observation_size, int action_size, Buf
   for (Eigen::VectorXd* v : {&rewards_, &values_, &log_probs_, &advantages_, &value_targets_, &discounted_returns_}) {
     v->setZero(capacity);
   }
+  episode_steps_.setZero(capacity);
   for (Eigen::MatrixXd* m : {&costs_, &cost_values_, &cost_advantages_, &cost_value_targets_}) {
     m->setZero(capacity, options.constraint_count);
   }
@@ -112,6 +113,7 @@ void Buffer::store(const Eigen::Ref<const Eigen::VectorXd>& observation,
   values_[size_] = value;
   cost_values_.row(size_) = cost_values.transpose();
   log_probs_[size_] = log_prob;
+  episode_steps_[size_] = current_episode_.episode_length;
   ++size_;
   current_episode_.episode_return += reward;
   current_episode_.episode_cost += cost;

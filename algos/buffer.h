@@ -93,6 +93,7 @@ class Buffer {
   const Eigen::VectorXd& rewards() const { return rewards_; }              // raw r_t
   const Eigen::VectorXd& values() const { return values_; }                // V_t
   const Eigen::VectorXd& log_probs() const { return log_probs_; }          // log pi_old
+  const Eigen::VectorXi& episode_steps() const { return episode_steps_; }  // t within its episode (0 at a reset)
   const Eigen::VectorXd& advantages() const { return advantages_; }        // A_t
   const Eigen::VectorXd& value_targets() const { return value_targets_; }      // R_t = A_t + V_t
   const Eigen::VectorXd& discounted_returns() const { return discounted_returns_; }  // G_t
@@ -122,6 +123,7 @@ class Buffer {
   Eigen::MatrixXd observations_;
   Eigen::MatrixXd actions_;
   Eigen::VectorXd rewards_, values_, log_probs_;
+  Eigen::VectorXi episode_steps_;
   Eigen::VectorXd advantages_, value_targets_, discounted_returns_;
   Eigen::MatrixXd costs_, cost_values_, cost_advantages_, cost_value_targets_;  // N x m
   double epoch_cost_ = 0.0;

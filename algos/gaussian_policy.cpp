@@ -1,5 +1,6 @@
 #include "algos/gaussian_policy.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -20,6 +21,10 @@ std::string shape(const Eigen::Ref<const Eigen::MatrixXd>& m) {
 }
 
 const double kHalfLog2Pi = 0.5 * std::log(2.0 * std::numbers::pi);
+
+
+// sigma_k = 0.499 (1 - k/n) + 0.01: 0.509 at k = 0, 0.01 at k = n.
+double linear_std(int k, int n) { return 0.499 * (1.0 - static_cast<double>(k) / n) + 0.01; }
 
 }  // namespace
 
@@ -62,7 +67,17 @@ double GaussianPolicy::annealed_std(int epoch, int epochs) {
     throw std::invalid_argument("GaussianPolicy::annealed_std: epoch " + std::to_string(epoch) +
                                 " must lie in [0, epochs = " + std::to_string(epochs) + ")");
   }
-  return 0.499 * (1.0 - static_cast<double>(epoch) / epochs) + 0.01;  // sigma_k
+  return linear_std(epoch, epochs);
+}
+
+double GaussianPolicy::annealed_std(int epoch, int epochs, int anneal_epochs) {
+  if (anneal_epochs < 0 || anneal_epochs > epochs) {
+    throw std::invalid_argument("GaussianPolicy::annealed_std: anneal_epochs " + std::to_string(anneal_epochs) +
+                                " must lie in [0, epochs = " + std::to_string(epochs) + "]");
+  }
+  if (anneal_epochs == 0) return annealed_std(epoch, epochs);
+  annealed_std(epoch, epochs);  // the same check of epoch
+  return linear_std(std::min(epoch, anneal_epochs), anneal_epochs);
 }
 
 void GaussianPolicy::mean_action(const Eigen::Ref<const Eigen::VectorXd>& observation,

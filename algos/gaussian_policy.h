@@ -50,6 +50,10 @@ class GaussianPolicy {
 
   // sigma_k = 0.499 (1 - k/E) + 0.01 for epoch k of E (docs/algorithms.md#exploration-noise, Q2).
   static double annealed_std(int epoch, int epochs);
+  // The same schedule ending early: sigma_k = 0.499 (1 - min(k, n)/n) + 0.01
+  // for n = anneal_epochs in [1, E], so that sigma reaches 0.01 at epoch n and
+  // holds it (exploration_anneal_epochs); n = 0 is n = E, the schedule above.
+  static double annealed_std(int epoch, int epochs, int anneal_epochs);
   void set_annealed_std(int epoch, int epochs) { set_std(annealed_std(epoch, epochs)); }
 
   // Deterministic action mu_theta(s) (evaluation). No allocation once `workspace` is sized.

@@ -33,11 +33,16 @@ void RolloutCollector::copy_observation(std::span<const double> observation) {
   raw_observation_ = Eigen::Map<const Eigen::VectorXd>(observation.data(), raw_observation_.size());
 }
 
-double RolloutCollector::predict_values(const ActorCritic& actor_critic, Eigen::VectorXd& cost_values) {
-  const double value = actor_critic.value.predict(normalized_observation_, value_workspace_);
+double RolloutCollector::predict_values(const ActorCritic& actor_critic, int episode_step,
+                                        Eigen::VectorXd& cost_values) {
+  const Eigen::VectorXd* input = &normalized_observation_;
+  if (actor_critic.value_time_limit > 0) {
+    actor_critic.value_input(normalized_observation_, episode_step, value_input_);
+    input = &value_input_;
+  }
+  const double value = actor_critic.value.predict(*input, value_workspace_);
   for (int i = 0; i < costs_.count(); ++i) {
-    cost_values[i] = actor_critic.cost_value_net(i).predict(normalized_observation_,
-                                                            cost_value_workspaces_[static_cast<std::size_t>(i)]);
+    cost_values[i] = actor_critic.cost_value_net(i).predict(*input, cost_value_workspaces_[static_cast<std::size_t>(i)]);
   }
   return value;
 }
@@ -55,6 +60,7 @@ void RolloutCollector::collect(envs::Env& env, std::uint64_t epoch_env_seed, con
                                 " cost value nets");
   }
   buffer.reset();
+  if (value_input_.size() != actor_critic.value_input_size()) value_input_.setZero(actor_critic.value_input_size());
   const std::optional<double> reward_scale_std =
       options_.use_reward_scaling ? std::optional<double>(actor_critic.return_normalizer.std()[0]) : std::nullopt;
   const std::span<const double> action_view(action_.data(), static_cast<std::size_t>(action_.size()));
@@ -64,7 +70,7 @@ void RolloutCollector::collect(envs::Env& env, std::uint64_t epoch_env_seed, con
     actor_critic.normalize_observation(raw_observation_, normalized_observation_);
     const double log_prob =
         actor_critic.policy.sample_action(normalized_observation_, action_, noise_rng, policy_workspace_);
-    const double value = predict_values(actor_critic, step_cost_values_);
+    const double value = predict_values(actor_critic, buffer.current_episode().episode_length, step_cost_values_);
 
     const envs::StepResult step = env.step(action_view);
     costs_.select(step, step_costs_);
@@ -84,7 +90,8 @@ void RolloutCollector::collect(envs::Env& env, std::uint64_t epoch_env_seed, con
     const bool bootstrap = timeout ? options_.timeout_bootstrap : epoch_end;
     if (bootstrap) {
       actor_critic.normalize_observation(raw_observation_, normalized_observation_);
-      last_value = predict_values(actor_critic, last_cost_values_);
+      // o_t+1 is episode step episode_length (T at a time-out: no time left).
+      last_value = predict_values(actor_critic, buffer.current_episode().episode_length, last_cost_values_);
     }
     buffer.finish_path(last_value, last_cost_values_, reward_scale_std,
                        terminal ? PathEnd::episode_end : PathEnd::epoch_cut);

@@ -59,8 +59,9 @@ class RolloutCollector {
 
  private:
   void copy_observation(std::span<const double> observation);
-  // V and every V_Ci of normalized_observation_ (normalised already).
-  double predict_values(const ActorCritic& actor_critic, Eigen::VectorXd& cost_values);
+  // V and every V_Ci of normalized_observation_ (normalised already) at
+  // `episode_step` (an input of the nets only with the time input).
+  double predict_values(const ActorCritic& actor_critic, int episode_step, Eigen::VectorXd& cost_values);
 
   RolloutOptions options_;
   StepCostSelector costs_;
@@ -69,6 +70,7 @@ class RolloutCollector {
   Eigen::VectorXd last_cost_values_;  // V_Ci(s_T) at a bootstrap
   Eigen::VectorXd raw_observation_;
   Eigen::VectorXd normalized_observation_;
+  Eigen::VectorXd value_input_;  // normalized_observation_ and the time left, with the time input
   Eigen::VectorXd action_;
   MlpSampleWorkspace policy_workspace_;
   MlpSampleWorkspace value_workspace_;

@@ -191,8 +191,9 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   // 1. Exploration noise of this epoch (docs/algorithms.md#exploration-noise); a learned
   // log sigma is the update's to change (docs/algorithms.md#learned-log-sigma).
   if (!ac.policy.has_learned_std()) {
-    ac.policy.set_std(config_.use_exploration_noise_anneal ? GaussianPolicy::annealed_std(epoch, config_.epochs)
-                                                           : GaussianPolicy::kInitialStd);
+    ac.policy.set_std(config_.use_exploration_noise_anneal
+                          ? GaussianPolicy::annealed_std(epoch, config_.epochs, config_.exploration_anneal_epochs)
+                          : GaussianPolicy::kInitialStd);
   }
   noise_rng_.seed(stream_seed(config_, SeedStream::action_noise, rank, epoch));
   shuffle_rng_.seed(stream_seed(config_, SeedStream::minibatch_shuffle, rank, epoch));
@@ -241,8 +242,14 @@ void OnPolicyTrainer::run_epoch(int epoch) {
       fit_jobs.push_back({ac.cost_value_net(i), buffer_.constraint_cost_value_targets().col(i)});
     }
   }
+  const Eigen::MatrixXd* value_fit_inputs = &normalized_observations_;
+  if (ac.value_time_limit > 0) {  // the time left as one more column (docs/algorithms.md#value-time-input)
+    value_inputs_.resize(normalized_observations_.rows(), ac.value_input_size());
+    ac.value_inputs(normalized_observations_, buffer_.episode_steps(), value_inputs_);
+    value_fit_inputs = &value_inputs_;
+  }
   const std::vector<ValueFitStats> fits =
-      fit_value_functions(fit_jobs, normalized_observations_, shuffle_rng_, mpi_, fit_options);
+      fit_value_functions(fit_jobs, *value_fit_inputs, shuffle_rng_, mpi_, fit_options);
   const ValueFitStats& value_fit = fits.front();
   check_finite(epoch, "value loss", value_fit.loss_before);
   check_finite(epoch, "value minibatch loss", value_fit.mean_minibatch_loss);

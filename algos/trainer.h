@@ -132,6 +132,7 @@ class OnPolicyTrainer {
   Buffer buffer_;
   RolloutCollector collector_;
   Eigen::MatrixXd normalized_observations_;
+  Eigen::MatrixXd value_inputs_;  // normalized_observations_ and the time left (value_time_input only)
   Eigen::MatrixXd returns_column_;
   Eigen::VectorXd advantages_;       // A_t as the update sees them (copy, optionally standardised or centred)
   Eigen::MatrixXd cost_advantages_;  // A^Ci_t likewise, one column per constraint

@@ -111,6 +111,7 @@ struct RunConfig {
   double lam = 0.95;               // GAE lambda, rewards
   double lam_c = 0.95;             // GAE lambda, costs
   bool use_exploration_noise_anneal = true;
+  int exploration_anneal_epochs = 0;  // > 0: sigma reaches 0.01 after this many epochs and holds it; 0 = E
   bool use_standardized_obs = true;
   bool use_reward_scaling = true;
   bool use_standardized_advantages = false;  // Q6
@@ -121,6 +122,7 @@ struct RunConfig {
   bool rescale_value_output = false;         // Q19: V's output layer follows the statistic (PopArt)
   int reward_scale_warmup_epochs = 0;        // > 0: the statistic is frozen after this many epochs
   bool timeout_bootstrap = true;             // bootstrap V at time-outs (false: a time-out ends the return)
+  bool value_time_input = false;             // V and V_C also see the fraction of max_ep_len left
 
   // --- trust region (docs/algorithms.md#trust-region-tools) ---
   double target_kl = 0.01;         // delta

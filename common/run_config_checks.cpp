@@ -83,6 +83,20 @@ void check_run_config_relations(const RunConfig& config, const ConfigOrigins& or
                       std::to_string(config.hidden_sizes.size()) + " hidden layers; at most " +
                       std::to_string(kMaxHiddenLayers) + " are allowed");
   }
+  if (config.exploration_anneal_epochs > 0) {
+    const std::string where = "exploration_anneal_epochs = " + std::to_string(config.exploration_anneal_epochs) +
+                              " (" + origin_of(origins, "exploration_anneal_epochs") + ")";
+    if (config.exploration_anneal_epochs > config.epochs) {
+      throw ConfigError(where + " exceeds epochs = " + std::to_string(config.epochs) + " (" +
+                        origin_of(origins, "epochs") + "): the annealing must end within the run");
+    }
+    if (!config.use_exploration_noise_anneal || config.learn_log_std) {
+      throw ConfigError(where + " has no effect: sigma is " +
+                        (config.learn_log_std ? std::string("learned (learn_log_std: true)")
+                                              : std::string("fixed (use_exploration_noise_anneal: false)")) +
+                        "; set it to 0 or anneal sigma");
+    }
+  }
   const auto check_at_most = [&](const char* key, long long value, long long limit) {
     if (value > limit) {
       throw ConfigError(std::string(key) + " = " + std::to_string(value) + " (" + origin_of(origins, key) +

@@ -154,6 +154,9 @@ const std::vector<SchemaRow>& schema_rows() {
          "GAE lambda for cost advantages"),
     boolean("use_exploration_noise_anneal", &R::use_exploration_noise_anneal, L::algorithm, all,
             "anneal the exploration std: sigma_k = 0.499 (1 - k/E) + 0.01 (else fixed 0.5)"),
+    integer("exploration_anneal_epochs", &R::exploration_anneal_epochs, L::algorithm, closed(0, kIntMax), all,
+            "n > 0: the annealing ends at epoch n, sigma_k = 0.499 (1 - min(k, n)/n) + 0.01, and sigma holds "
+            "0.01 for the epochs after it; 0 = E, the original's schedule; at most epochs"),
     boolean("use_standardized_obs", &R::use_standardized_obs, L::algorithm, all,
             "normalise observations by the running mean/std"),
     boolean("use_reward_scaling", &R::use_reward_scaling, L::algorithm, all,
@@ -177,6 +180,9 @@ const std::vector<SchemaRow>& schema_rows() {
             "update the return statistic only in the first n epochs, then keep it; 0 = every epoch (original)"),
     boolean("timeout_bootstrap", &R::timeout_bootstrap, L::algorithm, all,
             "bootstrap with V (V_C) of the next observation at a time-out (original); false: as a terminal"),
+    boolean("value_time_input", &R::value_time_input, L::algorithm, all,
+            "V and V_C also see the fraction of the time limit left, (max_ep_len - t)/max_ep_len at "
+            "episode step t; false: the observation alone (original)"),
     // --- trust region (docs/algorithms.md#trust-region-tools) ---
     real("target_kl", &R::target_kl, L::algorithm, above(0), all,
          "delta: trust-region size (mean KL per action dimension, Q8); first-order algorithms: the "

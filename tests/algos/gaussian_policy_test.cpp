@@ -19,6 +19,22 @@ TEST(GaussianPolicy, AnnealedStdFollowsTheOriginalSchedule) {
   EXPECT_THROW(GaussianPolicy::annealed_std(0, 0), std::invalid_argument);
 }
 
+TEST(GaussianPolicy, AnAnnealingThatEndsEarlyHoldsTheMinimumAfterwards) {
+  // E = 100, n = 80: 0.499 (1 - k/80) + 0.01 up to epoch 80, then 0.01.
+  EXPECT_NEAR(GaussianPolicy::annealed_std(0, 100, 80), 0.509, 1e-15);
+  EXPECT_NEAR(GaussianPolicy::annealed_std(40, 100, 80), 0.2595, 1e-15);
+  EXPECT_NEAR(GaussianPolicy::annealed_std(79, 100, 80), 0.0162375, 1e-15);
+  for (const int k : {80, 90, 99}) EXPECT_NEAR(GaussianPolicy::annealed_std(k, 100, 80), 0.01, 1e-15) << k;
+  // n = 0 and n = E are the original schedule, bit for bit.
+  for (const int k : {0, 37, 99}) {
+    EXPECT_EQ(GaussianPolicy::annealed_std(k, 100, 0), GaussianPolicy::annealed_std(k, 100)) << k;
+    EXPECT_EQ(GaussianPolicy::annealed_std(k, 100, 100), GaussianPolicy::annealed_std(k, 100)) << k;
+  }
+  EXPECT_THROW(GaussianPolicy::annealed_std(0, 100, 101), std::invalid_argument);
+  EXPECT_THROW(GaussianPolicy::annealed_std(0, 100, -1), std::invalid_argument);
+  EXPECT_THROW(GaussianPolicy::annealed_std(100, 100, 80), std::invalid_argument);
+}
+
 TEST(GaussianPolicy, StartsWithStdOneHalfAndMeanNetOfTheRightShape) {
   Rng rng(1);
   GaussianPolicy policy(8, 2, {64, 64}, rng);

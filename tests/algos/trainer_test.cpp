@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "../test_support.h"
 #include "algos/make_algorithm.h"
@@ -155,4 +156,24 @@ TEST(Trainer, AFloat32EpochMovesTheParametersAsTheFloat64EpochDoes) {
   check("V", a0.value.net().parameters(), a64.value.net().parameters(), a32.value.net().parameters(), 0.1);
   check("V_C", a0.cost_value.net().parameters(), a64.cost_value.net().parameters(),
         a32.cost_value.net().parameters(), 0.1);
+}
+
+TEST(Trainer, AnAnnealingThatEndsEarlyHoldsSigmaAtItsMinimum) {
+  // E = 5, exploration_anneal_epochs = 2: sigma 0.509, 0.2595, then 0.01 in epochs 2-4
+  // (the original schedule would end at 0.499/5 + 0.01 = 0.1098).
+  TemporaryDirectory dir;
+  bsg::RunConfig config = scripted_config();
+  config.exploration_anneal_epochs = 2;
+  config.eval_episodes = 0;
+  std::vector<double> sigmas;
+  bsg::TrainerOptions options;
+  bsg::OnPolicyTrainer* running = nullptr;
+  options.on_epoch_timed = [&](const bsg::EpochTimings&) { sigmas.push_back(running->actor_critic().policy.std()); };
+  bsg::OnPolicyTrainer trainer(config, bsg::RunDirectory(dir.path() / "run"), bsg::MpiContext::single_process(),
+                               options, std::make_unique<ScriptedEnv>(100));
+  running = &trainer;
+  trainer.run();
+  ASSERT_EQ(sigmas.size(), 5u);
+  const double expected[5] = {0.509, 0.2595, 0.01, 0.01, 0.01};
+  for (int k = 0; k < 5; ++k) EXPECT_NEAR(sigmas[static_cast<std::size_t>(k)], expected[k], 1e-15) << k;
 }

@@ -358,6 +358,23 @@ TEST_F(ScratchConfigs, EpisodeLongerThanEpochIsAnErrorNamingBothKeys) {
   EXPECT_TRUE(contains(m, "steps_per_epoch = 200 (" + run.string() + ":3:1)"));
 }
 
+TEST_F(ScratchConfigs, AnAnnealingLongerThanTheRunOrWithoutAnnealedSigmaIsAnError) {
+  const fs::path run = write_run(std::string(kTrpoRun) + "epochs: 20\n");
+  EXPECT_EQ(resolve_run_config(request(run, {"exploration_anneal_epochs=20"})).config.exploration_anneal_epochs, 20);
+  std::string m = error_of(request(run, {"exploration_anneal_epochs=21"}));
+  EXPECT_TRUE(contains(m, "exploration_anneal_epochs = 21 (--set exploration_anneal_epochs=21) exceeds epochs = 20 (" +
+                              run.string() + ":3:1)"));
+  m = error_of(request(run, {"exploration_anneal_epochs=10", "use_exploration_noise_anneal=false"}));
+  EXPECT_TRUE(contains(m, "exploration_anneal_epochs = 10"));
+  EXPECT_TRUE(contains(m, "has no effect: sigma is fixed (use_exploration_noise_anneal: false)"));
+  write_text(alg_file("ppo"), read_text_file(kShippedConfigs / "algorithms" / "ppo.yaml"));
+  m = error_of(request(run, {"alg=ppo", "exploration_anneal_epochs=10"}));
+  EXPECT_TRUE(contains(m, "has no effect: sigma is learned (learn_log_std: true)"));
+  EXPECT_EQ(resolve_run_config(request(run, {"alg=ppo", "exploration_anneal_epochs=10", "learn_log_std=false"}))
+                .config.exploration_anneal_epochs,
+            10);
+}
+
 TEST(CheckRunConfigForRanks, AppliesTheSpecsSetupChecks) {
   RunConfig c;
   c.steps_per_epoch = 1000;
