@@ -9,6 +9,7 @@ const std::vector<std::pair<std::string_view, std::string_view>>& corrected_lear
       {"consistent_return_statistic", "true"},  // Q5: the statistic in raw units throughout
       {"cpo_r_sign", "corrected"},              // Q10: CPO's dual with the right sign of r
       {"rescale_value_output", "true"},         // Q19: V's predictions kept when the statistic changes
+      {"value_time_input", "true"},             // Q20: V and V_C see the time left in the episode
   };
   return settings;
 }

@@ -1,6 +1,6 @@
 // The `learner:` preset (docs/algorithms.md#quirk-switches): `learner: corrected`
 // turns on every switch that corrects one of the original's quirks (Q1, Q4,
-// Q5, Q10, Q19) in one word, so that a run file or a sweep can ask for the
+// Q5, Q10, Q19, Q20) in one word, so that a run file or a sweep can ask for the
 // corrected learner without listing them. `learner: faithful` (the default)
 // changes nothing.
 //

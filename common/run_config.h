@@ -60,7 +60,7 @@ inline constexpr std::array<std::string_view, 2> kPhysicsNames = {"faithful", "l
 
 // Which learner a run uses (docs/algorithms.md#quirk-switches): the original's
 // (every quirk switch as set by the layers) or the corrected one, which turns
-// on every "corrected" switch (Q1, Q4, Q5, Q10, Q19) unless the run file or
+// on every "corrected" switch (Q1, Q4, Q5, Q10, Q19, Q20) unless the run file or
 // --set names that switch itself.
 enum class Learner { faithful, corrected };
 inline constexpr std::array<std::string_view, 2> kLearnerNames = {"faithful", "corrected"};

@@ -119,7 +119,7 @@ const std::vector<SchemaRow>& schema_rows() {
            "faithful (the original's model) or lean (equivalent, faster; the Ant and the Car)"),
     choice("learner", enum_access<&R::learner>(), kLearnerNames, L::run, all,
            "preset: faithful (the original's learner) or corrected (every corrected switch on: Q1, Q4, Q5, "
-           "Q10, Q19; a switch the run file or --set names itself keeps that value)"),
+           "Q10, Q19, Q20; a switch the run file or --set names itself keeps that value)"),
     {{"env", ConfigValueType::mapping, L::run, {}, {}, all,
       "environment parameters, e.g. {bombs: 12} (`bsg envs --describe ID` lists them)"}, &R::env},
     constraint_list("constraints", &R::constraints, all,
@@ -181,7 +181,7 @@ const std::vector<SchemaRow>& schema_rows() {
     boolean("timeout_bootstrap", &R::timeout_bootstrap, L::algorithm, all,
             "bootstrap with V (V_C) of the next observation at a time-out (original); false: as a terminal"),
     boolean("value_time_input", &R::value_time_input, L::algorithm, all,
-            "V and V_C also see the fraction of the time limit left, (max_ep_len - t)/max_ep_len at "
+            "Q20: V and V_C also see the fraction of the time limit left, (max_ep_len - t)/max_ep_len at "
             "episode step t; false: the observation alone (original)"),
     // --- trust region (docs/algorithms.md#trust-region-tools) ---
     real("target_kl", &R::target_kl, L::algorithm, above(0), all,

@@ -1,5 +1,5 @@
 // The `learner:` preset (common/learner_preset.h, docs/algorithms.md#quirk-switches):
-// `corrected` turns on Q1, Q4, Q5, Q10 (CPO only) and Q19 over the shipped
+// `corrected` turns on Q1, Q4, Q5, Q10 (CPO only), Q19 and Q20 over the shipped
 // algorithm files; a switch named in the run file or with --set keeps its
 // value; `faithful` and no preset resolve to the same configuration.
 #include "common/learner_preset.h"
@@ -36,6 +36,8 @@ TEST(LearnerPreset, FaithfulIsTheDefaultAndChangesNothing) {
   EXPECT_EQ(plain.reward_scale_warmup_epochs, 0);
   EXPECT_TRUE(plain.timeout_bootstrap);
   EXPECT_FALSE(plain.center_advantages);
+  EXPECT_FALSE(plain.value_time_input);
+  EXPECT_EQ(plain.exploration_anneal_epochs, 0);
 }
 
 TEST(LearnerPreset, CorrectedTurnsOnEveryCorrectedSwitch) {
@@ -45,6 +47,8 @@ TEST(LearnerPreset, CorrectedTurnsOnEveryCorrectedSwitch) {
   EXPECT_TRUE(trpo.exact_parallel_variance);      // Q4
   EXPECT_TRUE(trpo.consistent_return_statistic);  // Q5
   EXPECT_TRUE(trpo.rescale_value_output);         // Q19
+  EXPECT_TRUE(trpo.value_time_input);             // Q20
+  EXPECT_EQ(trpo.exploration_anneal_epochs, 0);   // a change of protocol, not a correction
   EXPECT_FALSE(trpo.center_advantages);           // a choice (Q6), not a correction
   EXPECT_EQ(trpo.cpo_r_sign, CpoRSign::original);  // Q10 is CPO's only
   // Everything else as without the preset.
@@ -52,6 +56,7 @@ TEST(LearnerPreset, CorrectedTurnsOnEveryCorrectedSwitch) {
   expected.learner = Learner::corrected;
   expected.zero_bias_init = expected.exact_parallel_variance = true;
   expected.consistent_return_statistic = expected.rescale_value_output = true;
+  expected.value_time_input = true;
   EXPECT_EQ(trpo, expected);
 
   const RunConfig cpo = resolve("cpo", {"learner=corrected"});
