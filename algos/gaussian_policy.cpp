@@ -22,7 +22,6 @@ std::string shape(const Eigen::Ref<const Eigen::MatrixXd>& m) {
 
 const double kHalfLog2Pi = 0.5 * std::log(2.0 * std::numbers::pi);
 
-
 // sigma_k = 0.499 (1 - k/n) + 0.01: 0.509 at k = 0, 0.01 at k = n.
 double linear_std(int k, int n) { return 0.499 * (1.0 - static_cast<double>(k) / n) + 0.01; }
 
