@@ -11,7 +11,8 @@ namespace bsg {
 
 std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, const ActorCritic& actor_critic,
                                                        int num_episodes, std::uint64_t env_seed, int max_ep_len,
-                                                       const StepCostSelector& costs, std::size_t term_count) {
+                                                       const StepCostSelector& costs, std::size_t term_count,
+                                                       Rng* action_noise) {
   Eigen::VectorXd step_costs(costs.count());
   const Eigen::Index observation_size = actor_critic.observation_size();
   Eigen::VectorXd raw(observation_size);
@@ -36,7 +37,11 @@ std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, const Act
     result.term_costs.assign(term_count, 0.0);
     while (true) {
       actor_critic.normalize_observation(raw, normalized);
-      actor_critic.policy.mean_action(normalized, action, workspace);  // a = mu_theta(s_hat)
+      if (action_noise == nullptr) {
+        actor_critic.policy.mean_action(normalized, action, workspace);  // a = mu_theta(s_hat)
+      } else {
+        actor_critic.policy.sample_action(normalized, action, *action_noise, workspace);  // a = mu + sigma eps
+      }
       const envs::StepResult step = env.step(action_view);
       result.episode_return += step.reward;
       result.episode_cost += step.cost;
@@ -60,7 +65,8 @@ std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, const Act
 
 EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_critic, int total_episodes,
                                   std::int64_t run_seed, int max_ep_len, const MpiContext& mpi,
-                                  const StepCostSelector& costs, const std::vector<std::string>& term_names) {
+                                  const StepCostSelector& costs, const std::vector<std::string>& term_names,
+                                  EvaluationActions actions) {
   if (total_episodes < 0) {
     throw std::invalid_argument("evaluation: the number of episodes must be >= 0, got " +
                                 std::to_string(total_episodes));
@@ -68,8 +74,12 @@ EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_criti
   const int local_episodes = total_episodes / mpi.size();
   const std::uint64_t env_seed = derive_seed(static_cast<std::uint64_t>(run_seed), SeedStream::evaluation_environment,
                                              static_cast<std::uint64_t>(mpi.rank()));
+  Rng action_noise(derive_seed(static_cast<std::uint64_t>(run_seed), SeedStream::evaluation_action_noise,
+                               static_cast<std::uint64_t>(mpi.rank())));
+  const bool sampled = actions == EvaluationActions::sampled;
   const std::vector<EvaluationEpisode> local =
-      run_evaluation_episodes(env, actor_critic, local_episodes, env_seed, max_ep_len, costs, term_names.size());
+      run_evaluation_episodes(env, actor_critic, local_episodes, env_seed, max_ep_len, costs, term_names.size(),
+                              sampled ? &action_noise : nullptr);
 
   // Per episode: J, H, length, then H_1..H_m, then the k term sums.
   const std::size_t m = static_cast<std::size_t>(costs.count());
@@ -95,6 +105,7 @@ EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_criti
                                                     gathered.begin() + static_cast<std::ptrdiff_t>(i + stride))});
   }
   summary.term_names = term_names;
+  summary.action_std = sampled ? actor_critic.policy.std() : 0.0;
   summary.mean_term_costs.assign(k, summary.episodes.empty() ? std::nan("") : 0.0);
   for (const EvaluationEpisode& e : summary.episodes) {
     for (std::size_t j = 0; j < k; ++j) summary.mean_term_costs[j] += e.term_costs[j];

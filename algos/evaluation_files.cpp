@@ -57,6 +57,8 @@ std::string evaluation_json(const EvaluationSummary& summary, bool per_episode, 
   text += "  \"mean_cost\": " + json_number(summary.mean_cost) + ",\n";
   text += "  \"episodes\": " + std::to_string(summary.episodes.size()) + ",\n";
   text += "  \"mean_length\": " + json_number(summary.mean_length);
+  // Only a sampled evaluation says so: the mean-action file stays as it always was.
+  if (summary.action_std > 0.0) text += ",\n  \"action_std\": " + json_number(summary.action_std);
   if (safety != nullptr) {
     text += ",\n  \"cumulative_cost\": " + json_number(safety->training_cost.cumulative_cost);
     text += ",\n  \"cost_rate\": " +

@@ -1,6 +1,7 @@
 // The evaluation files of a run directory (docs/reproducing.md#evaluation): returns.csv and
 // costs.csv with one value per line and no header, and evaluation.json:
 //   {"mean_return": J, "mean_cost": H, "episodes": n, "mean_length": L}
+// (with "action_std": sigma after it when the actions were sampled, sampled_evaluation)
 // and, after training (docs/algorithms.md#safety-during-training), the training cost and every
 // constraint (docs/algorithms.md#several-constraints; without `constraints:` the one on the
 // environment's cost against cost_limit):

@@ -1,6 +1,7 @@
 #include "algos/run_evaluation.h"
 
 #include "algos/actor_critic.h"
+#include "algos/exploration_noise.h"
 #include "algos/make_algorithm.h"
 #include "algos/run_environment.h"
 #include "algos/training_checkpoint.h"
@@ -14,7 +15,8 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
 }
 
 RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
-                                     const MpiContext& mpi, const EnvDecorator& decorate) {
+                                     const MpiContext& mpi, const EnvDecorator& decorate,
+                                     std::optional<EvaluationActions> actions) {
   check_is_run_directory(directory);
   const RunConfig config = load_resolved_run_config(directory.config(), envs::registered_ids());
   std::unique_ptr<envs::Env> env = make_run_env(config);
@@ -28,8 +30,10 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
   StepCostSelector costs(config);
   if (costs.needs_terms()) costs.bind(env->spec().cost_term_names, env->spec().id);
   if (decorate) env = decorate(std::move(env));
+  const EvaluationActions chosen = actions.value_or(evaluation_actions(config));
+  if (chosen == EvaluationActions::sampled) set_last_epoch_std(config, progress.epochs_completed, actor_critic.policy);
   result.summary = evaluate_policy(*env, actor_critic, episodes.value_or(config.eval_episodes), config.seed,
-                                   config.max_ep_len, mpi, costs);
+                                   config.max_ep_len, mpi, costs, {}, chosen);
   return result;
 }
 

@@ -1,5 +1,5 @@
-// `bsg eval DIR`: re-runs the deterministic evaluation (docs/reproducing.md#evaluation) of a run
-// directory's latest checkpoint, without writing anything.
+// `bsg eval DIR`: re-runs the evaluation (docs/reproducing.md#evaluation) of a run directory's
+// latest checkpoint, without writing anything.
 #pragma once
 
 #include <functional>
@@ -24,9 +24,12 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
                                      const MpiContext& mpi);
 
 // The same with the environment wrapped by `decorate` before the episodes run
-// (e.g. to record them: render/observed_env.h); the results are unchanged.
+// (e.g. to record them: render/observed_env.h); the results are unchanged. `actions`
+// overrides the config's sampled_evaluation (the sampled actions use the sigma of the
+// checkpoint's last epoch).
 using EnvDecorator = std::function<std::unique_ptr<envs::Env>(std::unique_ptr<envs::Env>)>;
 RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
-                                     const MpiContext& mpi, const EnvDecorator& decorate);
+                                     const MpiContext& mpi, const EnvDecorator& decorate,
+                                     std::optional<EvaluationActions> actions = std::nullopt);
 
 }  // namespace bsg

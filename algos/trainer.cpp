@@ -13,6 +13,7 @@
 #include "algos/epoch_log.h"
 #include "algos/epoch_statistics.h"
 #include "algos/evaluation_files.h"
+#include "algos/exploration_noise.h"
 #include "algos/make_algorithm.h"
 #include "algos/progress_line.h"
 #include "algos/run_environment.h"
@@ -191,9 +192,7 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   // 1. Exploration noise of this epoch (docs/algorithms.md#exploration-noise); a learned
   // log sigma is the update's to change (docs/algorithms.md#learned-log-sigma).
   if (!ac.policy.has_learned_std()) {
-    ac.policy.set_std(config_.use_exploration_noise_anneal
-                          ? GaussianPolicy::annealed_std(epoch, config_.epochs, config_.exploration_anneal_epochs)
-                          : GaussianPolicy::kInitialStd);
+    ac.policy.set_std(exploration_std(config_, epoch));
   }
   noise_rng_.seed(stream_seed(config_, SeedStream::action_noise, rank, epoch));
   shuffle_rng_.seed(stream_seed(config_, SeedStream::minibatch_shuffle, rank, epoch));
@@ -380,11 +379,13 @@ TrainingOutcome OnPolicyTrainer::run() {
     return outcome;
   }
 
-  // Deterministic evaluation (docs/reproducing.md#evaluation) with the final statistics.
-  // The term names label evaluation.json's per-term costs.
+  // Evaluation (docs/reproducing.md#evaluation) with the final statistics: the mean action, or
+  // sampled at the last epoch's sigma (set again here: a run resumed with no epoch left has
+  // not set it). The term names label evaluation.json's per-term costs.
+  if (config_.sampled_evaluation) set_last_epoch_std(config_, progress_.epochs_completed, actor_critic_->policy);
   EvaluationSummary summary = evaluate_policy(*env_, *actor_critic_, config_.eval_episodes, config_.seed,
                                               config_.max_ep_len, mpi_, collector_.cost_selector(),
-                                              env_->spec().cost_term_names);
+                                              env_->spec().cost_term_names, evaluation_actions(config_));
   if (mpi_.is_root()) {
     const TrainingSafety safety = training_safety();
     write_evaluation_files(directory_, summary, &safety);

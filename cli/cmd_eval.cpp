@@ -1,5 +1,6 @@
-// `bsg eval DIR [--episodes N] [--json]`: the deterministic evaluation of a
-// run directory's latest checkpoint; prints J (mean return) and H (mean cost),
+// `bsg eval DIR [--episodes N] [--json] [--actions mean|sampled]`: the evaluation of a
+// run directory's latest checkpoint (the mean action, or sampled as the config's
+// sampled_evaluation or --actions says); prints J (mean return) and H (mean cost),
 // with --json also every episode's figures. --video FILE.mp4 and
 // --trajectories FILE.png record the episodes (cli/recording.h; one process only).
 #include <CLI/CLI.hpp>
@@ -24,6 +25,7 @@ namespace {
 struct EvalArguments {
   std::string run_dir;
   std::optional<int> episodes;
+  std::optional<std::string> actions;  // "mean" or "sampled"; default: the config's sampled_evaluation
   bool json = false;
   RecordingArguments recording;
 };
@@ -37,10 +39,12 @@ int evaluate(const EvalArguments& args) {
     }
     std::optional<Recording> recording;
     if (args.recording.any()) recording.emplace(args.recording);
+    std::optional<EvaluationActions> actions;
+    if (args.actions) actions = *args.actions == "sampled" ? EvaluationActions::sampled : EvaluationActions::mean;
     const RunEvaluation result = evaluate_run_directory(
-        RunDirectory(args.run_dir), args.episodes, mpi, [&](std::unique_ptr<envs::Env> env) {
-          return recording ? recording->wrap(std::move(env)) : std::move(env);
-        });
+        RunDirectory(args.run_dir), args.episodes, mpi,
+        [&](std::unique_ptr<envs::Env> env) { return recording ? recording->wrap(std::move(env)) : std::move(env); },
+        actions);
     if (recording) recording->finish(args.json ? std::cerr : std::cout);
     if (!mpi.is_root()) return 0;
     if (args.json) {
@@ -53,7 +57,11 @@ int evaluate(const EvalArguments& args) {
       std::cout << "episodes " << result.summary.episodes.size() << "\n"
                 << "J (mean return) " << format_csv_number(result.summary.mean_return) << "\n"
                 << "H (mean cost) " << format_csv_number(result.summary.mean_cost) << "\n"
-                << "mean length " << format_csv_number(result.summary.mean_length) << std::endl;
+                << "mean length " << format_csv_number(result.summary.mean_length) << "\n"
+                << "actions " << (result.summary.action_std > 0.0
+                                      ? "sampled, sigma " + format_csv_number(result.summary.action_std)
+                                      : std::string("mean (deterministic)"))
+                << std::endl;
     }
     return 0;
   });
@@ -63,12 +71,17 @@ int evaluate(const EvalArguments& args) {
 
 void add_eval_command(CLI::App& app, Action& run) {
   CLI::App* command =
-      app.add_subcommand("eval", "Evaluate a run's deterministic policy: bsg eval DIR [--episodes N] [--json]");
+      app.add_subcommand("eval", "Evaluate a run's policy: bsg eval DIR [--episodes N] [--json] [--actions mean|sampled]");
   auto args = std::make_shared<EvalArguments>();
   command->add_option("DIR", args->run_dir, "run directory (holds config.yaml and checkpoint.bin)")->required();
   command->add_option("--episodes", args->episodes, "episodes in total (default: the config's eval_episodes)")
       ->check(CLI::NonNegativeNumber);
   command->add_flag("--json", args->json, "print JSON with every episode's return, cost and length");
+  command
+      ->add_option("--actions", args->actions,
+                   "mean: the deterministic mean action; sampled: mu + sigma eps at the last epoch's sigma "
+                   "(default: the run's sampled_evaluation)")
+      ->check(CLI::IsMember({"mean", "sampled"}));
   add_recording_options(*command, args->recording);
   command->callback([&run, args]() { run = [args]() { return evaluate(*args); }; });
 }

@@ -112,6 +112,7 @@ struct RunConfig {
   double lam_c = 0.95;             // GAE lambda, costs
   bool use_exploration_noise_anneal = true;
   int exploration_anneal_epochs = 0;  // > 0: sigma reaches 0.01 after this many epochs and holds it; 0 = E
+  double exploration_std_floor = 0.0; // sigma_k = max(schedule, floor); 0 = the schedule alone
   bool use_standardized_obs = true;
   bool use_reward_scaling = true;
   bool use_standardized_advantages = false;  // Q6
@@ -176,6 +177,7 @@ struct RunConfig {
   int save_freq = 10;
   int check_freq = 25;
   int eval_episodes = 128;
+  bool sampled_evaluation = false;  // evaluate a = mu + sigma eps at the last epoch's sigma (else a = mu)
 
   bool operator==(const RunConfig&) const = default;
 };

@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "common/config_error.h"
+#include "common/config_scalar.h"
 #include "common/run_config_schema.h"
 
 namespace bsg {
@@ -96,6 +97,13 @@ void check_run_config_relations(const RunConfig& config, const ConfigOrigins& or
                                               : std::string("fixed (use_exploration_noise_anneal: false)")) +
                         "; set it to 0 or anneal sigma");
     }
+  }
+  if (config.exploration_std_floor > 0.0 && (!config.use_exploration_noise_anneal || config.learn_log_std)) {
+    throw ConfigError("exploration_std_floor = " + format_config_real(config.exploration_std_floor) + " (" +
+                      origin_of(origins, "exploration_std_floor") + ") has no effect: sigma is " +
+                      (config.learn_log_std ? std::string("learned (learn_log_std: true)")
+                                            : std::string("fixed (use_exploration_noise_anneal: false)")) +
+                      "; set it to 0 or anneal sigma");
   }
   const auto check_at_most = [&](const char* key, long long value, long long limit) {
     if (value > limit) {

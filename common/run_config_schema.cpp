@@ -157,6 +157,9 @@ const std::vector<SchemaRow>& schema_rows() {
     integer("exploration_anneal_epochs", &R::exploration_anneal_epochs, L::algorithm, closed(0, kIntMax), all,
             "n > 0: the annealing ends at epoch n, sigma_k = 0.499 (1 - min(k, n)/n) + 0.01, and sigma holds "
             "0.01 for the epochs after it; 0 = E, the original's schedule; at most epochs"),
+    real("exploration_std_floor", &R::exploration_std_floor, L::algorithm, at_least(0), all,
+         "sigma_k = max(annealed sigma_k, floor): the noise never falls below the floor (keeps room for a KL "
+         "step to move the mean action late in training); 0 = no floor (original)"),
     boolean("use_standardized_obs", &R::use_standardized_obs, L::algorithm, all,
             "normalise observations by the running mean/std"),
     boolean("use_reward_scaling", &R::use_reward_scaling, L::algorithm, all,
@@ -276,7 +279,10 @@ const std::vector<SchemaRow>& schema_rows() {
     integer("check_freq", &R::check_freq, L::algorithm, closed(1, kIntMax), all,
             "check that parameters agree across ranks every check_freq epochs"),
     integer("eval_episodes", &R::eval_episodes, L::algorithm, closed(0, kIntMax), all,
-            "deterministic evaluation episodes after training, split over ranks"),
+            "evaluation episodes after training, split over ranks"),
+    boolean("sampled_evaluation", &R::sampled_evaluation, L::algorithm, all,
+            "evaluate the policy as it was trained, a = mu + sigma eps at the last epoch's sigma, with "
+            "its own noise stream; false = the deterministic mean action (original)"),
   };
   return rows;
 }

@@ -33,6 +33,7 @@ enum class SeedStream : std::uint64_t {
   minibatch_shuffle = 3,
   environment = 4,
   evaluation_environment = 5,
+  evaluation_action_noise = 6,  // the sampled evaluation's eps (sampled_evaluation)
 };
 
 // Seed of stream `stream` on MPI rank `rank`, element `index` (e.g. the

@@ -227,6 +227,30 @@ TEST(Eval, PrintsJAndHAndPerEpisodeJson) {
   EXPECT_NE(json.output.find("\"returns\": [" + first_return), std::string::npos) << json.output;
 }
 
+TEST(Eval, ASampledEvaluationIsRepeatedByEvalAndItsActionsCanBeChosen) {
+  TemporaryDirectory dir;
+  // One epoch: the last epoch's sigma is sigma_0 = 0.509.
+  ASSERT_EQ(run_bsg("train " + tiny_run_file(dir, 1, "sampled_evaluation: true\n") + kConfigs + " --quiet --out " +
+                    dir.str("run"))
+                .exit_code,
+            0);
+  const std::string written = read_text_file(dir.path() / "run" / "evaluation.json");
+  EXPECT_NE(written.find("\"action_std\": 0.509"), std::string::npos) << written;
+  // eval repeats it: the same noise stream gives the same first episode.
+  const auto sampled = run_bsg("eval " + dir.str("run") + " --json");
+  ASSERT_EQ(sampled.exit_code, 0) << sampled.output;
+  const std::string first_return = read_text_file(dir.path() / "run" / "returns.csv").substr(0, 8);
+  EXPECT_NE(sampled.output.find("\"returns\": [" + first_return), std::string::npos) << sampled.output;
+  const auto mean = run_bsg("eval " + dir.str("run") + " --actions mean");
+  ASSERT_EQ(mean.exit_code, 0) << mean.output;
+  EXPECT_NE(mean.output.find("actions mean (deterministic)"), std::string::npos) << mean.output;
+  const auto plain = run_bsg("eval " + dir.str("run"));
+  EXPECT_NE(plain.output.find("actions sampled, sigma 0.509"), std::string::npos) << plain.output;
+  const auto bad = run_bsg("eval " + dir.str("run") + " --actions noisy");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("--actions"), std::string::npos) << bad.output;
+}
+
 TEST(Eval, ADirectoryWithoutARunIsAnError) {
   TemporaryDirectory dir;
   const auto result = run_bsg("eval " + dir.path().string());

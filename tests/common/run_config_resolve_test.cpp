@@ -375,6 +375,21 @@ TEST_F(ScratchConfigs, AnAnnealingLongerThanTheRunOrWithoutAnnealedSigmaIsAnErro
             10);
 }
 
+TEST_F(ScratchConfigs, ASigmaFloorWithoutAnnealedSigmaOrBelowZeroIsAnError) {
+  const fs::path run = write_run(kTrpoRun);
+  EXPECT_EQ(resolve_run_config(request(run, {"exploration_std_floor=0.1"})).config.exploration_std_floor, 0.1);
+  std::string m = error_of(request(run, {"exploration_std_floor=0.1", "use_exploration_noise_anneal=false"}));
+  EXPECT_TRUE(contains(m, "exploration_std_floor = 0.1 (--set exploration_std_floor=0.1) has no effect: "
+                          "sigma is fixed (use_exploration_noise_anneal: false)")) << m;
+  write_text(alg_file("ppo"), read_text_file(kShippedConfigs / "algorithms" / "ppo.yaml"));
+  m = error_of(request(run, {"alg=ppo", "exploration_std_floor=0.1"}));
+  EXPECT_TRUE(contains(m, "has no effect: sigma is learned (learn_log_std: true)")) << m;
+  m = error_of(request(run, {"exploration_std_floor=-0.1"}));
+  EXPECT_TRUE(contains(m, "exploration_std_floor")) << m;
+  EXPECT_FALSE(resolve_run_config(request(run, {})).config.sampled_evaluation);
+  EXPECT_TRUE(resolve_run_config(request(run, {"sampled_evaluation=true"})).config.sampled_evaluation);
+}
+
 TEST(CheckRunConfigForRanks, AppliesTheSpecsSetupChecks) {
   RunConfig c;
   c.steps_per_epoch = 1000;
