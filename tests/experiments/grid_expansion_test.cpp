@@ -157,6 +157,22 @@ TEST(GridExpansion, TheFirstOrderGridRunsTheReportProtocolWithTheFourConstrained
   EXPECT_EQ(pid, 16);  // CPPO-PID on every environment
 }
 
+TEST(GridExpansion, TheBallRunFloorGridIsTheReportsTrpoLGridWithTheCorrectedLearnerAndASigmaFloor) {
+  const std::vector<GridRun> runs = expand_grid(load_grid_file(kConfigs / "grids" / "ballrun_lagtrpo_floor.yaml"));
+  ASSERT_EQ(runs.size(), 9u * 4u);
+  for (const GridRun& run : runs) {
+    const RunConfig config = resolve_grid_run(run, kConfigs, "ballrun_lagtrpo_floor.yaml");
+    EXPECT_EQ(config.env_id, "SafetyBallRun-v0");
+    EXPECT_EQ(config.alg, Algorithm::lag_trpo);
+    EXPECT_EQ(config.epochs, 100);  // Table 3: 100 epochs of 32 000 steps
+    EXPECT_EQ(config.steps_per_epoch, 32000);
+    EXPECT_EQ(config.exploration_std_floor, 0.1);
+    EXPECT_TRUE(config.value_time_input);  // the corrected learner (Q20 among its switches)
+    EXPECT_TRUE(config.consistent_return_statistic);
+    EXPECT_FALSE(config.sampled_evaluation);  // the report's evaluation
+  }
+}
+
 TEST(GridExpansion, TheQuickGridIsTwoConfigurationsTimesTwoSeeds) {
   const std::vector<GridRun> runs = expand_grid(load_grid_file(kConfigs / "grids" / "quick.yaml"));
   ASSERT_EQ(runs.size(), 4u);
