@@ -17,10 +17,13 @@
 #include "common/random.h"
 #include "common/seeding.h"
 #include "scripted_env.h"
+#include "scripted_training.h"
 
 using bsg::testing::read_text_file;
 using bsg::testing::ScriptedEnv;
 using bsg::testing::TemporaryDirectory;
+using bsg::testing::scripted_config;
+using bsg::testing::sigma_of_each_epoch;
 
 namespace {
 
@@ -41,21 +44,6 @@ class ActionRecordingEnv : public ScriptedEnv {
   }
   std::vector<double> actions;
 };
-
-bsg::RunConfig scripted_config() {
-  bsg::RunConfig config;
-  config.env_id = "Scripted-v0";
-  config.alg = bsg::Algorithm::lag_trpo;
-  config.use_cost_value_function = true;
-  config.hidden_sizes = {16, 16};
-  config.epochs = 5;
-  config.steps_per_epoch = 400;
-  config.max_ep_len = 100;
-  config.save_freq = 1;
-  config.eval_episodes = 2;
-  config.cost_limit = 5;
-  return config;
-}
 
 }  // namespace
 
@@ -104,18 +92,10 @@ TEST(ExplorationStd, TheLastEpochsSigmaIsSetForTheSampledEvaluation) {
 
 TEST(Trainer, ASigmaFloorHoldsTheNoiseOfTheLastEpochs) {
   // E = 5, floor 0.2: 0.499 (1 - k/5) + 0.01 = 0.509, 0.4092, 0.3094, 0.2096, then 0.1098 -> 0.2.
-  TemporaryDirectory dir;
   bsg::RunConfig config = scripted_config();
   config.exploration_std_floor = 0.2;
   config.eval_episodes = 0;
-  std::vector<double> sigmas;
-  bsg::TrainerOptions options;
-  bsg::OnPolicyTrainer* running = nullptr;
-  options.on_epoch_timed = [&](const bsg::EpochTimings&) { sigmas.push_back(running->actor_critic().policy.std()); };
-  bsg::OnPolicyTrainer trainer(config, bsg::RunDirectory(dir.path() / "run"), bsg::MpiContext::single_process(),
-                               options, std::make_unique<ScriptedEnv>(100));
-  running = &trainer;
-  trainer.run();
+  const std::vector<double> sigmas = sigma_of_each_epoch(config);
   ASSERT_EQ(sigmas.size(), 5u);
   const double expected[5] = {0.509, 0.4092, 0.3094, 0.2096, 0.2};
   for (int k = 0; k < 5; ++k) EXPECT_NEAR(sigmas[static_cast<std::size_t>(k)], expected[k], 1e-15) << k;

@@ -13,30 +13,14 @@
 #include "algos/trainer.h"
 #include "algos/training_checkpoint.h"
 #include "scripted_env.h"
+#include "scripted_training.h"
 
 namespace fs = std::filesystem;
 using bsg::testing::read_text_file;
 using bsg::testing::ScriptedEnv;
 using bsg::testing::TemporaryDirectory;
-
-namespace {
-
-bsg::RunConfig scripted_config() {
-  bsg::RunConfig config;
-  config.env_id = "Scripted-v0";
-  config.alg = bsg::Algorithm::lag_trpo;
-  config.use_cost_value_function = true;
-  config.hidden_sizes = {16, 16};
-  config.epochs = 5;
-  config.steps_per_epoch = 400;  // 4 episodes of 100 steps
-  config.max_ep_len = 100;
-  config.save_freq = 1;
-  config.eval_episodes = 2;
-  config.cost_limit = 5;
-  return config;
-}
-
-}  // namespace
+using bsg::testing::scripted_config;
+using bsg::testing::sigma_of_each_epoch;
 
 TEST(Trainer, RunsEveryEpochThenEvaluates) {
   TemporaryDirectory dir;
@@ -161,18 +145,10 @@ TEST(Trainer, AFloat32EpochMovesTheParametersAsTheFloat64EpochDoes) {
 TEST(Trainer, AnAnnealingThatEndsEarlyHoldsSigmaAtItsMinimum) {
   // E = 5, exploration_anneal_epochs = 2: sigma 0.509, 0.2595, then 0.01 in epochs 2-4
   // (the original schedule would end at 0.499/5 + 0.01 = 0.1098).
-  TemporaryDirectory dir;
   bsg::RunConfig config = scripted_config();
   config.exploration_anneal_epochs = 2;
   config.eval_episodes = 0;
-  std::vector<double> sigmas;
-  bsg::TrainerOptions options;
-  bsg::OnPolicyTrainer* running = nullptr;
-  options.on_epoch_timed = [&](const bsg::EpochTimings&) { sigmas.push_back(running->actor_critic().policy.std()); };
-  bsg::OnPolicyTrainer trainer(config, bsg::RunDirectory(dir.path() / "run"), bsg::MpiContext::single_process(),
-                               options, std::make_unique<ScriptedEnv>(100));
-  running = &trainer;
-  trainer.run();
+  const std::vector<double> sigmas = sigma_of_each_epoch(config);
   ASSERT_EQ(sigmas.size(), 5u);
   const double expected[5] = {0.509, 0.2595, 0.01, 0.01, 0.01};
   for (int k = 0; k < 5; ++k) EXPECT_NEAR(sigmas[static_cast<std::size_t>(k)], expected[k], 1e-15) << k;
