@@ -7,6 +7,7 @@
 //            /returns.csv        evaluation: J per episode, one per line
 //            /costs.csv          evaluation: H per episode, one per line
 //            /evaluation.json    evaluation summary: J, H, episodes, mean length
+//            /build.txt          the build that started the run (common/build_identity.h)
 //
 // The default directory is <log_dir>/<env_id>/<alg>/seed_<seed, 5 digits>.
 #pragma once
@@ -27,6 +28,7 @@ struct RunDirectory {
   std::filesystem::path returns() const { return root / "returns.csv"; }
   std::filesystem::path costs() const { return root / "costs.csv"; }
   std::filesystem::path evaluation() const { return root / "evaluation.json"; }
+  std::filesystem::path build() const { return root / "build.txt"; }
 };
 
 // <log_dir>/<env_id>/<alg>/seed_00042

@@ -18,6 +18,8 @@
 #include "algos/progress_line.h"
 #include "algos/run_environment.h"
 #include "common/atomic_file.h"
+#include "common/build_identity.h"
+#include "common/file_reading.h"
 #include "common/run_config_checks.h"
 #include "common/run_config_yaml.h"
 #include "common/seeding.h"
@@ -110,6 +112,7 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
                     << " ranks, this one has " << mpi_.size()
                     << "; training continues but will not reproduce the original rank count's numbers\n";
     }
+    if (mpi_.is_root()) note_another_build();
     progress_.epochs_completed = saved.epochs_completed;
     progress_.elapsed_seconds = saved.elapsed_seconds;
     if (!saved.training_cost.constraint_cumulative_costs.empty()) progress_.training_cost = saved.training_cost;
@@ -131,6 +134,7 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
     if (mpi_.is_root()) {
       prepare_new_run_directory(directory_);
       write_run_config(config_, directory_.config());
+      write_file_atomically(directory_.build(), to_text(this_build()));
       progress_csv_.emplace(ProgressCsv::create(directory_.progress()));
       save_checkpoint();  // docs/algorithms.md#set-up, step 7: the initial model
     }
@@ -138,6 +142,24 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
 }
 
 OnPolicyTrainer::~OnPolicyTrainer() = default;
+
+void OnPolicyTrainer::note_another_build() const {
+  // Runs started before builds were recorded have no build.txt: nothing to compare.
+  if (!std::filesystem::exists(directory_.build())) return;
+  const std::optional<BuildIdentity> recorded = parse_build_identity(read_regular_file(directory_.build(), "build record"));
+  std::ostream& out = options_.log != nullptr ? *options_.log : std::cerr;
+  if (!recorded) {
+    out << "note: " << directory_.build().string() << " is not a build record this version reads; "
+        << "cannot tell whether this build computes the same numbers as the one that started the run\n";
+    return;
+  }
+  const std::string difference = describe_difference(*recorded, this_build());
+  if (!difference.empty()) {
+    out << "note: the run was started by another build (" << difference
+        << "); training continues but the remaining epochs will not be bit-identical to an uninterrupted run "
+           "(docs/reproducibility.md)\n";
+  }
+}
 
 TrainingSafety OnPolicyTrainer::training_safety() const {
   return TrainingSafety{effective_constraints(config_), progress_.training_cost,

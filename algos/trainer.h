@@ -120,6 +120,9 @@ class OnPolicyTrainer {
   void check_parameters_finite(int epoch) const;
   void check_ranks_agree(int epoch) const;
   void save_checkpoint();
+  // On resume: a note when build.txt names another build (another compiler,
+  // Eigen or vector instruction set), whose numbers differ.
+  void note_another_build() const;
   TrainingSafety training_safety() const;  // what evaluation.json reports of the training
 
   RunConfig config_;

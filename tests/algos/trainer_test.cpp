@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include "algos/make_algorithm.h"
 #include "algos/trainer.h"
 #include "algos/training_checkpoint.h"
+#include "common/atomic_file.h"
+#include "common/build_identity.h"
 #include "scripted_env.h"
 #include "scripted_training.h"
 
@@ -97,6 +100,38 @@ TEST(Trainer, ResumingInProcessContinuesWithTheSameNumbersInBothDtypes) {
     EXPECT_EQ(second.actor_critic().cost_value.net().parameters(), whole.actor_critic().cost_value.net().parameters());
     EXPECT_EQ(second.algorithm().state(), whole.algorithm().state());
   }
+}
+
+TEST(Trainer, ARunRecordsItsBuildAndAResumeByAnotherBuildSaysSo) {
+  TemporaryDirectory dir;
+  bsg::RunConfig config = scripted_config();
+  const bsg::RunDirectory run(dir.path() / "run");
+  bsg::TrainerOptions stop;
+  stop.stop_after_epochs = 2;
+  bsg::OnPolicyTrainer(config, run, bsg::MpiContext::single_process(), stop, std::make_unique<ScriptedEnv>(100)).run();
+  EXPECT_EQ(read_text_file(run.build()), bsg::to_text(bsg::this_build()));
+
+  const auto resume_log = [&] {
+    std::ostringstream log;
+    bsg::TrainerOptions resume;
+    resume.resume = true;
+    resume.stop_after_epochs = 3;
+    resume.log = &log;
+    bsg::OnPolicyTrainer(config, run, bsg::MpiContext::single_process(), resume, std::make_unique<ScriptedEnv>(100))
+        .run();
+    return log.str();
+  };
+  EXPECT_EQ(resume_log().find("another build"), std::string::npos);  // the same build: no note
+
+  bsg::BuildIdentity other = bsg::this_build();
+  other.vector_instructions = "SSE2";
+  bsg::write_file_atomically(run.build(), bsg::to_text(other));
+  const std::string log = resume_log();
+  EXPECT_NE(log.find("note: the run was started by another build (vector instructions SSE2 -> " +
+                     bsg::this_build().vector_instructions + ")"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(read_text_file(run.build()), bsg::to_text(other));  // the record keeps the build that started the run
 }
 
 TEST(Trainer, AFloat32EpochMovesTheParametersAsTheFloat64EpochDoes) {
