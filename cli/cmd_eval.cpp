@@ -11,9 +11,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "algos/evaluation_files.h"
-#include "algos/progress_csv.h"
-#include "algos/run_evaluation.h"
+#include "algos/training/evaluation_files.h"
+#include "algos/training/progress_csv.h"
+#include "algos/training/run_evaluation.h"
 #include "commands.h"
 #include "common/mpi_context.h"
 #include "mpi_abort_on_error.h"

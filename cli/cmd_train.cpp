@@ -20,9 +20,9 @@
 #include <utility>
 #include <vector>
 
-#include "algos/run_environment.h"
-#include "algos/run_directory.h"
-#include "algos/trainer.h"
+#include "algos/training/run_environment.h"
+#include "algos/training/run_directory.h"
+#include "algos/training/trainer.h"
 #include "commands.h"
 #include "common/config_error.h"
 #include "common/mpi_context.h"

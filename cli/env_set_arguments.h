@@ -1,5 +1,5 @@
 // `--set key=value` arguments of `bsg envs --describe`, `bsg rollout` and
-// `bsg bench`: overrides of an environment description (envs/env_parameters.h).
+// `bsg bench`: overrides of an environment description (envs/description/env_parameters.h).
 #pragma once
 
 #include <string>

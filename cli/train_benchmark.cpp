@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "algos/trainer.h"
+#include "algos/training/trainer.h"
 #include "common/config_error.h"
 #include "common/mpi_context.h"
 #include "common/run_config_resolve.h"

@@ -3,14 +3,14 @@
 #
 #   <prefix>/bin/bsg
 #   <prefix>/share/bsg/configs/            algorithms/, envs/, runs/, grids/
-#   <prefix>/include/bsg/<folder>/*.h      included as "envs/env.h", ...
-#   <prefix>/lib/libbsg_<folder>.a
-#   <prefix>/lib/cmake/bsg/                find_package(bsg) -> bsg::envs, bsg::algos, ...
+#   <prefix>/include/bsg/<folder>/*.h      included as "envs/env.h", "envs/physics/world.h", ...
+#   <prefix>/lib/libbsg_<folder>.a         and one per room: libbsg_envs_physics.a, ...
+#   <prefix>/lib/cmake/bsg/                find_package(bsg) -> bsg::envs, bsg::algos, ... (and the rooms)
 #   <prefix>/lib/pkgconfig/bsg.pc          pkg-config --cflags --libs bsg
 include(CMakePackageConfigHelpers)
 
 # Every library, lowest first (the order the pkg-config file links in reverse).
-set(BSG_INSTALLED_LIBRARIES bsg_common bsg_envs bsg_algos)
+set(BSG_INSTALLED_LIBRARIES bsg_common ${BSG_ENVS_ROOMS} bsg_envs ${BSG_ALGOS_ROOMS} bsg_algos)
 if(TARGET bsg_experiments)
   list(APPEND BSG_INSTALLED_LIBRARIES bsg_experiments)
 endif()
@@ -25,8 +25,11 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/configs/ DESTINATION ${CMAKE_INSTALL_DAT
 
 install(TARGETS ${BSG_INSTALLED_LIBRARIES} EXPORT bsgTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-foreach(library ${BSG_INSTALLED_LIBRARIES})
-  get_target_property(folder ${library} EXPORT_NAME)
+# The headers of each top folder, its rooms' subfolders included.
+foreach(folder common envs algos experiments)
+  if(folder STREQUAL "experiments" AND NOT TARGET bsg_experiments)
+    continue()
+  endif()
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/bsg/${folder}
           FILES_MATCHING PATTERN "*.h")
 endforeach()
@@ -44,7 +47,10 @@ install(FILES ${CMAKE_BINARY_DIR}/cmake/bsgConfig.cmake ${CMAKE_BINARY_DIR}/cmak
 # pkg-config: libraries highest first, as a static link needs them.
 set(BSG_PC_LIBS "")
 foreach(library ${BSG_INSTALLED_LIBRARIES})
-  set(BSG_PC_LIBS "-l${library} ${BSG_PC_LIBS}")
+  get_target_property(type ${library} TYPE)
+  if(NOT type STREQUAL "INTERFACE_LIBRARY")  # an umbrella with no archive of its own
+    set(BSG_PC_LIBS "-l${library} ${BSG_PC_LIBS}")
+  endif()
 endforeach()
 string(STRIP "${BSG_PC_LIBS}" BSG_PC_LIBS)
 list(JOIN BSG_CODEGEN_OPTIONS " " BSG_PC_CFLAGS)

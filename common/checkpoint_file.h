@@ -1,5 +1,5 @@
 // The checkpoint container: a versioned binary file around an opaque payload
-// (the payload's layout belongs to whoever writes it, e.g. algos/checkpoint.h).
+// (the payload's layout belongs to whoever writes it, e.g. algos/training/training_checkpoint.h).
 //
 // Layout (all integers little-endian):
 //   magic         8 bytes  "BSGCKPT\n"
@@ -24,7 +24,7 @@ namespace bsg {
 
 inline constexpr std::string_view kCheckpointMagic{"BSGCKPT\n", 8};
 // Version 2 added the progress log to the training checkpoint's payload
-// (algos/training_checkpoint.h); version 1 files are still read.
+// (algos/training/training_checkpoint.h); version 1 files are still read.
 inline constexpr std::uint32_t kCheckpointFormatVersion = 2;
 inline constexpr std::uint32_t kOldestCheckpointFormatVersion = 1;
 

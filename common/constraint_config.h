@@ -11,7 +11,7 @@
 //
 // Absent, a run has one constraint: the environment's cost against cost_limit.
 // Which term names exist depends on the environment; the learner checks them
-// (algos/constraint_costs.h), this file only the list's form.
+// (algos/core/constraint_costs.h), this file only the list's form.
 #pragma once
 
 #include <string>
@@ -25,7 +25,7 @@ class Node;
 namespace bsg {
 
 // The most constraints a run may have (CPO's and PCPO's exact solvers try
-// every active set, 2^m of them: algos/constraint_qp.h).
+// every active set, 2^m of them: algos/trust_region/constraint_qp.h).
 inline constexpr int kMaxConstraintCount = 8;
 
 // The term list that stands for the environment's whole (clipped) cost.

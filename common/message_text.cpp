@@ -78,4 +78,16 @@ std::string printable_excerpt(std::string_view text, std::size_t max_bytes) { re
 
 std::string printable_message(std::string_view text) { return printable(text, 8192, true); }
 
+std::string comma_separated(const std::vector<std::string>& items) {
+  std::string joined;
+  for (const std::string& item : items) joined += (joined.empty() ? "" : ", ") + item;
+  return joined;
+}
+
+std::string comma_separated(const std::vector<std::string_view>& items) {
+  std::string joined;
+  for (const std::string_view item : items) joined += (joined.empty() ? "" : ", ") + std::string(item);
+  return joined;
+}
+
 }  // namespace bsg

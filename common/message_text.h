@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace bsg {
 
@@ -22,5 +23,9 @@ std::string printable_excerpt(std::string_view text, std::size_t max_bytes = kMe
 // A whole error message made safe to print: as printable_excerpt, but line
 // ends are kept (messages may span lines) and the cut is at 8192 bytes.
 std::string printable_message(std::string_view text);
+
+// Names listed in a message: "a, b, c" ("" for none).
+std::string comma_separated(const std::vector<std::string>& items);
+std::string comma_separated(const std::vector<std::string_view>& items);
 
 }  // namespace bsg

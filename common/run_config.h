@@ -41,7 +41,7 @@ constexpr bool is_first_order(Algorithm alg) {
 
 // Update rule of the Lagrange multiplier (docs/algorithms.md#trpo-l SGD for
 // TRPO-L, docs/algorithms.md#pdo Adam for PDO; PID: the PID Lagrangian of Stooke, Achiam and Abbeel 2020, with
-// the pid_* keys, algos/pid_lagrangian.h).
+// the pid_* keys, algos/lagrange/pid_lagrangian.h).
 enum class LambdaOptimizer { sgd, adam, pid };
 inline constexpr std::array<std::string_view, 3> kLambdaOptimizerNames = {"SGD", "Adam", "PID"};
 
@@ -96,8 +96,8 @@ struct RunConfig {
   Learner learner = Learner::faithful;  // the `learner:` preset (run file, --set, grid)
   // The `env:` block: parameters of the environment's description as
   // (key, value text), applied to env_id's description in this order
-  // (envs/env_parameters.h). A run directory's config.yaml holds the whole
-  // resolved description once the run has any (algos/run_environment.h).
+  // (envs/description/env_parameters.h). A run directory's config.yaml holds the whole
+  // resolved description once the run has any (algos/training/run_environment.h).
   std::vector<std::pair<std::string, std::string>> env;
 
   // --- networks (docs/algorithms.md#networks) ---
@@ -139,7 +139,7 @@ struct RunConfig {
   double lambda_lr = 0.05;
   LambdaOptimizer lambda_optimizer = LambdaOptimizer::sgd;
   double lagrangian_upper_bound = 0.0;  // FOCOPS's nu_max (every rule); 0 = none
-  // PID multiplier (lambda_optimizer PID only; algos/pid_lagrangian.h)
+  // PID multiplier (lambda_optimizer PID only; algos/lagrange/pid_lagrangian.h)
   double pid_kp = 0.1;                  // K_P
   double pid_ki = 0.005;                // K_I (replaces lambda_lr)
   double pid_kd = 0.0;                  // K_D

@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "common/config_error.h"
+#include "common/message_text.h"
 #include "common/config_scalar.h"
 #include "common/run_config_schema.h"
 
@@ -58,8 +59,7 @@ void check_env_id(const std::string& env_id, const std::string& origin,
   for (const std::string& valid : valid_env_ids) {
     if (valid == env_id) return;
   }
-  std::string list;
-  for (const std::string& valid : valid_env_ids) list += (list.empty() ? "" : ", ") + valid;
+  const std::string list = comma_separated(valid_env_ids);
   throw ConfigError(origin + ": unknown env_id '" + env_id + "'; valid env ids: " +
                     (list.empty() ? std::string("(none)") : list));
 }

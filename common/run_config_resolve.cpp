@@ -5,6 +5,7 @@
 
 #include "common/config_entries.h"
 #include "common/config_error.h"
+#include "common/message_text.h"
 #include "common/learner_preset.h"
 #include "common/run_config_schema.h"
 
@@ -102,12 +103,6 @@ void apply_learner_preset(RunConfig& config, const std::vector<ConfigEntry>& run
   }
 }
 
-std::string join(const std::vector<std::string>& items) {
-  std::string joined;
-  for (const std::string& item : items) joined += (joined.empty() ? "" : ", ") + item;
-  return joined;
-}
-
 }  // namespace
 
 std::filesystem::path algorithm_config_path(const std::filesystem::path& configs_dir,
@@ -155,7 +150,7 @@ ResolvedRunConfig resolve_run_config(const RunConfigRequest& request) {
   const ConfigKey& env_key = *find_config_key("env_id");
   const std::vector<ConfigEntry> implied = implied_env_id(run_entries, set_entries);
   const ConfigEntry& env_entry =
-      implied.empty() ? choosing_entry(run_entries, set_entries, "env_id", request, join(valid_env_ids))
+      implied.empty() ? choosing_entry(run_entries, set_entries, "env_id", request, comma_separated(valid_env_ids))
                       : implied.front();
   set_config_value(config, env_key, env_entry.value, env_entry.origin);
   check_env_id(config.env_id, env_entry.origin, valid_env_ids);

@@ -214,7 +214,7 @@ const std::vector<SchemaRow>& schema_rows() {
     real("lagrangian_upper_bound", &R::lagrangian_upper_bound, L::algorithm, at_least(0),
          algorithm_bit(Algorithm::focops),
          "FOCOPS's nu_max: each multiplier is projected onto [0, nu_max] after its update; 0 = no bound"),
-    // --- PID Lagrange multiplier (lambda_optimizer PID; algos/pid_lagrangian.h) ---
+    // --- PID Lagrange multiplier (lambda_optimizer PID; algos/lagrange/pid_lagrangian.h) ---
     real("pid_kp", &R::pid_kp, L::algorithm, at_least(0), kLagrangian,
          "PID only: K_P, proportional gain on the (smoothed) violation J_C - d"),
     real("pid_ki", &R::pid_ki, L::algorithm, at_least(0), kLagrangian,

@@ -13,8 +13,8 @@
 #include <map>
 #include <thread>
 
-#include "algos/progress_line.h"
-#include "algos/run_directory.h"
+#include "algos/training/progress_line.h"
+#include "algos/training/run_directory.h"
 #include "common/csv_text.h"
 #include "experiments/child_process.h"
 #include "experiments/run_lock.h"

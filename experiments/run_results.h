@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "algos/run_directory.h"
+#include "algos/training/run_directory.h"
 
 namespace bsg {
 

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "algos/run_directory.h"
+#include "algos/training/run_directory.h"
 #include "experiments/child_process.h"
 #include "experiments/run_lock.h"
 #include "experiments/sweep_manifest.h"

@@ -15,7 +15,7 @@
 //                              reproduces it by hand
 //                 train.log    the output of `bsg train`
 //                 train.lock   flock()ed by the `bsg train` child while it runs
-//                 + the trainer's files (algos/run_directory.h)
+//                 + the trainer's files (algos/training/run_directory.h)
 #pragma once
 
 #include <filesystem>

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "algos/run_directory.h"
+#include "algos/training/run_directory.h"
 #include "common/atomic_file.h"
 #include "common/file_reading.h"
 #include "common/config_error.h"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "algos/progress_line.h"
+#include "algos/training/progress_line.h"
 
 namespace bsg {
 

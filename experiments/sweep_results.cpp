@@ -6,7 +6,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "algos/run_directory.h"
+#include "algos/training/run_directory.h"
 #include "common/run_config_yaml.h"
 #include "experiments/grid_file.h"
 #include "experiments/run_results.h"

@@ -6,8 +6,8 @@
 #include <map>
 #include <stdexcept>
 
-#include "algos/progress_line.h"
-#include "algos/run_directory.h"
+#include "algos/training/progress_line.h"
+#include "algos/training/run_directory.h"
 #include "common/csv_text.h"
 #include "common/run_config_yaml.h"
 #include "experiments/captured_program.h"

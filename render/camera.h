@@ -16,7 +16,7 @@
 #include <string_view>
 #include <vector>
 
-#include "envs/scene.h"
+#include "envs/assembly/scene.h"
 
 namespace bsg::render {
 

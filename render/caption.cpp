@@ -1,4 +1,4 @@
-#include "caption.h"
+#include "render/caption.h"
 
 #include <algorithm>
 #include <array>

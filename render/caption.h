@@ -6,7 +6,7 @@
 
 #include <string_view>
 
-#include "image.h"
+#include "render/image.h"
 
 namespace bsg::render {
 

@@ -1,4 +1,4 @@
-#include "egl_context.h"
+#include "render/egl_context.h"
 
 #include <cstdio>
 #include <stdexcept>

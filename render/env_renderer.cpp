@@ -1,10 +1,10 @@
-#include "env_renderer.h"
+#include "render/env_renderer.h"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "camera.h"
-#include "envs/scene.h"
+#include "render/camera.h"
+#include "envs/assembly/scene.h"
 
 namespace bsg::render {
 

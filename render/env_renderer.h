@@ -1,4 +1,4 @@
-// Renders an environment made by envs::make: its scene (envs/scene.h) from a
+// Renders an environment made by envs::make: its scene (envs/assembly/scene.h) from a
 // named camera (camera.h) at a fixed size. One renderer per environment; its
 // OpenGL context is created here, never by the environment, so an environment
 // that is not rendered creates none.
@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "envs/env.h"
-#include "image.h"
-#include "scene_renderer.h"
+#include "render/image.h"
+#include "render/scene_renderer.h"
 
 namespace bsg::render {
 

@@ -1,4 +1,4 @@
-#include "episode_recorders.h"
+#include "render/episode_recorders.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -6,10 +6,10 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "caption.h"
-#include "envs/scene.h"
-#include "image_grid.h"
-#include "png_file.h"
+#include "render/caption.h"
+#include "envs/assembly/scene.h"
+#include "render/image_grid.h"
+#include "render/png_file.h"
 
 namespace bsg::render {
 namespace {

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "env_renderer.h"
-#include "observed_env.h"
-#include "scene_renderer.h"
-#include "video_file.h"
+#include "render/env_renderer.h"
+#include "render/observed_env.h"
+#include "render/scene_renderer.h"
+#include "render/video_file.h"
 
 namespace bsg::render {
 

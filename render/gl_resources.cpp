@@ -1,4 +1,4 @@
-#include "gl_resources.h"
+#include "render/gl_resources.h"
 
 #include <stdexcept>
 #include <string>

@@ -3,7 +3,7 @@
 // the ground's 1-m grid). Call with the renderer's context current.
 #pragma once
 
-#include "shape_mesh.h"
+#include "render/shape_mesh.h"
 
 namespace bsg::render {
 

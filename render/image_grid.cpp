@@ -1,4 +1,4 @@
-#include "image_grid.h"
+#include "render/image_grid.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -4,7 +4,7 @@
 
 #include <span>
 
-#include "image.h"
+#include "render/image.h"
 
 namespace bsg::render {
 

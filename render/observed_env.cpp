@@ -1,4 +1,4 @@
-#include "observed_env.h"
+#include "render/observed_env.h"
 
 namespace bsg::render {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "image.h"
+#include "render/image.h"
 
 namespace bsg::render {
 

@@ -1,4 +1,4 @@
-#include "scene_renderer.h"
+#include "render/scene_renderer.h"
 
 #include <algorithm>
 #include <array>
@@ -20,10 +20,10 @@
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 
-#include "egl_context.h"
-#include "gl_resources.h"
-#include "envs/world.h"
-#include "shape_mesh.h"
+#include "render/egl_context.h"
+#include "render/gl_resources.h"
+#include "envs/physics/world.h"
+#include "render/shape_mesh.h"
 
 namespace bsg::render {
 namespace {

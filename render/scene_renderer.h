@@ -1,4 +1,4 @@
-// Draws a scene (envs/scene.h) with OpenGL 3.3 into an RGB image (and
+// Draws a scene (envs/assembly/scene.h) with OpenGL 3.3 into an RGB image (and
 // optionally depth): every collision object of the world from its Bullet
 // shape (spheres, boxes, compounds, and every other convex shape: capsules,
 // multi-spheres, convex hulls), the ground with a 1-m grid, and the task's
@@ -15,8 +15,8 @@
 #include <span>
 #include <vector>
 
-#include "camera.h"
-#include "image.h"
+#include "render/camera.h"
+#include "render/image.h"
 
 namespace bsg::render {
 

@@ -1,4 +1,4 @@
-#include "shape_mesh.h"
+#include "render/shape_mesh.h"
 
 #include <cmath>
 #include <numbers>

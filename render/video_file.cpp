@@ -1,4 +1,4 @@
-#include "video_file.h"
+#include "render/video_file.h"
 
 #include <stdexcept>
 #include <string>

@@ -12,7 +12,7 @@
 #include <memory>
 #include <string>
 
-#include "image.h"
+#include "render/image.h"
 
 namespace bsg::render {
 

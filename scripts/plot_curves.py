@@ -44,7 +44,7 @@ matplotlib.use("Agg")  # files only, no display needed
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-# progress.csv column names of bsg (algos/epoch_log.cpp), then the original's.
+# progress.csv column names of bsg (algos/training/epoch_log.cpp), then the original's.
 EPOCH_COLUMNS = ("epoch", "Epoch")
 RETURN_COLUMNS = ("episode_return_mean", "EpRet/Mean")
 COST_COLUMNS = ("episode_cost_mean", "EpCosts/Mean")

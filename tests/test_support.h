@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "algos/progress_csv.h"
+#include "algos/training/progress_csv.h"
 
 namespace bsg::testing {
 

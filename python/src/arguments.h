@@ -15,7 +15,7 @@ namespace bsg::python {
 envs::EnvOptions env_options(const std::string& box_clock);
 
 // The description of `env_id` with the keyword arguments in `parameters` (a
-// dict of environment parameters, envs/env_parameters.h) applied: bools as
+// dict of environment parameters, envs/description/env_parameters.h) applied: bools as
 // true/false, ints and floats as Python writes them, strings as they are.
 // env_id None starts from SafetyBallCircle-v0 (give agent= and task=).
 // TypeError for another value type; ValueError (one line naming the key and

@@ -7,7 +7,7 @@
 #include "arguments.h"
 #include "bench_helpers.h"
 #include "envs/env.h"
-#include "envs/world.h"
+#include "envs/physics/world.h"
 #include "python_env.h"
 #include "python_render.h"
 #include "python_vector_env.h"

@@ -1,6 +1,6 @@
 // Standardising (Q6) and centring (also Q6) the advantages against hand-computed
 // batches: centring removes each column's mean and keeps its scale.
-#include "algos/advantage_normalization.h"
+#include "algos/core/advantage_normalization.h"
 
 #include <gtest/gtest.h>
 

@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "algos/algorithm.h"
-#include "algos/conjugate_gradient.h"
-#include "algos/gaussian_policy.h"
-#include "algos/policy_surrogate.h"
+#include "algos/core/algorithm.h"
+#include "algos/trust_region/conjugate_gradient.h"
+#include "algos/core/gaussian_policy.h"
+#include "algos/core/policy_surrogate.h"
 #include "common/random.h"
 #include "common/run_config.h"
 

@@ -1,6 +1,6 @@
 // The rollout buffer's GAE (docs/algorithms.md#buffer-and-gae) against the original's test oracle
 // (docs/algorithms.md#test-oracles) and hand-computed special cases.
-#include "algos/buffer.h"
+#include "algos/core/buffer.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Conjugate gradient (docs/algorithms.md#conjugate-gradient) against Eigen's dense solver and the
 // original's oracles (docs/algorithms.md#test-oracles including the 1e-6 quirk Q9).
-#include "algos/conjugate_gradient.h"
+#include "algos/trust_region/conjugate_gradient.h"
 
 #include <gtest/gtest.h>
 

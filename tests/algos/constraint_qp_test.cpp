@@ -1,9 +1,9 @@
-// CPO's dual and PCPO's projection with several constraints (algos/constraint_qp.h,
+// CPO's dual and PCPO's projection with several constraints (algos/trust_region/constraint_qp.h,
 // docs/algorithms.md#several-constraints) against independent oracles: closed forms for a
 // diagonal metric with axis-aligned constraints, a brute-force search over a fine
 // grid, the KKT conditions of the primal problem, each case (both constraints
 // active, one, none, infeasible), and m = 1 against CPO's closed form (cpo.h).
-#include "algos/constraint_qp.h"
+#include "algos/trust_region/constraint_qp.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include <limits>
 
 #include "algorithm_test_support.h"
-#include "algos/cpo.h"
+#include "algos/trust_region/cpo.h"
 
 namespace bsg {
 namespace {

@@ -1,14 +1,14 @@
 // CPO (docs/algorithms.md#cpo, #test-oracles): the 2-D oracles of all four cases under both r
 // sign conventions (Q10), case 4, case 3 = the TRPO step, the degenerate-A
 // guard, and one end-to-end update with the constrained line search.
-#include "algos/cpo.h"
+#include "algos/trust_region/cpo.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "algorithm_test_support.h"
-#include "algos/natural_gradient.h"
+#include "algos/trust_region/natural_gradient.h"
 
 namespace bsg {
 namespace {

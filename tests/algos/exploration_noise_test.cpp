@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "../test_support.h"
-#include "algos/evaluation.h"
-#include "algos/evaluation_files.h"
-#include "algos/exploration_noise.h"
-#include "algos/trainer.h"
+#include "algos/training/evaluation.h"
+#include "algos/training/evaluation_files.h"
+#include "algos/training/exploration_noise.h"
+#include "algos/training/trainer.h"
 #include "common/random.h"
 #include "common/seeding.h"
 #include "scripted_env.h"

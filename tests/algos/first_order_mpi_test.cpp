@@ -11,7 +11,7 @@
 #include <string>
 
 #include "algorithm_test_support.h"
-#include "algos/make_algorithm.h"
+#include "algos/training/make_algorithm.h"
 #include "common/mpi_context.h"
 
 namespace bsg {

@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "algorithm_test_support.h"
-#include "algos/cup.h"
-#include "algos/first_order_update.h"
-#include "algos/focops.h"
-#include "algos/ppo.h"
+#include "algos/first_order/cup.h"
+#include "algos/first_order/first_order_update.h"
+#include "algos/first_order/focops.h"
+#include "algos/first_order/ppo.h"
 
 namespace bsg {
 namespace {

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "../test_support.h"
-#include "algos/trainer.h"
+#include "algos/training/trainer.h"
 #include "common/run_config_resolve.h"
 #include "scripted_env.h"
 

@@ -1,6 +1,6 @@
 // The Fisher-vector product (docs/algorithms.md#fisher-vector-product) against the finite-difference Hessian
 // of the mean KL of docs/algorithms.md#mean-kl, and its invariants from docs/algorithms.md#test-oracles.
-#include "algos/fisher_vector_product.h"
+#include "algos/trust_region/fisher_vector_product.h"
 
 #include <gtest/gtest.h>
 

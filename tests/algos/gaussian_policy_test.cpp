@@ -1,5 +1,5 @@
 // The Gaussian policy (docs/algorithms.md#gaussian-policy, #mean-kl) against closed-form densities, KL and entropy.
-#include "algos/gaussian_policy.h"
+#include "algos/core/gaussian_policy.h"
 
 #include <gtest/gtest.h>
 

@@ -1,14 +1,14 @@
 // TRPO-L's update (docs/algorithms.md#trpo-l, #test-oracles): lambda is updated before the policy
 // step, lambda = 0 reproduces TRPO exactly, the accepted step keeps the KL
 // and improves the Lagrangian surrogate, and lambda survives a checkpoint.
-#include "algos/lag_trpo.h"
+#include "algos/trust_region/lag_trpo.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "algorithm_test_support.h"
-#include "algos/trpo.h"
+#include "algos/trust_region/trpo.h"
 
 namespace bsg {
 namespace {

@@ -16,11 +16,11 @@
 
 #include "../test_support.h"
 #include "algorithm_test_support.h"
-#include "algos/cup.h"
-#include "algos/first_order_update.h"
-#include "algos/focops.h"
-#include "algos/ppo.h"
-#include "algos/trainer.h"
+#include "algos/first_order/cup.h"
+#include "algos/first_order/first_order_update.h"
+#include "algos/first_order/focops.h"
+#include "algos/first_order/ppo.h"
+#include "algos/training/trainer.h"
 #include "scripted_env.h"
 
 namespace bsg {

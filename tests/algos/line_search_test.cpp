@@ -1,6 +1,6 @@
 // The backtracking line searches (docs/algorithms.md#trpo-line-search, #constrained-line-search) on closed-form 1-D problems
 // whose accepted trial is worked out by hand.
-#include "algos/line_search.h"
+#include "algos/trust_region/line_search.h"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "algorithm_test_support.h"
-#include "algos/make_algorithm.h"
+#include "algos/training/make_algorithm.h"
 
 namespace bsg {
 namespace {

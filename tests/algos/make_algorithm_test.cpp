@@ -1,7 +1,7 @@
 // The factory and the interface contract shared by the nine algorithms: the
 // right class per `alg`, the docs/algorithms.md#logged-columns column sets in order, a column set
 // that does not change between epochs, and the state round trip.
-#include "algos/make_algorithm.h"
+#include "algos/training/make_algorithm.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The natural-gradient step (docs/algorithms.md#natural-step) on a small known Fisher matrix.
-#include "algos/natural_gradient.h"
+#include "algos/trust_region/natural_gradient.h"
 
 #include <gtest/gtest.h>
 

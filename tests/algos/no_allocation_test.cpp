@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 
 
-#include "algos/fisher_vector_product.h"
-#include "algos/gaussian_policy.h"
-#include "algos/value_function.h"
+#include "algos/trust_region/fisher_vector_product.h"
+#include "algos/core/gaussian_policy.h"
+#include "algos/core/value_function.h"
 
 #include "tests/heap_counter.h"
 

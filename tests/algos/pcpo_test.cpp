@@ -1,14 +1,14 @@
 // PCPO (docs/algorithms.md#pcpo, #test-oracles): the 2-D projection oracles (KL and L2), the active
 // linearised constraint after a projection, v <= 0 giving the TRPO step, the
 // small-gradient guard, and end-to-end updates with and without line search.
-#include "algos/pcpo.h"
+#include "algos/trust_region/pcpo.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "algorithm_test_support.h"
-#include "algos/natural_gradient.h"
+#include "algos/trust_region/natural_gradient.h"
 
 namespace bsg {
 namespace {

@@ -2,14 +2,14 @@
 // lambda = 0 reproduces TRPO, the line search tests the reward-only loss
 // (Q14), pdo_line_search: false applies the full step, and the Adam state
 // survives a checkpoint.
-#include "algos/pdo.h"
+#include "algos/trust_region/pdo.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "algorithm_test_support.h"
-#include "algos/trpo.h"
+#include "algos/trust_region/trpo.h"
 
 namespace bsg {
 namespace {

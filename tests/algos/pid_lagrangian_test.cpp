@@ -1,9 +1,9 @@
-// The PID Lagrange multiplier (algos/pid_lagrangian.h, Stooke, Achiam and
+// The PID Lagrange multiplier (algos/lagrange/pid_lagrangian.h, Stooke, Achiam and
 // Abbeel 2020, Algorithm 2): lambda sequences computed by hand for given cost
 // sequences (P only, I only with its clamp, D with its delay, both EMAs, the
 // upper bound), lambda >= 0 always, the integral alone equals the SGD rule,
 // and the state survives a checkpoint.
-#include "algos/pid_lagrangian.h"
+#include "algos/lagrange/pid_lagrangian.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "algos/lagrange_multiplier.h"
+#include "algos/lagrange/lagrange_multiplier.h"
 #include "common/random.h"
 
 namespace bsg {

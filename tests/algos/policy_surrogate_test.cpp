@@ -1,6 +1,6 @@
 // Surrogates and their gradients g and b (docs/algorithms.md#surrogates-and-gradients) against central
 // finite differences, and the ratio/KL at theta_old.
-#include "algos/policy_surrogate.h"
+#include "algos/core/policy_surrogate.h"
 
 #include <gtest/gtest.h>
 

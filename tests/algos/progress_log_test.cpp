@@ -1,6 +1,6 @@
-// progress.csv (algos/progress_csv.h), the pooled statistics of docs/algorithms.md#across-mpi-ranks
-// (algos/epoch_statistics.h), the column names (algos/epoch_log.h) and the
-// console line (algos/progress_line.h).
+// progress.csv (algos/training/progress_csv.h), the pooled statistics of docs/algorithms.md#across-mpi-ranks
+// (algos/core/epoch_statistics.h), the column names (algos/training/epoch_log.h) and the
+// console line (algos/training/progress_line.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,10 +10,10 @@
 #include <sstream>
 
 #include "../test_support.h"
-#include "algos/epoch_log.h"
-#include "algos/epoch_statistics.h"
-#include "algos/progress_csv.h"
-#include "algos/progress_line.h"
+#include "algos/training/epoch_log.h"
+#include "algos/core/epoch_statistics.h"
+#include "algos/training/progress_csv.h"
+#include "algos/training/progress_line.h"
 
 namespace fs = std::filesystem;
 using bsg::testing::read_text_file;

@@ -8,11 +8,11 @@
 #include <memory>
 
 #include "../test_support.h"
-#include "algos/actor_critic.h"
-#include "algos/buffer.h"
-#include "algos/rollout.h"
-#include "algos/trainer.h"
-#include "algos/value_function.h"
+#include "algos/core/actor_critic.h"
+#include "algos/core/buffer.h"
+#include "algos/training/rollout.h"
+#include "algos/training/trainer.h"
+#include "algos/core/value_function.h"
 #include "common/run_config.h"
 #include "scripted_env.h"
 

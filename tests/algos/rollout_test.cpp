@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "algos/actor_critic.h"
-#include "algos/buffer.h"
-#include "algos/epoch_log.h"
-#include "algos/rollout.h"
+#include "algos/core/actor_critic.h"
+#include "algos/core/buffer.h"
+#include "algos/training/epoch_log.h"
+#include "algos/training/rollout.h"
 #include "common/run_config.h"
 #include "scripted_env.h"
 

@@ -9,8 +9,9 @@
 #include <string>
 
 #include "algorithm_test_support.h"
-#include "algos/epoch_log.h"
-#include "algos/trainer.h"
+#include "algos/training/epoch_log.h"
+#include "algos/trust_region/trust_region_steps.h"
+#include "algos/training/trainer.h"
 #include "common/mpi_context.h"
 
 namespace bsg {

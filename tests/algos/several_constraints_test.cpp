@@ -15,11 +15,11 @@
 
 #include "../test_support.h"
 #include "algorithm_test_support.h"
-#include "algos/buffer.h"
-#include "algos/constraint_costs.h"
-#include "algos/lag_trpo.h"
-#include "algos/lagrange_multipliers.h"
-#include "algos/trainer.h"
+#include "algos/core/buffer.h"
+#include "algos/core/constraint_costs.h"
+#include "algos/trust_region/lag_trpo.h"
+#include "algos/lagrange/lagrange_multipliers.h"
+#include "algos/training/trainer.h"
 #include "common/config_error.h"
 
 namespace bsg {

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <string>
 
-#include "algos/progress_csv.h"
-#include "algos/trainer.h"
+#include "algos/training/progress_csv.h"
+#include "algos/training/trainer.h"
 #include "common/mpi_context.h"
 #include "common/run_config_resolve.h"
 
@@ -25,7 +25,7 @@ bool same_on_all_ranks(const Eigen::VectorXd& local, const bsg::MpiContext& mpi)
   return mpi.max(differs) == 0.0;
 }
 
-Eigen::VectorXd everything(const bsg::ActorCritic& ac, const bsg::TrustRegionAlgorithm& algorithm) {
+Eigen::VectorXd everything(const bsg::ActorCritic& ac, const bsg::OnPolicyAlgorithm& algorithm) {
   std::vector<double> values;
   const auto append = [&](const Eigen::VectorXd& v) { values.insert(values.end(), v.data(), v.data() + v.size()); };
   append(ac.policy.mean_net().parameters());

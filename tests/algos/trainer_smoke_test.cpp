@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "../test_support.h"
-#include "algos/progress_csv.h"
-#include "algos/trainer.h"
+#include "algos/training/progress_csv.h"
+#include "algos/training/trainer.h"
 #include "common/mpi_context.h"
 #include "common/run_config_resolve.h"
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "../test_support.h"
-#include "algos/make_algorithm.h"
-#include "algos/trainer.h"
-#include "algos/training_checkpoint.h"
+#include "algos/training/make_algorithm.h"
+#include "algos/training/trainer.h"
+#include "algos/training/training_checkpoint.h"
 #include "common/atomic_file.h"
 #include "common/build_identity.h"
 #include "scripted_env.h"

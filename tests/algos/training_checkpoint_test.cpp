@@ -1,4 +1,4 @@
-// The training checkpoint (algos/training_checkpoint.h): save -> load gives
+// The training checkpoint (algos/training/training_checkpoint.h): save -> load gives
 // back every parameter, optimiser moment, normaliser statistic and the
 // algorithm's state bit for bit; a checkpoint of another configuration or a
 // damaged file is an error naming the file.
@@ -10,11 +10,11 @@
 #include <filesystem>
 
 #include "../test_support.h"
-#include "algos/actor_critic.h"
-#include "algos/epoch_log.h"
-#include "algos/make_algorithm.h"
-#include "algos/progress_csv.h"
-#include "algos/training_checkpoint.h"
+#include "algos/core/actor_critic.h"
+#include "algos/training/epoch_log.h"
+#include "algos/training/make_algorithm.h"
+#include "algos/training/progress_csv.h"
+#include "algos/training/training_checkpoint.h"
 #include "common/binary_io.h"
 #include "common/checkpoint_file.h"
 
@@ -32,7 +32,7 @@ bsg::RunConfig lag_trpo_config() {
 }
 
 // Moves every part of the state away from its initial value.
-void advance(bsg::ActorCritic& ac, bsg::TrustRegionAlgorithm& algorithm, bsg::Rng& rng) {
+void advance(bsg::ActorCritic& ac, bsg::OnPolicyAlgorithm& algorithm, bsg::Rng& rng) {
   const bsg::MpiContext mpi = bsg::MpiContext::single_process();
   Eigen::MatrixXd observations(64, ac.observation_size());
   for (Eigen::Index i = 0; i < observations.size(); ++i) observations.data()[i] = bsg::standard_normal(rng);

@@ -1,7 +1,7 @@
 // TRPO's update (docs/algorithms.md#trpo, #test-oracles): the step's Fisher norm, the accepted
 // step's KL and improvement checked with hand-written surrogates, and a
 // rejected search leaving theta bit-identical.
-#include "algos/trpo.h"
+#include "algos/trust_region/trpo.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "algorithm_test_support.h"
-#include "algos/fisher_vector_product.h"
+#include "algos/trust_region/fisher_vector_product.h"
 
 namespace bsg {
 namespace {

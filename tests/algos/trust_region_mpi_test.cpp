@@ -3,11 +3,11 @@
 // that must agree across ranks does.
 #include <gtest/gtest.h>
 
-#include "algos/fisher_vector_product.h"
-#include "algos/gaussian_policy.h"
-#include "algos/line_search.h"
-#include "algos/policy_surrogate.h"
-#include "algos/value_function.h"
+#include "algos/trust_region/fisher_vector_product.h"
+#include "algos/core/gaussian_policy.h"
+#include "algos/trust_region/line_search.h"
+#include "algos/core/policy_surrogate.h"
+#include "algos/core/value_function.h"
 #include "common/mpi_context.h"
 
 namespace bsg {

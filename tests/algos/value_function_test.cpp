@@ -1,5 +1,5 @@
 // Value-function fitting with the schedule of docs/algorithms.md#value-fits and the invariants of docs/algorithms.md#test-oracles.
-#include "algos/value_function.h"
+#include "algos/core/value_function.h"
 
 #include <gtest/gtest.h>
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "algos/fisher_vector_product.h"
-#include "algos/gaussian_policy.h"
+#include "algos/trust_region/fisher_vector_product.h"
+#include "algos/core/gaussian_policy.h"
 #include "common/mlp.h"
 #include "common/mpi_context.h"
 #include "common/random.h"

@@ -1,4 +1,4 @@
-// Measures what the PID Lagrangian (algos/pid_lagrangian.h) does to the cost
+// Measures what the PID Lagrangian (algos/lagrange/pid_lagrangian.h) does to the cost
 // oscillation of TRPO-L on SafetyBallCircle-v0 (d = 25): for each seed, one
 // TRPO-L (SGD multiplier) and one TRPO-PID run with the same seed and budget;
 // over the second half of training it prints the epoch cost's mean and

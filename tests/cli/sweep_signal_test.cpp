@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "../test_support.h"
-#include "algos/run_directory.h"
+#include "algos/training/run_directory.h"
 #include "common/csv_text.h"
 #include "experiments/grid_expansion.h"
 #include "experiments/grid_file.h"

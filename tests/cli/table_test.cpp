@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "../test_support.h"
-#include "algos/run_directory.h"
+#include "algos/training/run_directory.h"
 #include "common/run_config_yaml.h"
 #include "experiments/grid_expansion.h"
 #include "experiments/sweep_manifest.h"

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "common/random.h"
-#include "envs/ant_agent.h"
-#include "envs/world.h"
+#include "envs/agents/ant_agent.h"
+#include "envs/physics/world.h"
 #include "tests/envs/golden.h"
 
 namespace bsg::envs {

@@ -1,7 +1,7 @@
 // The Ball (docs/environments.md#ball) through its environments: the oracles of docs/environments.md#test-oracles
 // (zero action keeps it at rest; the measured acceleration under a = (1, 0)),
 // action clipping and the agent-specific reward −0.5·‖a‖.
-#include "envs/ball_agent.h"
+#include "envs/agents/ball_agent.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "envs/env.h"
-#include "envs/world.h"
+#include "envs/physics/world.h"
 
 namespace bsg::envs {
 namespace {

@@ -1,4 +1,4 @@
-// The block pool behind Bullet's allocations (envs/bullet_block_pool.h): a
+// The block pool behind Bullet's allocations (envs/physics/bullet_block_pool.h): a
 // freed block is reused for the next request of its size class, blocks are
 // 16-byte aligned and hold what was asked, blocks outlive the thread that
 // freed them into its lists, large and foreign blocks go back to the C
@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "envs/bullet_block_pool.h"
+#include "envs/physics/bullet_block_pool.h"
 
 namespace bsg::envs {
 namespace {

@@ -1,7 +1,7 @@
 // The Car agent (docs/environments.md#car) against independent oracles: the link poses and
 // trajectories recorded from the original (tests/data/golden/SafetyCar*-v0.json,
 // README "How a C++ test should use a file"), and the oracles of docs/environments.md#test-oracles.
-#include "envs/car_agent.h"
+#include "envs/agents/car_agent.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "envs/world.h"
+#include "envs/physics/world.h"
 #include "golden.h"
 
 namespace bsg::envs {

@@ -1,6 +1,6 @@
 // Circle (docs/environments.md#circle) against its oracles (#test-oracles): reset annulus, task
 // observation range, the |x| > 6 cost by teleport, and the reward core.
-#include "envs/circle_task.h"
+#include "envs/tasks/circle_task.h"
 
 #include <gtest/gtest.h>
 

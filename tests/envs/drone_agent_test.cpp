@@ -3,7 +3,7 @@
 // at the agent level without the tasks), the hover and thrust numbers
 // (docs/environments.md#drone, as measured on the original), the take-off height
 // of docs/environments.md#drone, and action clipping.
-#include "envs/drone_agent.h"
+#include "envs/agents/drone_agent.h"
 
 #include <algorithm>
 #include <array>
@@ -19,8 +19,8 @@
 #include <gtest/gtest.h>
 
 #include "common/random.h"
-#include "envs/orientation.h"
-#include "envs/world.h"
+#include "envs/physics/orientation.h"
+#include "envs/physics/world.h"
 #include "tests/envs/golden.h"
 
 namespace bsg::envs {

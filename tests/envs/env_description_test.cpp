@@ -1,4 +1,4 @@
-// Environments as descriptions (envs/env_description.h): the standard values,
+// Environments as descriptions (envs/description/env_description.h): the standard values,
 // custom combinations built by the same path (observation sizes from the
 // documented formula, counts and placement ranges over many resets, checked
 // against the description's numbers), the fork variant's values, and one-line
@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "envs/env.h"
-#include "envs/placement_sampler.h"
-#include "envs/standard_descriptions.h"
+#include "envs/tasks/placement_sampler.h"
+#include "envs/description/standard_descriptions.h"
 
 namespace bsg::envs {
 namespace {

@@ -1,6 +1,6 @@
 // Environments on several threads at once (one Env per thread, as env.h
 // asks) give bit for bit what the same seeds and actions give on one thread.
-// Bullet's memory comes from per-thread block pools (envs/bullet_block_pool.h)
+// Bullet's memory comes from per-thread block pools (envs/physics/bullet_block_pool.h)
 // and Envs are built on one thread and stepped and destroyed on others, so
 // blocks cross threads; nothing else is shared.
 #include <gtest/gtest.h>

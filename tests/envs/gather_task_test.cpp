@@ -1,7 +1,7 @@
 // Gather (docs/environments.md#gather) against its oracles (#test-oracles): placement clearances, +10 per
 // apple and only once, termination after the last apple, collected apples
 // still sensed, bombs cost once, and the altitude cost.
-#include "envs/gather_task.h"
+#include "envs/tasks/gather_task.h"
 
 #include <gtest/gtest.h>
 

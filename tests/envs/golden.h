@@ -16,8 +16,8 @@
 #include <LinearMath/btVector3.h>
 #include <nlohmann/json.hpp>
 
-#include "envs/agent.h"
-#include "envs/world.h"
+#include "envs/agents/agent.h"
+#include "envs/physics/world.h"
 
 namespace bsg::testing {
 

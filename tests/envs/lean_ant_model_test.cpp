@@ -14,9 +14,9 @@
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 
 #include "common/random.h"
-#include "envs/ant_agent.h"
+#include "envs/agents/ant_agent.h"
 #include "envs/env.h"
-#include "envs/world.h"
+#include "envs/physics/world.h"
 #include "lean_model_gaps.h"
 
 namespace bsg::envs {

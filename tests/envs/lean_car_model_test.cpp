@@ -16,9 +16,9 @@
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 
 #include "common/random.h"
-#include "envs/car_agent.h"
+#include "envs/agents/car_agent.h"
 #include "envs/env.h"
-#include "envs/world.h"
+#include "envs/physics/world.h"
 #include "lean_model_gaps.h"
 
 namespace bsg::envs {

@@ -28,12 +28,12 @@
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 
 #include "common/random.h"
-#include "envs/agent.h"
-#include "envs/assembled_env.h"
+#include "envs/agents/agent.h"
+#include "envs/assembly/assembled_env.h"
 #include "envs/env.h"
-#include "envs/lidar_sensor.h"
-#include "envs/ray_fan.h"
-#include "envs/world.h"
+#include "envs/sensors/lidar_sensor.h"
+#include "envs/physics/ray_fan.h"
+#include "envs/physics/world.h"
 
 namespace bsg::envs {
 namespace {

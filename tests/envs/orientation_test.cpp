@@ -5,7 +5,7 @@
 
 #include <LinearMath/btMatrix3x3.h>
 
-#include "envs/orientation.h"
+#include "envs/physics/orientation.h"
 
 namespace bsg::envs {
 namespace {

@@ -1,6 +1,6 @@
 // The obstacle placement sampler (docs/environments.md#placement-sampling): clearances, order, and the
 // attempt guard that replaces the original's endless loop.
-#include "envs/placement_sampler.h"
+#include "envs/tasks/placement_sampler.h"
 
 #include <gtest/gtest.h>
 

@@ -15,7 +15,7 @@
 #include <BulletCollision/NarrowPhaseCollision/btRaycastCallback.h>
 
 #include "common/random.h"
-#include "envs/ray_box_cast.h"
+#include "envs/physics/ray_box_cast.h"
 
 namespace bsg::envs {
 namespace {

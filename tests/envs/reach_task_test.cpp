@@ -1,7 +1,7 @@
 // Reach (docs/environments.md#reach) against its oracles (#test-oracles, #moving-box): placement
 // clearances, first-step cost, task observation, puddle and Box costs, the
 // goal bonus with an immediate respawn, and both Box clocks.
-#include "envs/reach_task.h"
+#include "envs/tasks/reach_task.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Run (docs/environments.md#run) against its oracles (#test-oracles): reset near the origin, progress
 // equal to 60·Δx for motion along x, the lane and speed costs.
-#include "envs/run_task.h"
+#include "envs/tasks/run_task.h"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "envs/env.h"
-#include "envs/pseudo_lidar_sensor.h"
+#include "envs/sensors/pseudo_lidar_sensor.h"
 
 namespace bsg::envs {
 namespace {

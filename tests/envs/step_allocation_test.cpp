@@ -1,7 +1,7 @@
 // Issue 3: "no allocation on the step path". Once an environment has been
 // reset and has stepped through its first episode (Bullet sizes its pair
 // cache, manifold pools and solver arrays then; later high-water marks of
-// contact pairs are served by the block pool, envs/bullet_block_pool.h),
+// contact pairs are served by the block pool, envs/physics/bullet_block_pool.h),
 // Env::step allocates nothing:
 // heap allocations are counted by tests/heap_counter.h (Bullet's
 // btAlignedAlloc and operator new included).

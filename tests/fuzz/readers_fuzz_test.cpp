@@ -17,12 +17,12 @@
 #include <string>
 
 #include "../test_support.h"
-#include "algos/actor_critic.h"
-#include "algos/epoch_log.h"
-#include "algos/make_algorithm.h"
-#include "algos/progress_csv.h"
-#include "algos/progress_csv_reader.h"
-#include "algos/training_checkpoint.h"
+#include "algos/core/actor_critic.h"
+#include "algos/training/epoch_log.h"
+#include "algos/training/make_algorithm.h"
+#include "algos/training/progress_csv.h"
+#include "algos/training/progress_csv_reader.h"
+#include "algos/training/training_checkpoint.h"
 #include "common/checkpoint_file.h"
 #include "common/config_error.h"
 #include "common/run_config_resolve.h"

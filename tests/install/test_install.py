@@ -75,9 +75,10 @@ def user_folder(scratch):
 def test_install_lays_out_program_configs_headers_and_packages(prefix):
     for relative in ("bin/bsg", "share/bsg/configs/algorithms/lag-trpo.yaml",
                      "share/bsg/configs/envs/SafetyAntRun-v0.yaml", "include/bsg/envs/env.h",
-                     "include/bsg/common/run_config.h", "include/bsg/algos/trainer.h",
-                     "lib/cmake/bsg/bsgConfig.cmake", "lib/cmake/bsg/bsgConfigVersion.cmake",
-                     "lib/cmake/bsg/bsgTargets.cmake", "lib/pkgconfig/bsg.pc", "lib/libbsg_envs.a"):
+                     "include/bsg/common/run_config.h", "include/bsg/algos/training/trainer.h",
+                     "include/bsg/envs/physics/world.h", "lib/cmake/bsg/bsgConfig.cmake",
+                     "lib/cmake/bsg/bsgConfigVersion.cmake", "lib/cmake/bsg/bsgTargets.cmake", "lib/pkgconfig/bsg.pc",
+                     "lib/libbsg_envs.a", "lib/libbsg_envs_physics.a", "lib/libbsg_algos_training.a"):
         assert (prefix / relative).exists(), relative
 
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "envs/env.h"
-#include "envs/scene.h"
+#include "envs/assembly/scene.h"
 #include "render/camera.h"
 #include "render_test_support.h"
 

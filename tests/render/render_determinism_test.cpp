@@ -11,7 +11,7 @@
 
 #include "../cli/run_bsg.h"
 #include "envs/env.h"
-#include "envs/standard_descriptions.h"
+#include "envs/description/standard_descriptions.h"
 #include "render/image_grid.h"
 #include "render_test_support.h"
 

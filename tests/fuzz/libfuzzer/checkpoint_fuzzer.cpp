@@ -1,5 +1,5 @@
 // libFuzzer target: the checkpoint reader (common/checkpoint_file.h and
-// algos/training_checkpoint.h). The input is a payload, checksummed by the
+// algos/training/training_checkpoint.h). The input is a payload, checksummed by the
 // target so that the field checks behind the checksum are reached; any input
 // is loaded with its fields in range or gives a CheckpointError.
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <string>
 
-#include "algos/actor_critic.h"
-#include "algos/make_algorithm.h"
-#include "algos/training_checkpoint.h"
+#include "algos/core/actor_critic.h"
+#include "algos/training/make_algorithm.h"
+#include "algos/training/training_checkpoint.h"
 #include "common/checkpoint_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,11 +1,11 @@
-// libFuzzer target: the progress.csv reader (algos/progress_csv_reader.h).
+// libFuzzer target: the progress.csv reader (algos/training/progress_csv_reader.h).
 // Any input gives rows that satisfy the reader's promises or a ProgressLogError.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
-#include "algos/progress_csv.h"
-#include "algos/progress_csv_reader.h"
+#include "algos/training/progress_csv.h"
+#include "algos/training/progress_csv_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

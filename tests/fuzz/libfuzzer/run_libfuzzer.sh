@@ -34,7 +34,7 @@ flags=(-std=c++20 -g -O1 -march=native -mno-avx512f -DBT_USE_DOUBLE_PRECISION -f
        -I"$source_dir" -isystem /usr/include/eigen3 $(mpicxx --showme:compile) $(pkg-config --cflags bullet)
        -DBSG_CONFIGS_DIR="\"$source_dir/configs\"")
 # The readers, instrumented for coverage; the rest comes from the libraries.
-readers=(algos/progress_csv_reader algos/progress_csv algos/training_checkpoint common/message_text
+readers=(algos/training/progress_csv_reader algos/training/progress_csv algos/training/training_checkpoint common/message_text
          common/checkpoint_file common/binary_io common/file_reading common/config_entries
          common/run_config_schema common/run_config_resolve common/run_config_checks common/config_scalar
          common/run_config_yaml)
@@ -44,7 +44,12 @@ for reader in "${readers[@]}"; do
   "${launcher[@]}" "$clang" "${flags[@]}" -c "$source_dir/$reader.cpp" -o "$object"
   objects+=("$object")
 done
-libraries=("$build_dir/libbsg_algos.a" "$build_dir/libbsg_envs.a" "$build_dir/libbsg_common.a")
+# Every room's library, highest first as a static link needs them (CMakeLists.txt).
+libraries=()
+for room in algos_training algos_trust_region algos_first_order algos_lagrange algos_core envs envs_assembly \
+            envs_tasks envs_sensors envs_agents envs_physics envs_description common; do
+  libraries+=("$build_dir/libbsg_$room.a")
+done
 system_libraries=(-lyaml-cpp $(pkg-config --libs bullet) $(mpicxx --showme:link))
 
 status=0

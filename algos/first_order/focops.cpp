@@ -1,0 +1,31 @@
+#include "algos/first_order/focops.h"
+
+#include <vector>
+
+namespace bsg {
+
+SampleLossFunction focops_loss(const Eigen::VectorXd& advantages, double temperature, double kl_bound) {
+  return [&advantages, temperature, kl_bound](Eigen::Index sample, double ratio, double kl) {
+    if (kl > kl_bound) return SampleLoss{};  // masked: 1[KL_i <= eta] = 0
+    return SampleLoss{kl - ratio * advantages[sample] / temperature, -advantages[sample] / temperature, 1.0};
+  };
+}
+
+Focops::Focops(const RunConfig& config) : FirstOrderAlgorithm(config, true, {}) {}
+
+PolicyUpdateResult Focops::update(const PolicyUpdateInputs& inputs) {
+  // 0. nu_j first, then A_hat = A - sum_j nu_j A^Cj.
+  std::vector<double> cost_weights;
+  for (double nu : update_multipliers(inputs)) cost_weights.push_back(-nu);
+  const Eigen::VectorXd advantages = combined_advantages(inputs.surrogate, 1.0, cost_weights);
+
+  const PolicyUpdateStart start = begin_policy_update(inputs);
+  SampleLossBatch batch(inputs.surrogate, inputs.surrogate.reference_means(), inputs.policy.log_stds());  // KL_i to pi_theta_k
+  // 1. The masked loss's minibatch passes.
+  const MinibatchPassesResult passes =
+      minibatch_passes(inputs, first_order_options(config()), adam(), batch,
+                       focops_loss(advantages, config().focops_lam, config().focops_eta));
+  return make_result(common_diagnostics(inputs, start.before, 1.0, std::span<const double>(cost_weights)), passes, {});
+}
+
+}  // namespace bsg

@@ -1,0 +1,39 @@
+// The evaluation files of a run directory (docs/reproducing.md#evaluation): returns.csv and
+// costs.csv with one value per line and no header, and evaluation.json:
+//   {"mean_return": J, "mean_cost": H, "episodes": n, "mean_length": L}
+// (with "action_std": sigma after it when the actions were sampled, sampled_evaluation)
+// and, after training (docs/algorithms.md#safety-during-training), the training cost and every
+// constraint (docs/algorithms.md#several-constraints; without `constraints:` the one on the
+// environment's cost against cost_limit):
+//   "cumulative_cost": C, "cost_rate": C / steps,
+//   "constraints": [{"terms": [...] or "all", "limit": d_i, "mean_cost": H_i,
+//                    "holds": H_i <= d_i (null without episodes), "cumulative_cost",
+//                    "cost_rate", "epochs_over_limit"}, ...],
+//   "cost_terms": {"<term>": mean episode sum, ...}  (each of the environment's cost terms)
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "algos/training/evaluation.h"
+#include "algos/training/run_directory.h"
+#include "algos/training/training_cost.h"
+#include "common/constraint_config.h"
+
+namespace bsg {
+
+// What training adds to evaluation.json.
+struct TrainingSafety {
+  std::vector<ConstraintConfig> constraints{};  // effective_constraints(config)
+  TrainingCost training_cost{};
+  long long training_steps = 0;               // environment steps of the whole training
+};
+
+void write_evaluation_files(const RunDirectory& directory, const EvaluationSummary& summary,
+                            const TrainingSafety* safety = nullptr);
+
+// The JSON object of evaluation.json; with `per_episode` also the arrays
+// "returns", "costs" and "lengths"; with `safety` the training cost and the constraints.
+std::string evaluation_json(const EvaluationSummary& summary, bool per_episode, const TrainingSafety* safety = nullptr);
+
+}  // namespace bsg

@@ -1,0 +1,34 @@
+#include "algos/training/run_environment.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "common/config_error.h"
+
+namespace bsg {
+
+envs::EnvDescription run_env_description(const RunConfig& config) {
+  try {
+    return envs::describe(config.env_id, config.env);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(e.what());
+  }
+}
+
+std::unique_ptr<envs::Env> make_run_env(const RunConfig& config) {
+  return envs::make(run_env_description(config),
+                    {.physics = envs::parse_physics_model(to_string(config.physics))});
+}
+
+void resolve_env_block(RunConfig& config) {
+  if (config.env.empty()) return;
+  const envs::EnvDescription description = run_env_description(config);
+  const auto sets = [&](const char* key) {
+    return std::any_of(config.env.begin(), config.env.end(), [&](const auto& p) { return p.first == key; });
+  };
+  if (sets("max_episode_steps")) config.max_ep_len = description.max_episode_steps;
+  if (sets("cost_limit")) config.cost_limit = description.cost_limit;
+  config.env = envs::to_env_overrides(description);
+}
+
+}  // namespace bsg

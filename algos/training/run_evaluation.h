@@ -1,0 +1,35 @@
+// `bsg eval DIR`: re-runs the evaluation (docs/reproducing.md#evaluation) of a run directory's
+// latest checkpoint, without writing anything.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+
+#include "algos/training/evaluation.h"
+#include "algos/training/run_directory.h"
+#include "common/mpi_context.h"
+
+namespace bsg {
+
+struct RunEvaluation {
+  EvaluationSummary summary;  // rank 0 only
+  int epochs_completed = 0;   // of the checkpoint
+  int epochs = 0;             // of the run's config
+};
+
+// `episodes` overrides the config's eval_episodes. Collective. Throws naming
+// the directory or file at fault (not a run directory, corrupt checkpoint).
+RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
+                                     const MpiContext& mpi);
+
+// The same with the environment wrapped by `decorate` before the episodes run
+// (e.g. to record them: render/observed_env.h); the results are unchanged. `actions`
+// overrides the config's sampled_evaluation (the sampled actions use the sigma of the
+// checkpoint's last epoch).
+using EnvDecorator = std::function<std::unique_ptr<envs::Env>(std::unique_ptr<envs::Env>)>;
+RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
+                                     const MpiContext& mpi, const EnvDecorator& decorate,
+                                     std::optional<EvaluationActions> actions = std::nullopt);
+
+}  // namespace bsg

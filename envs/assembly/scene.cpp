@@ -1,0 +1,26 @@
+#include "envs/assembly/scene.h"
+
+#include <stdexcept>
+
+#include "envs/assembly/assembled_env.h"
+#include "envs/tasks/layout_checks.h"
+
+namespace bsg::envs {
+
+SceneView scene_view(const Env& env) {
+  const auto* assembled = dynamic_cast<const AssembledEnv*>(&env);
+  if (assembled == nullptr) {
+    throw std::invalid_argument("scene_view: environment '" + env.spec().id +
+                                "' was not made by bsg::envs::make and has no world to draw");
+  }
+  SceneView view;
+  view.world = &assembled->world();
+  view.agent_colliders = assembled->agent().colliders();
+  view.agent_position = to_vec3(assembled->agent().position());
+  view.task = env.spec().task;
+  view.env_dim = assembled->world().env_dim();
+  view.markings = assembled->markings();
+  return view;
+}
+
+}  // namespace bsg::envs

@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+"""The floors of the building (docs/architecture.md#rooms-and-floors): every
+project include in the library folders must point at the including room
+itself or at a room below it. Run by every build (CMake target bsg_floors)
+and by ctest (build.floors, which also checks that the check fails on an
+upward include).
+
+Usage: check_floors.py SOURCE_DIR
+Exit 0 when every include keeps to its floor; 1, listing every include that
+does not ("file:line: room X includes Y, which is above it"), otherwise.
+"""
+import os
+import re
+import sys
+
+# Room -> the rooms it may include besides itself. A room is a folder
+# holding a library; the deepest listed folder that contains a file is its
+# room. "envs" and "algos" are the folders' faces: env.h and vector_env for
+# the environments; the algos face is only its rooms (nothing at algos/).
+ENVS_BELOW_FACE = ["envs/description", "envs/physics", "envs/agents", "envs/sensors", "envs/tasks",
+                   "envs/assembly"]
+FLOORS = {
+    "common": [],
+    "envs/description": ["common"],
+    "envs/physics": ["envs/description", "common"],
+    "envs/agents": ["envs/physics", "envs/description", "common"],
+    "envs/sensors": ["envs/agents", "envs/physics", "envs/description", "common"],
+    "envs/tasks": ["envs/sensors", "envs/agents", "envs/physics", "envs/description", "common"],
+    # The assembly implements the face's Env interface (envs/env.h): the one
+    # header it reads from the floor above, as a game implements spiel.h.
+    "envs/assembly": ["envs/tasks", "envs/sensors", "envs/agents", "envs/physics", "envs/description", "common",
+                      "envs/env.h"],
+    "envs": ENVS_BELOW_FACE + ["common"],
+    "algos/core": ["envs", "envs/description", "common"],
+    "algos/lagrange": ["algos/core", "envs", "envs/description", "common"],
+    "algos/trust_region": ["algos/lagrange", "algos/core", "envs", "envs/description", "common"],
+    "algos/first_order": ["algos/lagrange", "algos/core", "envs", "envs/description", "common"],
+    "algos/training": ["algos/first_order", "algos/trust_region", "algos/lagrange", "algos/core", "envs",
+                       "envs/description", "common"],
+    # Beside algos: reads a world and a task's markings and draws them.
+    "render": ["envs", "envs/assembly", "envs/tasks", "envs/physics", "envs/description", "common"],
+    # Only the training room of algos/ is seen from above it.
+    "experiments": ["algos/training", "algos/core", "envs", "envs/description", "common"],
+}
+INCLUDE = re.compile(r'^[ \t]*#[ \t]*include\s+"([^"]+)"', re.M)
+SOURCE_SUFFIXES = (".h", ".cpp")
+
+
+def room_of_file(path):
+    directory = os.path.dirname(path)
+    while directory:
+        if directory in FLOORS:
+            return directory
+        directory = os.path.dirname(directory)
+    return None
+
+
+def allowed(room, included):
+    target_room = room_of_file(included)
+    if target_room is None or target_room == room:
+        return True
+    permitted = FLOORS[room]
+    return target_room in permitted or included in permitted
+
+
+def check(source_dir):
+    problems = []
+    for top in ("common", "envs", "algos", "render", "experiments"):
+        for folder, _, files in os.walk(os.path.join(source_dir, top)):
+            for name in sorted(files):
+                if not name.endswith(SOURCE_SUFFIXES):
+                    continue
+                path = os.path.relpath(os.path.join(folder, name), source_dir)
+                room = room_of_file(path)
+                if room is None:
+                    problems.append(f"{path}: in no room (add its folder to FLOORS in scripts/check_floors.py)")
+                    continue
+                with open(os.path.join(source_dir, path), encoding="utf-8") as source:
+                    text = source.read()
+                for match in INCLUDE.finditer(text):
+                    included = match.group(1)
+                    if "/" not in included:
+                        problems.append(f"{path}:{text.count(chr(10), 0, match.start()) + 1}: include "
+                                        f'"{included}" by its full path ("<folder>/{included}")')
+                        continue
+                    if not allowed(room, included):
+                        line = text.count("\n", 0, match.start()) + 1
+                        problems.append(f"{path}:{line}: room {room} includes {included}, "
+                                        f"which is not below it (it may include: {', '.join(FLOORS[room]) or 'nothing'})")
+    return problems
+
+
+def main():
+    if len(sys.argv) != 2 or not os.path.isdir(sys.argv[1]):
+        print("usage: check_floors.py SOURCE_DIR", file=sys.stderr)
+        return 2
+    problems = check(sys.argv[1])
+    for problem in problems:
+        print(problem, file=sys.stderr)
+    if problems:
+        print(f"check_floors: {len(problems)} include(s) break the floors (docs/architecture.md#rooms-and-floors)",
+              file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
