@@ -92,7 +92,7 @@ int bench(const BenchArguments& args) {
         const envs::EnvBenchmark result = envs::benchmark_env(description, args.steps, 0, models[m]);
         const double overhead = result.physics_steps_per_second / result.env_steps_per_second;
         env_rates[m].push_back(result.env_steps_per_second);
-        const std::string physics(envs::to_string(models[m].physics));
+        const std::string physics(to_string(models[m].physics));
         if (args.json) {
           list.push_back({{"id", id},
                           {"physics", physics},
@@ -114,7 +114,7 @@ int bench(const BenchArguments& args) {
       const double reference = median(env_rates.at(0));
       std::cout << "  median env steps/s over " << args.rounds << " round(s):";
       for (const auto& [m, rates] : env_rates) {
-        std::cout << " " << envs::to_string(models[m].physics) << " " << std::setprecision(0)
+        std::cout << " " << to_string(models[m].physics) << " " << std::setprecision(0)
                   << median(rates) << " (" << std::setprecision(2) << median(rates) / reference
                   << "x)";
       }

@@ -76,7 +76,7 @@ void check_before_training(const RunConfig& config, int num_ranks) {
   check_run_config_for_ranks(config, num_ranks);
   std::unique_ptr<envs::Env> env;
   try {
-    env = envs::make(config.env_id, {.physics = envs::parse_physics_model(to_string(config.physics))});
+    env = envs::make(config.env_id, {.physics = config.physics});
   } catch (const std::invalid_argument& e) {
     throw ConfigError("physics = " + std::string(to_string(config.physics)) + ": " + e.what());
   }
@@ -91,7 +91,7 @@ std::unique_ptr<OnPolicyTrainer> make_trainer(const RunConfig& config, const Run
     return std::make_unique<OnPolicyTrainer>(config, directory, mpi, options);
   } catch (const std::bad_alloc&) {
     const std::unique_ptr<envs::Env> env =
-        envs::make(config.env_id, {.physics = envs::parse_physics_model(to_string(config.physics))});
+        envs::make(config.env_id, {.physics = config.physics});
     const TrainingMemoryEstimate estimate =
         estimate_training_memory(config, env->spec().observation_dim, env->spec().action_dim, mpi.size());
     throw std::runtime_error("out of memory while allocating the networks (hidden_sizes) and the rollout buffer (" +

@@ -23,7 +23,6 @@ std::string_view to_string(PcpoProjection projection) {
 std::string_view to_string(Activation activation) {
   return name_of(kActivationNames, activation);
 }
-std::string_view to_string(Physics physics) { return name_of(kPhysicsNames, physics); }
 std::string_view to_string(Learner learner) { return name_of(kLearnerNames, learner); }
 
 }  // namespace bsg

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "common/constraint_config.h"
+#include "common/physics_model.h"
 #include "common/dtype.h"
 
 namespace bsg {
@@ -53,11 +54,6 @@ inline constexpr std::array<std::string_view, 2> kCpoRSignNames = {"original", "
 enum class PcpoProjection { kl, l2 };
 inline constexpr std::array<std::string_view, 2> kPcpoProjectionNames = {"kl", "l2"};
 
-// Physics model of the environment (envs/env.h): the original's model link for
-// link, or a physically equivalent one that is cheaper to step (the Ant).
-enum class Physics { faithful, lean };
-inline constexpr std::array<std::string_view, 2> kPhysicsNames = {"faithful", "lean"};
-
 // Which learner a run uses (docs/algorithms.md#quirk-switches): the original's
 // (every quirk switch as set by the layers) or the corrected one, which turns
 // on every "corrected" switch (Q1, Q4, Q5, Q10, Q19, Q20) unless the run file or
@@ -74,7 +70,6 @@ std::string_view to_string(LambdaOptimizer optimizer);
 std::string_view to_string(CpoRSign sign);
 std::string_view to_string(PcpoProjection projection);
 std::string_view to_string(Activation activation);
-std::string_view to_string(Physics physics);
 std::string_view to_string(Learner learner);
 
 struct RunConfig {
@@ -92,7 +87,7 @@ struct RunConfig {
   int epochs = 500;                // E
   int steps_per_epoch = 32000;     // B: env steps per epoch summed over ranks
   int max_ep_len = 250;            // episode time limit in steps
-  Physics physics = Physics::faithful;
+  PhysicsModel physics = PhysicsModel::kFaithful;  // common/physics_model.h
   Learner learner = Learner::faithful;  // the `learner:` preset (run file, --set, grid)
   // The `env:` block: parameters of the environment's description as
   // (key, value text), applied to env_id's description in this order

@@ -115,7 +115,7 @@ const std::vector<SchemaRow>& schema_rows() {
             "base seed; per-rank and per-environment seeds are derived from it (seeding.h)"),
     text("log_dir", &R::log_dir, L::run,
          "directory under which the run directory is created"),
-    choice("physics", enum_access<&R::physics>(), kPhysicsNames, L::run, all,
+    choice("physics", enum_access<&R::physics>(), kPhysicsModelNames, L::run, all,
            "faithful (the original's model) or lean (equivalent, faster; the Ant and the Car)"),
     choice("learner", enum_access<&R::learner>(), kLearnerNames, L::run, all,
            "preset: faithful (the original's learner) or corrected (every corrected switch on: Q1, Q4, Q5, "

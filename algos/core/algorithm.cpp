@@ -1,5 +1,6 @@
 #include "algos/core/algorithm.h"
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -13,8 +14,15 @@ double PolicyUpdateResult::value(std::string_view name) const {
   throw std::out_of_range("PolicyUpdateResult::value: no diagnostic named '" + std::string(name) + "'");
 }
 
+std::vector<std::string> names_of(std::span<const NamedScalar> columns) {
+  std::vector<std::string> names;
+  names.reserve(columns.size());
+  for (const NamedScalar& column : columns) names.push_back(column.name);
+  return names;
+}
+
 std::vector<std::string> common_diagnostic_names() {
-  return {"Loss/Pi", "Loss/DeltaPi", "Entropy", "KL", "PolicyRatio"};
+  return {kCommonDiagnosticNames.begin(), kCommonDiagnosticNames.end()};
 }
 
 std::vector<ConstraintEstimate> constraint_estimates(const PolicyUpdateInputs& inputs, const RunConfig& config) {
@@ -64,11 +72,13 @@ std::vector<NamedScalar> common_diagnostics(const PolicyUpdateInputs& inputs, co
   const SurrogateValues after = inputs.surrogate.evaluate(inputs.policy);
   const double loss_before = weighted_surrogate_loss(before, reward_weight, cost_weights);
   const double loss_after = weighted_surrogate_loss(after, reward_weight, cost_weights);
-  return {{"Loss/Pi", loss_before},
-          {"Loss/DeltaPi", loss_after - loss_before},
-          {"Entropy", inputs.policy.entropy_per_dimension()},
-          {"KL", after.kl},
-          {"PolicyRatio", after.mean_ratio}};
+  const std::array<double, kCommonDiagnosticCount> values = {
+      loss_before, loss_after - loss_before, inputs.policy.entropy_per_dimension(), after.kl, after.mean_ratio};
+  std::vector<NamedScalar> diagnostics;
+  for (std::size_t i = 0; i < kCommonDiagnosticCount; ++i) {
+    diagnostics.push_back({std::string(kCommonDiagnosticNames[i]), values[i]});
+  }
+  return diagnostics;
 }
 
 std::vector<NamedScalar> common_diagnostics(const PolicyUpdateInputs& inputs, const SurrogateValues& before,

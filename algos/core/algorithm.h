@@ -17,6 +17,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -36,6 +38,10 @@ struct NamedScalar {
   double value = 0.0;
   bool operator==(const NamedScalar&) const = default;
 };
+
+// The names of a list of columns, in order (an algorithm's diagnostic_names()
+// from the function that fills the values, so that each name is written once).
+std::vector<std::string> names_of(std::span<const NamedScalar> columns);
 
 // One constraint as an update sees it (docs/algorithms.md#several-constraints).
 struct ConstraintEstimate {
@@ -76,13 +82,27 @@ std::vector<ConstraintEstimate> constraint_estimates(const PolicyUpdateInputs& i
 // Misc/r, Misc/s, Misc/Lambda_star, Misc/Nu_star, Misc/OptimCase (CPO, PCPO);
 // Misc/cost_gradient_norm, LagrangeMultiplier (PDO); TRPO-L and PDO with
 // lambda_optimizer PID add PID/P, PID/I, PID/D after LagrangeMultiplier.
+inline constexpr std::size_t kCommonDiagnosticCount = 5;
+// Their names, in order (the values: common_diagnostics).
+inline constexpr std::array<std::string_view, kCommonDiagnosticCount> kCommonDiagnosticNames = {
+    "Loss/Pi", "Loss/DeltaPi", "Entropy", "KL", "PolicyRatio"};
+// Their positions, for reading a result without looking names up.
+enum class CommonDiagnostic : std::size_t { loss = 0, loss_delta = 1, entropy = 2, kl = 3, policy_ratio = 4 };
+
 struct PolicyUpdateResult {
   std::vector<NamedScalar> diagnostics;
+  // lambda of a Lagrangian update with one constraint (set with the
+  // multiplier's columns, algos/lagrange/constraint_multipliers.h); empty otherwise.
+  std::optional<double> lagrange_multiplier;
   // The value of the named diagnostic; throws std::out_of_range if absent.
   double value(std::string_view name) const;
+  // One of the common columns (empty if the update gave fewer).
+  std::optional<double> common(CommonDiagnostic which) const {
+    const auto index = static_cast<std::size_t>(which);
+    if (index >= diagnostics.size()) return std::nullopt;
+    return diagnostics[index].value;
+  }
 };
-
-inline constexpr std::size_t kCommonDiagnosticCount = 5;
 
 class OnPolicyAlgorithm {
  public:

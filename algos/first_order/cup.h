@@ -1,6 +1,6 @@
 // CUP, Constrained Update Projection (docs/algorithms.md#cup; Yang, Ji, Dai,
 // Zhang, Zhou, Li, Yang and Pan 2022, Algorithm 1 as OmniSafe implements it):
-//   0. every nu_j >= 0 updates first on its J_Cj (lagrange_multipliers.h)
+//   0. every nu_j >= 0 updates first on its J_Cj (constraint_multipliers.h)
 //   1. performance step: PPO's clipped-surrogate passes on the reward
 //      advantage A (ppo.h), giving pi_{k+1/2}
 //   2. projection step: passes from pi_{k+1/2} on

@@ -54,7 +54,7 @@ PolicyUpdateResult FirstOrderAlgorithm::make_result(std::vector<NamedScalar> com
   append_first_order_diagnostics(result.diagnostics, passes);
   for (NamedScalar& entry : own) result.diagnostics.push_back(std::move(entry));
   if (constrained_) {
-    for (NamedScalar& entry : multipliers_.diagnostics()) result.diagnostics.push_back(std::move(entry));
+    multipliers_.append_to(result);
   }
   return result;
 }

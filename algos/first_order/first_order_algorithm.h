@@ -1,7 +1,7 @@
 // What PPO, PPO-Lag, FOCOPS and CUP share around their losses
 // (docs/algorithms.md#first-order-updates): the policy's Adam, the Lagrange
 // multipliers of the constrained ones (one per constraint, updated before
-// the policy, lagrange_multipliers.h), their columns and their saved state.
+// the policy, constraint_multipliers.h), their columns and their saved state.
 //
 // Columns: the common five, Misc/StopIter and Misc/gradient_norm
 // (first_order_update.h), the algorithm's own, then the multipliers'.
@@ -14,7 +14,7 @@
 
 #include "algos/core/algorithm.h"
 #include "algos/first_order/first_order_update.h"
-#include "algos/lagrange/lagrange_multipliers.h"
+#include "algos/lagrange/constraint_multipliers.h"
 #include "common/run_config.h"
 
 namespace bsg {

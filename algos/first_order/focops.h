@@ -1,6 +1,6 @@
 // FOCOPS, First Order Constrained Optimization in Policy Space
 // (docs/algorithms.md#focops; Zhang, Vuong and Ross 2020, NeurIPS, Algorithm 1):
-//   0. every nu_j >= 0 updates first on its J_Cj (lagrange_multipliers.h; the
+//   0. every nu_j >= 0 updates first on its J_Cj (constraint_multipliers.h; the
 //      paper's nu <- proj(nu - alpha_nu (d - J_C)) is the SGD rule), and
 //      A_hat_i = A_i - sum_j nu_j A^Cj_i          (eq. 8 with one term per constraint)
 //   1. minibatch passes (first_order_update.h) on the paper's loss (eq. 12)

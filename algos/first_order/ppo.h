@@ -3,7 +3,7 @@
 // (docs/algorithms.md#ppo-lag; Ray, Achiam and Amodei 2019, Safety Gym's baseline;
 // with lambda_optimizer PID it is CPPO-PID, Stooke, Achiam and Abbeel 2020):
 //   0. PPO-Lag only: every multiplier lambda_j updates first on its J_Cj
-//      (lagrange_multipliers.h), and the advantage becomes
+//      (constraint_multipliers.h), and the advantage becomes
 //      A_hat_i = (A_i - sum_j lambda_j A^Cj_i) / (1 + sum_j lambda_j)   (OmniSafe's PPOLag)
 //      (PPO: A_hat = A)
 //   1. minibatch passes (first_order_update.h) on

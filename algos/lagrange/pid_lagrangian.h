@@ -12,7 +12,7 @@
 //
 // The integral alone is the plain SGD rule with K_I as its learning rate: with
 // K_P = K_D = 0, lambda_k = I_k = max(0, I_{k-1} + K_I (J_C - d)), the SGD
-// multiplier of lagrange_multiplier.h. The derivative only pushes lambda up
+// multiplier of multiplier.h. The derivative only pushes lambda up
 // when the cost rises (it never rewards falling cost), damping the overshoot
 // the integral alone gives; the proportional term reacts to the current
 // violation without waiting for the integral to build up.

@@ -94,7 +94,8 @@ struct EpochLogInputs {
 };
 
 // Collective (every rank takes part in the reductions); every rank gets the row.
-// Throws std::logic_error if the row's columns are not epoch_log_columns() of its inputs' layout.
+// Its columns are epoch_log_columns() of the layout its inputs make: one list
+// in epoch_log.cpp gives both.
 std::vector<NamedScalar> make_epoch_log_row(const EpochLogInputs& inputs, const MpiContext& mpi);
 
 // What decides a run's progress.csv columns.

@@ -17,7 +17,7 @@ envs::EnvDescription run_env_description(const RunConfig& config) {
 
 std::unique_ptr<envs::Env> make_run_env(const RunConfig& config) {
   return envs::make(run_env_description(config),
-                    {.physics = envs::parse_physics_model(to_string(config.physics))});
+                    {.physics = config.physics});
 }
 
 void resolve_env_block(RunConfig& config) {

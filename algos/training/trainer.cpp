@@ -71,13 +71,6 @@ int local_steps(const RunConfig& config, const MpiContext& mpi) {
   return config.steps_per_epoch / mpi.size();
 }
 
-std::optional<double> find_diagnostic(const PolicyUpdateResult& result, std::string_view name) {
-  for (const NamedScalar& d : result.diagnostics) {
-    if (d.name == name) return d.value;
-  }
-  return std::nullopt;
-}
-
 }  // namespace
 
 OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi,
@@ -94,14 +87,15 @@ OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory
       env_(checked_env(std::move(env))),
       actor_critic_(make_actor_critic(config, env_->spec())),
       algorithm_(make_algorithm(config)),
-      buffer_(local_steps(config, mpi), env_->spec().observation_dim, env_->spec().action_dim,
+      local_steps_(local_steps(config, mpi)),
+      buffer_(local_steps_, env_->spec().observation_dim, env_->spec().action_dim,
               buffer_options(config)),
       collector_(env_->spec().observation_dim, env_->spec().action_dim,
-                 RolloutOptions{local_steps(config, mpi), config.max_ep_len, config.use_reward_scaling,
+                 RolloutOptions{local_steps_, config.max_ep_len, config.use_reward_scaling,
                                 config.timeout_bootstrap},
                  bound_cost_selector(config, *env_)),
-      normalized_observations_(local_steps(config, mpi), env_->spec().observation_dim),
-      returns_column_(local_steps(config, mpi), 1) {
+      normalized_observations_(local_steps_, env_->spec().observation_dim),
+      returns_column_(local_steps_, 1) {
   progress_.num_ranks = mpi_.size();
   progress_.training_cost = TrainingCost::for_constraints(constraint_count(config_));
   if (options_.resume) {
@@ -205,35 +199,58 @@ void OnPolicyTrainer::check_ranks_agree(int epoch) const {
   }
 }
 
+// One epoch (docs/algorithms.md#the-epoch-loop) as its six steps, in this order on every rank.
 void OnPolicyTrainer::run_epoch(int epoch) {
-  const auto epoch_start = Clock::now();
-  const double epoch_cpu_start = process_cpu_seconds();
-  ActorCritic& ac = *actor_critic_;
-  const int rank = mpi_.rank();
+  EpochClock clock;
+  clock.epoch_start = Clock::now();
+  clock.epoch_cpu_start = process_cpu_seconds();
 
-  // 1. Exploration noise of this epoch (docs/algorithms.md#exploration-noise); a learned
-  // log sigma is the update's to change (docs/algorithms.md#learned-log-sigma).
-  if (!ac.policy.has_learned_std()) {
-    ac.policy.set_std(exploration_std(config_, epoch));
-  }
-  noise_rng_.seed(stream_seed(config_, SeedStream::action_noise, rank, epoch));
-  shuffle_rng_.seed(stream_seed(config_, SeedStream::minibatch_shuffle, rank, epoch));
-
-  // 2. Rollout.
-  collector_.collect(*env_, stream_seed(config_, SeedStream::environment, rank, epoch), ac, noise_rng_, buffer_);
-  check_rollout_finite(epoch);
-  const double collect_seconds = seconds_since(epoch_start);
+  set_exploration_noise(epoch);  // 1
+  collect_rollout(epoch);        // 2
+  clock.collect_seconds = seconds_since(clock.epoch_start);
   const auto update_start = Clock::now();
   const double update_cpu_start = process_cpu_seconds();
 
-  // 3. Policy update with the pooled J_C (J_Ci) and L.
+  const EpochPolicyStep policy_step = update_policy(epoch, clock);  // 3
+  const std::vector<ValueFitStats> fits = fit_values(epoch, clock);  // 4
+  update_normalizers(epoch);                                         // 5
+  clock.update_seconds = seconds_since(update_start);
+  clock.update_cpu_seconds = process_cpu_seconds() - update_cpu_start;
+
+  record_epoch(epoch, policy_step, fits, clock);  // 6
+  const bool last = epoch == config_.epochs - 1;
+  const bool stopping = options_.stop_after_epochs > 0 && progress_.epochs_completed >= options_.stop_after_epochs;
+  if (epoch % config_.save_freq == 0 || last || stopping) save_checkpoint();
+}
+
+// 1. Exploration noise of this epoch (docs/algorithms.md#exploration-noise); a learned
+// log sigma is the update's to change (docs/algorithms.md#learned-log-sigma).
+void OnPolicyTrainer::set_exploration_noise(int epoch) {
+  ActorCritic& ac = *actor_critic_;
+  if (!ac.policy.has_learned_std()) {
+    ac.policy.set_std(exploration_std(config_, epoch));
+  }
+  noise_rng_.seed(stream_seed(config_, SeedStream::action_noise, mpi_.rank(), epoch));
+  shuffle_rng_.seed(stream_seed(config_, SeedStream::minibatch_shuffle, mpi_.rank(), epoch));
+}
+
+// 2. Rollout: this rank's local_steps_ steps, GAE at every path's end.
+void OnPolicyTrainer::collect_rollout(int epoch) {
+  collector_.collect(*env_, stream_seed(config_, SeedStream::environment, mpi_.rank(), epoch), *actor_critic_,
+                     noise_rng_, buffer_);
+  check_rollout_finite(epoch);
+}
+
+// 3. Policy update with the pooled J_C (J_Ci) and L.
+OnPolicyTrainer::EpochPolicyStep OnPolicyTrainer::update_policy(int epoch, EpochClock& clock) {
+  ActorCritic& ac = *actor_critic_;
   const bool several = !config_.constraints.empty();
-  const EpisodeStatistics episodes = pool_episode_statistics(buffer_, mpi_, several);
-  std::vector<ConstraintEstimate> constraints;
+  EpochPolicyStep step;
+  step.episodes = pool_episode_statistics(buffer_, mpi_, several);
   for (int i = 0; i < buffer_.constraint_count(); ++i) {
-    const double mean_cost = several ? episodes.constraint_costs[static_cast<std::size_t>(i)].mean
-                                     : episodes.episode_cost.mean;
-    constraints.push_back({mean_cost, constraint_limit(config_, i)});
+    const double mean_cost = several ? step.episodes.constraint_costs[static_cast<std::size_t>(i)].mean
+                                     : step.episodes.episode_cost.mean;
+    step.constraints.push_back({mean_cost, constraint_limit(config_, i)});
   }
   ac.normalize_observations(buffer_.observations(), normalized_observations_);
   advantages_ = buffer_.advantages();
@@ -246,15 +263,19 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   const auto policy_start = Clock::now();
   PolicySurrogate surrogate(normalized_observations_, buffer_.actions(), buffer_.log_probs(), advantages_,
                             cost_advantages_);
-  const PolicyUpdateResult update = algorithm_->update(
-      PolicyUpdateInputs{ac.policy, surrogate, constraints.front().mean_episode_cost, episodes.episode_length.mean,
-                         mpi_, constraints, &shuffle_rng_});
-  if (const auto loss = find_diagnostic(update, "Loss/Pi")) check_finite(epoch, "policy loss", *loss);
+  step.update = algorithm_->update(PolicyUpdateInputs{ac.policy, surrogate,
+                                                      step.constraints.front().mean_episode_cost,
+                                                      step.episodes.episode_length.mean, mpi_, step.constraints,
+                                                      &shuffle_rng_});
+  if (const auto loss = step.update.common(CommonDiagnostic::loss)) check_finite(epoch, "policy loss", *loss);
   check_parameters_finite(epoch);
+  clock.policy_update_seconds = seconds_since(policy_start);
+  return step;
+}
 
-  const double policy_update_seconds = seconds_since(policy_start);
-
-  // 4. Value fits (docs/algorithms.md#value-fits): V, and V_C if the algorithm uses it, on shared minibatches.
+// 4. Value fits (docs/algorithms.md#value-fits): V, and V_C if the algorithm uses it, on shared minibatches.
+std::vector<ValueFitStats> OnPolicyTrainer::fit_values(int epoch, EpochClock& clock) {
+  ActorCritic& ac = *actor_critic_;
   const auto value_fit_start = Clock::now();
   const ValueFitOptions fit_options{config_.train_v_iterations, config_.num_mini_batches, 16};
   std::vector<ValueFitJob> fit_jobs{{ac.value, buffer_.value_targets()}};
@@ -269,21 +290,21 @@ void OnPolicyTrainer::run_epoch(int epoch) {
     ac.value_inputs(normalized_observations_, buffer_.episode_steps(), value_inputs_);
     value_fit_inputs = &value_inputs_;
   }
-  const std::vector<ValueFitStats> fits =
-      fit_value_functions(fit_jobs, *value_fit_inputs, shuffle_rng_, mpi_, fit_options);
-  const ValueFitStats& value_fit = fits.front();
-  check_finite(epoch, "value loss", value_fit.loss_before);
-  check_finite(epoch, "value minibatch loss", value_fit.mean_minibatch_loss);
-  std::optional<ValueFitStats> cost_value_fit;
+  std::vector<ValueFitStats> fits = fit_value_functions(fit_jobs, *value_fit_inputs, shuffle_rng_, mpi_, fit_options);
+  check_finite(epoch, "value loss", fits.front().loss_before);
+  check_finite(epoch, "value minibatch loss", fits.front().mean_minibatch_loss);
   if (algorithm_->uses_cost_value_function()) {
-    cost_value_fit = fits[1];  // constraint 1's V_C (the others are checked by check_parameters_finite)
-    check_finite(epoch, "cost value loss", cost_value_fit->loss_before);
-    check_finite(epoch, "cost value minibatch loss", cost_value_fit->mean_minibatch_loss);
+    // Constraint 1's V_C (the others are checked by check_parameters_finite).
+    check_finite(epoch, "cost value loss", fits[1].loss_before);
+    check_finite(epoch, "cost value minibatch loss", fits[1].mean_minibatch_loss);
   }
+  clock.value_fit_seconds = seconds_since(value_fit_start);
+  return fits;
+}
 
-  const double value_fit_seconds = seconds_since(value_fit_start);
-
-  // 5. Normalisers last (docs/algorithms.md#each-epoch, step 5).
+// 5. Normalisers last (docs/algorithms.md#each-epoch, step 5), then the checks of the epoch's end.
+void OnPolicyTrainer::update_normalizers(int epoch) {
+  ActorCritic& ac = *actor_critic_;
   if (ac.standardize_observations) ac.observation_normalizer.update(buffer_.observations(), mpi_);
   if (config_.use_reward_scaling &&
       (config_.reward_scale_warmup_epochs == 0 || epoch < config_.reward_scale_warmup_epochs)) {
@@ -297,15 +318,16 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   }
   check_parameters_finite(epoch);
   if (epoch % config_.check_freq == 0) check_ranks_agree(epoch);
-  const double update_seconds = seconds_since(update_start);
-  const double update_cpu_seconds = process_cpu_seconds() - update_cpu_start;
+}
 
-  // 6. Log and save.
-  const double epoch_seconds = seconds_since(epoch_start);
+// 6. The epoch's accounts: the timings hook, the training cost, the progress.csv row and line.
+void OnPolicyTrainer::record_epoch(int epoch, const EpochPolicyStep& policy_step,
+                                   const std::vector<ValueFitStats>& fits, const EpochClock& clock) {
+  const double epoch_seconds = seconds_since(clock.epoch_start);
   if (options_.on_epoch_timed) {
-    options_.on_epoch_timed(EpochTimings{epoch, collect_seconds, policy_update_seconds, value_fit_seconds,
-                                         update_seconds, epoch_seconds, update_cpu_seconds,
-                                         process_cpu_seconds() - epoch_cpu_start});
+    options_.on_epoch_timed(EpochTimings{epoch, clock.collect_seconds, clock.policy_update_seconds,
+                                         clock.value_fit_seconds, clock.update_seconds, epoch_seconds,
+                                         clock.update_cpu_seconds, process_cpu_seconds() - clock.epoch_cpu_start});
   }
   progress_.epochs_completed = epoch + 1;
   progress_.elapsed_seconds += epoch_seconds;
@@ -313,50 +335,48 @@ void OnPolicyTrainer::run_epoch(int epoch) {
   Eigen::VectorXd epoch_costs(1 + buffer_.constraint_count());
   epoch_costs << buffer_.epoch_cost(), buffer_.epoch_constraint_costs();
   mpi_.sum_in_place(epoch_costs.data(), static_cast<std::size_t>(epoch_costs.size()));
-  progress_.training_cost.add_epoch(epoch_costs[0], epoch_costs.tail(buffer_.constraint_count()), constraints);
+  progress_.training_cost.add_epoch(epoch_costs[0], epoch_costs.tail(buffer_.constraint_count()),
+                                    policy_step.constraints);
   seconds_this_process_ += epoch_seconds;
   ++epochs_this_process_;
 
+  const bool trains_cost_values = algorithm_->uses_cost_value_function();
   EpochLogInputs log_inputs;
   log_inputs.epoch = epoch;
   log_inputs.total_env_steps = static_cast<long long>(epoch + 1) * config_.steps_per_epoch;
   log_inputs.steps_per_epoch = config_.steps_per_epoch;
-  log_inputs.exploration_std = ac.policy.std();
-  log_inputs.episodes = &episodes;
+  log_inputs.exploration_std = actor_critic_->policy.std();
+  log_inputs.episodes = &policy_step.episodes;
   log_inputs.buffer = &buffer_;
-  log_inputs.update = &update;
-  log_inputs.value_fit = &value_fit;
-  log_inputs.cost_value_fit = cost_value_fit ? &*cost_value_fit : nullptr;
-  log_inputs.return_normalizer = &ac.return_normalizer;
-  log_inputs.collect_seconds = collect_seconds;
-  log_inputs.update_seconds = update_seconds;
+  log_inputs.update = &policy_step.update;
+  log_inputs.value_fit = &fits.front();
+  log_inputs.cost_value_fit = trains_cost_values ? &fits[1] : nullptr;
+  log_inputs.return_normalizer = &actor_critic_->return_normalizer;
+  log_inputs.collect_seconds = clock.collect_seconds;
+  log_inputs.update_seconds = clock.update_seconds;
   log_inputs.elapsed_seconds = progress_.elapsed_seconds;
-  if (several) {
-    log_inputs.constraints = constraints;
-    if (algorithm_->uses_cost_value_function()) log_inputs.constraint_cost_value_fits = std::span(fits).subspan(1);
+  if (!config_.constraints.empty()) {
+    log_inputs.constraints = policy_step.constraints;
+    if (trains_cost_values) log_inputs.constraint_cost_value_fits = std::span(fits).subspan(1);
   }
   log_inputs.training_cost = &progress_.training_cost;
   const std::vector<NamedScalar> row = make_epoch_log_row(log_inputs, mpi_);
 
-  if (mpi_.is_root()) {
-    progress_csv_->write_row(row);
-    if (options_.log != nullptr) {
-      ProgressLineInputs line;
-      line.epoch = epoch;
-      line.epochs = config_.epochs;
-      line.mean_return = episodes.episode_return.mean;
-      line.mean_cost = constraints.front().mean_episode_cost;  // constraint 1's (the environment's without `constraints:`)
-      if (algorithm_->uses_cost_value_function()) line.cost_limit = constraints.front().limit;
-      line.lagrange_multiplier = find_diagnostic(update, "LagrangeMultiplier");
-      line.kl = find_diagnostic(update, "KL").value_or(std::nan(""));
-      line.epoch_seconds = epoch_seconds;
-      line.eta_seconds = seconds_this_process_ / epochs_this_process_ * (config_.epochs - epoch - 1);
-      *options_.log << format_progress_line(line) << std::endl;
-    }
-  }
-  const bool last = epoch == config_.epochs - 1;
-  const bool stopping = options_.stop_after_epochs > 0 && progress_.epochs_completed >= options_.stop_after_epochs;
-  if (epoch % config_.save_freq == 0 || last || stopping) save_checkpoint();
+  if (!mpi_.is_root()) return;
+  progress_csv_->write_row(row);
+  if (options_.log == nullptr) return;
+  ProgressLineInputs line;
+  line.epoch = epoch;
+  line.epochs = config_.epochs;
+  line.mean_return = policy_step.episodes.episode_return.mean;
+  // Constraint 1's (the environment's without `constraints:`).
+  line.mean_cost = policy_step.constraints.front().mean_episode_cost;
+  if (trains_cost_values) line.cost_limit = policy_step.constraints.front().limit;
+  line.lagrange_multiplier = policy_step.update.lagrange_multiplier;
+  line.kl = policy_step.update.common(CommonDiagnostic::kl).value_or(std::nan(""));
+  line.epoch_seconds = epoch_seconds;
+  line.eta_seconds = seconds_this_process_ / epochs_this_process_ * (config_.epochs - epoch - 1);
+  *options_.log << format_progress_line(line) << std::endl;
 }
 
 TrainingOutcome OnPolicyTrainer::run() {

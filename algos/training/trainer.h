@@ -37,16 +37,20 @@
 // epoch prepended.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <iosfwd>
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "algos/core/actor_critic.h"
 #include "algos/core/algorithm.h"
 #include "algos/core/buffer.h"
+#include "algos/core/value_function.h"
 #include "algos/training/evaluation.h"
+#include "algos/training/epoch_log.h"
 #include "algos/training/evaluation_files.h"
 #include "algos/training/progress_csv.h"
 #include "algos/training/rollout.h"
@@ -114,7 +118,32 @@ class OnPolicyTrainer {
   int epochs_completed() const { return progress_.epochs_completed; }
 
  private:
+  // The clock readings of one epoch, for the timings hook and the log.
+  struct EpochClock {
+    std::chrono::steady_clock::time_point epoch_start;
+    double epoch_cpu_start = 0.0;
+    double collect_seconds = 0.0;
+    double policy_update_seconds = 0.0;
+    double value_fit_seconds = 0.0;
+    double update_seconds = 0.0;  // policy update, value fits and normalisers
+    double update_cpu_seconds = 0.0;
+  };
+  // What the policy step of an epoch leaves for the log.
+  struct EpochPolicyStep {
+    EpisodeStatistics episodes;                   // this epoch's completed episodes, pooled over ranks
+    std::vector<ConstraintEstimate> constraints;  // J_Ci and d_i, as the update saw them
+    PolicyUpdateResult update;
+  };
+
   void run_epoch(int epoch);
+  // run_epoch's steps, in order (docs/algorithms.md#the-epoch-loop).
+  void set_exploration_noise(int epoch);
+  void collect_rollout(int epoch);
+  EpochPolicyStep update_policy(int epoch, EpochClock& clock);
+  std::vector<ValueFitStats> fit_values(int epoch, EpochClock& clock);  // V first, then each V_Ci trained
+  void update_normalizers(int epoch);
+  void record_epoch(int epoch, const EpochPolicyStep& policy_step, const std::vector<ValueFitStats>& fits,
+                    const EpochClock& clock);
   void check_rollout_finite(int epoch) const;
   void check_finite(int epoch, const char* quantity, double value) const;
   void check_parameters_finite(int epoch) const;
@@ -132,6 +161,7 @@ class OnPolicyTrainer {
   std::unique_ptr<envs::Env> env_;
   std::unique_ptr<ActorCritic> actor_critic_;
   std::unique_ptr<OnPolicyAlgorithm> algorithm_;
+  int local_steps_;  // this rank's steps per epoch: steps_per_epoch / ranks
   Buffer buffer_;
   RolloutCollector collector_;
   Eigen::MatrixXd normalized_observations_;

@@ -26,9 +26,22 @@ std::string describe(const CpoStep& step, double c) {
 
 }  // namespace
 
+void append_cpo_diagnostics(std::vector<NamedScalar>& diagnostics, const CpoColumns& columns) {
+  diagnostics.insert(diagnostics.end(), {{"Misc/cost_gradient_norm", columns.cost_gradient_norm},
+                                         {"Misc/A", columns.A},
+                                         {"Misc/B", columns.B},
+                                         {"Misc/q", columns.q},
+                                         {"Misc/r", columns.r},
+                                         {"Misc/s", columns.s},
+                                         {"Misc/Lambda_star", columns.lambda_star},
+                                         {"Misc/Nu_star", columns.nu_star},
+                                         {"Misc/OptimCase", columns.optim_case}});
+}
+
 std::vector<std::string> cpo_diagnostic_names() {
-  return {"Misc/cost_gradient_norm", "Misc/A", "Misc/B", "Misc/q", "Misc/r", "Misc/s",
-          "Misc/Lambda_star", "Misc/Nu_star", "Misc/OptimCase"};
+  std::vector<NamedScalar> columns;
+  append_cpo_diagnostics(columns, CpoColumns{});
+  return names_of(columns);
 }
 
 CpoStep cpo_step(const LinearOperator& fisher, const Eigen::Ref<const Eigen::VectorXd>& reward_gradient,
@@ -256,16 +269,15 @@ PolicyUpdateResult Cpo::update(const PolicyUpdateInputs& inputs) {
   result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
   append_trpo_diagnostics(result.diagnostics, search, step.trpo_step_size, gradients.reward.norm(),
                           step.q, step.reward_direction.norm());
-  result.diagnostics.insert(result.diagnostics.end(),
-                            {{"Misc/cost_gradient_norm", gradients.cost.norm()},
-                             {"Misc/A", step.A},
-                             {"Misc/B", step.B},
-                             {"Misc/q", step.q},
-                             {"Misc/r", step.r},
-                             {"Misc/s", step.s},
-                             {"Misc/Lambda_star", step.lambda_star},
-                             {"Misc/Nu_star", step.nu_star},
-                             {"Misc/OptimCase", static_cast<double>(step.optim_case)}});
+  append_cpo_diagnostics(result.diagnostics, {.cost_gradient_norm = gradients.cost.norm(),
+                                               .A = step.A,
+                                               .B = step.B,
+                                               .q = step.q,
+                                               .r = step.r,
+                                               .s = step.s,
+                                               .lambda_star = step.lambda_star,
+                                               .nu_star = step.nu_star,
+                                               .optim_case = static_cast<double>(step.optim_case)});
   return result;
 }
 

@@ -126,7 +126,21 @@ class Cpo final : public OnPolicyAlgorithm {
   PolicyUpdateResult update_several(const PolicyUpdateInputs& inputs, const std::vector<ConstraintEstimate>& constraints);
 };
 
-// The nine CPO columns after the TRPO set (also PCPO's), in docs/algorithms.md#logged-columns order.
+// The nine CPO columns after the TRPO set (also PCPO's, with A, B and lambda*
+// 0: not defined there), in docs/algorithms.md#logged-columns order. One
+// table, cpo_diagnostics, gives the names and the values.
+struct CpoColumns {
+  double cost_gradient_norm = 0.0;  // |b|
+  double A = 0.0;
+  double B = 0.0;
+  double q = 0.0;
+  double r = 0.0;
+  double s = 0.0;
+  double lambda_star = 0.0;
+  double nu_star = 0.0;
+  double optim_case = 0.0;
+};
+void append_cpo_diagnostics(std::vector<NamedScalar>& diagnostics, const CpoColumns& columns);
 std::vector<std::string> cpo_diagnostic_names();
 
 }  // namespace bsg

@@ -50,7 +50,7 @@ PolicyUpdateResult LagTrpo::update(const PolicyUpdateInputs& inputs) {
   result.diagnostics = common_diagnostics(inputs, start.before, weights.reward, std::span<const double>(weights.costs));
   append_trpo_diagnostics(result.diagnostics, search, step.step_size, lagrangian_gradient.norm(),
                           step.x_fisher_x, step.direction.norm());
-  for (NamedScalar& entry : multiplier_.diagnostics()) result.diagnostics.push_back(std::move(entry));
+  multiplier_.append_to(result);
   return result;
 }
 

@@ -1,12 +1,12 @@
 // TRPO-L, Lagrangian TRPO (docs/algorithms.md#trpo-l; the original's algs/lag-trpo):
-//   1. lambda update first, on the pooled J_C (SGD by default; see lagrange_multiplier.h)
+//   1. lambda update first, on the pooled J_C (SGD by default; see multiplier.h)
 //   2. l_L(theta) = (-L_R(theta) + lambda L_C(theta)) / (1 + lambda), so
 //      g_L = -avg grad l_L = (g - lambda b) / (1 + lambda)
 //   3. TRPO steps 2-4 with g_L in place of g; line search A on l_L
 // The (1 + lambda) does not change the (renormalised) step, only the logged
 // losses and the interplay with CG's 1e-6. The reward itself is not modified.
 // With m constraints (docs/algorithms.md#several-constraints) each has its own multiplier
-// lambda_j (lagrange_multipliers.h) and
+// lambda_j (constraint_multipliers.h) and
 //   l_L = (-L_R + sum_j lambda_j L_Cj) / (1 + sum_j lambda_j),
 // the combined advantage A_i - sum_j lambda_j A^Cj_i over 1 + sum_j lambda_j.
 //
@@ -17,7 +17,7 @@
 
 #include "algos/core/algorithm.h"
 #include "algos/trust_region/trust_region_steps.h"
-#include "algos/lagrange/lagrange_multipliers.h"
+#include "algos/lagrange/constraint_multipliers.h"
 #include "algos/lagrange/lagrangian_weights.h"
 #include "common/run_config.h"
 

@@ -155,16 +155,13 @@ PolicyUpdateResult Pcpo::update(const PolicyUpdateInputs& inputs) {
   result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
   append_trpo_diagnostics(result.diagnostics, search, step.eta, gradients.reward.norm(),
                           step.q, step.reward_direction.norm());
-  result.diagnostics.insert(result.diagnostics.end(),
-                            {{"Misc/cost_gradient_norm", gradients.cost.norm()},
-                             {"Misc/A", 0.0},  // not defined for PCPO
-                             {"Misc/B", 0.0},  // not defined for PCPO
-                             {"Misc/q", step.q},
-                             {"Misc/r", step.r},
-                             {"Misc/s", step.s},
-                             {"Misc/Lambda_star", 0.0},  // not defined for PCPO
-                             {"Misc/Nu_star", step.nu},
-                             {"Misc/OptimCase", c >= 0.0 ? 1.0 : 2.0}});
+  // A, B and lambda* are not defined for PCPO: 0.
+  append_cpo_diagnostics(result.diagnostics, {.cost_gradient_norm = gradients.cost.norm(),
+                                               .q = step.q,
+                                               .r = step.r,
+                                               .s = step.s,
+                                               .nu_star = step.nu,
+                                               .optim_case = c >= 0.0 ? 1.0 : 2.0});
   return result;
 }
 

@@ -79,7 +79,7 @@ PolicyUpdateResult Pdo::update(const PolicyUpdateInputs& inputs) {
   append_trpo_diagnostics(result.diagnostics, search, step.step_size, reward_gradient.norm(),
                           step.x_fisher_x, step.direction.norm());
   result.diagnostics.push_back({"Misc/cost_gradient_norm", cost_gradient_norm});
-  for (NamedScalar& entry : multiplier_.diagnostics()) result.diagnostics.push_back(std::move(entry));
+  multiplier_.append_to(result);
   return result;
 }
 

@@ -3,7 +3,7 @@
 //   2. l_old = l_R(theta_old), g = avg grad L_R, b = avg grad L_C
 //   3. p = g - lambda b            (no 1/(1+lambda): irrelevant for the step)
 //      with m constraints p = g - sum_j lambda_j b_j, one multiplier each
-//      (lagrange_multipliers.h, docs/algorithms.md#several-constraints)
+//      (constraint_multipliers.h, docs/algorithms.md#several-constraints)
 //   4. x = CG(F, p), q = x^T F x, alpha = sqrt(2 delta / (q + 1e-8)), Delta = alpha x
 //   5. line search A on the REWARD-ONLY loss l_R (Q14), budget 15;
 //      pdo_line_search: false applies Delta directly
@@ -19,7 +19,7 @@
 
 #include "algos/core/algorithm.h"
 #include "algos/trust_region/trust_region_steps.h"
-#include "algos/lagrange/lagrange_multipliers.h"
+#include "algos/lagrange/constraint_multipliers.h"
 #include "common/run_config.h"
 
 namespace bsg {

@@ -8,7 +8,9 @@
 namespace bsg {
 
 std::vector<std::string> trpo_diagnostic_names() {
-  return {"Misc/AcceptanceStep", "Misc/Alpha", "Misc/FinalStepNorm", "Misc/gradient_norm", "Misc/xHx", "Misc/H_inv_g"};
+  std::vector<NamedScalar> columns;
+  append_trpo_diagnostics(columns, LineSearchResult{}, 0.0, 0.0, 0.0, 0.0);
+  return names_of(columns);
 }
 
 void append_trpo_diagnostics(std::vector<NamedScalar>& diagnostics, const LineSearchResult& search,

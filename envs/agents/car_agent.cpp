@@ -71,329 +71,54 @@ const btVector3 kWheel(0.05, 0.045, 0);
 const btVector3 kSpider(0.015, 0.01, 0);
 const btVector3 kRing(0.025, 0.01, 0);
 
-// PyBullet link order (depth-first over the URDF tree, docs/environments.md#car).
+// PyBullet link order (depth-first over the URDF tree, docs/environments.md#car),
+// one link per two lines: the joint, then the inertial, collision and contact fields.
+// clang-format off
 const LinkSpec kLinks[CarAgent::kLinkCount] = {
-    {"left_steering_hinge",
-     -1,
-     JointKind::kRevolute,
-     {0.325, 0.1, 0},
-     {0, kHingePitch, 0},
-     {-1, 0, 0},
-     true,
-     true,
-     0.1,
-     kZero,
-     Geometry::kNone,
-     kZero,
-     kZero,
-     kZero,
-     0.5,
-     false},
-    {"left_front_wheel",
-     0,
-     JointKind::kRevolute,
-     kZero,
-     {kWheelRoll, 0, 0},
-     {0, 0, -1},
-     false,
-     false,
-     0.34055,
-     {0, 0, -0.0225},
-     Geometry::kCylinder,
-     {0, 0, -0.0225},
-     kZero,
-     kWheel,
-     1.1,
-     true},
-    {"right_steering_hinge",
-     -1,
-     JointKind::kRevolute,
-     {0.325, -0.1, 0},
-     {0, kHingePitch, 0},
-     {-1, 0, 0},
-     true,
-     false,
-     0.1,
-     kZero,
-     Geometry::kNone,
-     kZero,
-     kZero,
-     kZero,
-     0.5,
-     false},
-    {"right_front_wheel",
-     2,
-     JointKind::kRevolute,
-     kZero,
-     {kWheelRoll, 0, 0},
-     {0, 0, -1},
-     false,
-     false,
-     0.34055,
-     {0, 0, 0.0225},
-     Geometry::kCylinder,
-     {0, 0, 0.0225},
-     kZero,
-     kWheel,
-     1.1,
-     true},
-    {"laser",
-     -1,
-     JointKind::kFixed,
-     {0.265, 0.0, 0.075},
-     kZero,
-     kZero,
-     false,
-     false,
-     0.130,
-     kZero,
-     Geometry::kBox,
-     kZero,
-     kZero,
-     {0.1, 0.1, 0.1},
-     0.5,
-     false},
-    {"zed_camera_link",
-     -1,
-     JointKind::kFixed,
-     {0.390, 0, 0.04},
-     kZero,
-     kZero,
-     false,
-     false,
-     0.1,
-     kZero,
-     Geometry::kBox,
-     kZero,
-     kZero,
-     {0.033, 0.175, 0.030},
-     0.5,
-     false},
-    {"camera_link",
-     5,
-     JointKind::kFixed,
-     {0, 0.06, 0},
-     kZero,
-     kZero,
-     false,
-     false,
-     0.01,
-     kZero,
-     Geometry::kNone,
-     kZero,
-     kZero,
-     kZero,
-     0.5,
-     false},
-    {"zed_camera_right_link",
-     5,
-     JointKind::kFixed,
-     {0, -0.06, 0},
-     kZero,
-     kZero,
-     false,
-     false,
-     0.01,
-     kZero,
-     Geometry::kNone,
-     kZero,
-     kZero,
-     kZero,
-     0.5,
-     false},
-    {"diff_ring",
-     -1,
-     JointKind::kRevolute,
-     kZero,
-     kZero,
-     {0, 1, 0},
-     false,
-     false,
-     0.0637,
-     kZero,
-     Geometry::kCylinder,
-     {0, 0.025, 0},
-     {kDiffAngle, 0, 0},
-     kRing,
-     1.0,
-     true},
-    {"diff_spiderA",
-     8,
-     JointKind::kRevolute,
-     kZero,
-     {0, 0, kDiffAngle},
-     {0, 1, 0},
-     false,
-     false,
-     0.056,
-     kZero,
-     Geometry::kCylinder,
-     {0, 0.01, 0},
-     {kDiffAngle, 0, 0},
-     kSpider,
-     1.0,
-     true},
-    {"diff_spiderB",
-     8,
-     JointKind::kRevolute,
-     kZero,
-     {0, 0, -kDiffAngle},
-     {0, 1, 0},
-     false,
-     false,
-     0.056,
-     kZero,
-     Geometry::kCylinder,
-     {0, 0.01, 0},
-     {kDiffAngle, 0, 0},
-     kSpider,
-     1.0,
-     true},
-    {"diff_sideA",
-     8,
-     JointKind::kRevolute,
-     kZero,
-     kZero,
-     {0, 1, 0},
-     false,
-     false,
-     0.056,
-     kZero,
-     Geometry::kCylinder,
-     {0, 0.01, 0},
-     {kDiffAngle, 0, 0},
-     kSpider,
-     1.0,
-     true},
-    {"left_rear_wheel",
-     11,
-     JointKind::kFixed,
-     {0, 0.1, 0},
-     {kWheelRoll, 0, 0},
-     kZero,
-     false,
-     false,
-     0.34055,
-     {0, 0, -0.0225},
-     Geometry::kCylinder,
-     {0, 0, -0.0225},
-     kZero,
-     kWheel,
-     0.7,
-     true},
-    {"diff_sideB",
-     8,
-     JointKind::kRevolute,
-     kZero,
-     kZero,
-     {0, 1, 0},
-     false,
-     false,
-     0.056,
-     kZero,
-     Geometry::kCylinder,
-     {0, -0.01, 0},
-     {-kDiffAngle, 0, 0},
-     kSpider,
-     1.0,
-     true},
-    {"right_rear_wheel",
-     13,
-     JointKind::kFixed,
-     {0, -0.1, 0},
-     {kWheelRoll, 0, 0},
-     kZero,
-     false,
-     false,
-     0.34055,
-     {0, 0, 0.0225},
-     Geometry::kCylinder,
-     {0, 0, 0.0225},
-     kZero,
-     kWheel,
-     0.7,
-     true},
-    {"diff2_ring",
-     -1,
-     JointKind::kRevolute,
-     {0.32, 0.0, 0.0},
-     kZero,
-     {0, 1, 0},
-     false,
-     false,
-     0.0637,
-     kZero,
-     Geometry::kCylinder,
-     {0, 0.025, 0},
-     {kDiffAngle, 0, 0},
-     kRing,
-     1.0,
-     true},
-    {"diff2_spiderA",
-     15,
-     JointKind::kRevolute,
-     kZero,
-     {0, 0, kDiffAngle},
-     {0, 1, 0},
-     false,
-     false,
-     0.056,
-     kZero,
-     Geometry::kCylinder,
-     {0, 0.01, 0},
-     {kDiffAngle, 0, 0},
-     kSpider,
-     1.0,
-     true},
-    {"diff2_spiderB",
-     15,
-     JointKind::kRevolute,
-     kZero,
-     {0, 0, -kDiffAngle},
-     {0, 1, 0},
-     false,
-     false,
-     0.056,
-     kZero,
-     Geometry::kCylinder,
-     {0, 0.01, 0},
-     {kDiffAngle, 0, 0},
-     kSpider,
-     1.0,
-     true},
-    {"diff2_sideA",
-     15,
-     JointKind::kRevolute,
-     kZero,
-     kZero,
-     {0, 1, 0},
-     false,
-     false,
-     0.056,
-     kZero,
-     Geometry::kCylinder,
-     {0, 0.01, 0},
-     {kDiffAngle, 0, 0},
-     kSpider,
-     1.0,
-     true},
-    {"diff2_sideB",
-     15,
-     JointKind::kRevolute,
-     kZero,
-     kZero,
-     {0, 1, 0},
-     false,
-     false,
-     0.056,
-     kZero,
-     Geometry::kCylinder,
-     {0, -0.01, 0},
-     {-kDiffAngle, 0, 0},
-     kSpider,
-     1.0,
-     true},
+  // name,                    parent, joint,                origin_xyz,          origin_rpy,          axis,       limited, limit_constraint,
+  // mass_kg, com_xyz,         geometry,            geometry_xyz,    geometry_rpy,        size,                  friction, soft_contact
+    {"left_steering_hinge",   -1,     JointKind::kRevolute, {0.325, 0.1, 0},     {0, kHingePitch, 0}, {-1, 0, 0}, true,    true,
+     0.1,     kZero,           Geometry::kNone,     kZero,           kZero,               kZero,                 0.5,      false},
+    {"left_front_wheel",      0,      JointKind::kRevolute, kZero,               {kWheelRoll, 0, 0},  {0, 0, -1}, false,   false,
+     0.34055, {0, 0, -0.0225}, Geometry::kCylinder, {0, 0, -0.0225}, kZero,               kWheel,                1.1,      true},
+    {"right_steering_hinge",  -1,     JointKind::kRevolute, {0.325, -0.1, 0},    {0, kHingePitch, 0}, {-1, 0, 0}, true,    false,
+     0.1,     kZero,           Geometry::kNone,     kZero,           kZero,               kZero,                 0.5,      false},
+    {"right_front_wheel",     2,      JointKind::kRevolute, kZero,               {kWheelRoll, 0, 0},  {0, 0, -1}, false,   false,
+     0.34055, {0, 0, 0.0225},  Geometry::kCylinder, {0, 0, 0.0225},  kZero,               kWheel,                1.1,      true},
+    {"laser",                 -1,     JointKind::kFixed,    {0.265, 0.0, 0.075}, kZero,               kZero,      false,   false,
+     0.130,   kZero,           Geometry::kBox,      kZero,           kZero,               {0.1, 0.1, 0.1},       0.5,      false},
+    {"zed_camera_link",       -1,     JointKind::kFixed,    {0.390, 0, 0.04},    kZero,               kZero,      false,   false,
+     0.1,     kZero,           Geometry::kBox,      kZero,           kZero,               {0.033, 0.175, 0.030}, 0.5,      false},
+    {"camera_link",           5,      JointKind::kFixed,    {0, 0.06, 0},        kZero,               kZero,      false,   false,
+     0.01,    kZero,           Geometry::kNone,     kZero,           kZero,               kZero,                 0.5,      false},
+    {"zed_camera_right_link", 5,      JointKind::kFixed,    {0, -0.06, 0},       kZero,               kZero,      false,   false,
+     0.01,    kZero,           Geometry::kNone,     kZero,           kZero,               kZero,                 0.5,      false},
+    {"diff_ring",             -1,     JointKind::kRevolute, kZero,               kZero,               {0, 1, 0},  false,   false,
+     0.0637,  kZero,           Geometry::kCylinder, {0, 0.025, 0},   {kDiffAngle, 0, 0},  kRing,                 1.0,      true},
+    {"diff_spiderA",          8,      JointKind::kRevolute, kZero,               {0, 0, kDiffAngle},  {0, 1, 0},  false,   false,
+     0.056,   kZero,           Geometry::kCylinder, {0, 0.01, 0},    {kDiffAngle, 0, 0},  kSpider,               1.0,      true},
+    {"diff_spiderB",          8,      JointKind::kRevolute, kZero,               {0, 0, -kDiffAngle}, {0, 1, 0},  false,   false,
+     0.056,   kZero,           Geometry::kCylinder, {0, 0.01, 0},    {kDiffAngle, 0, 0},  kSpider,               1.0,      true},
+    {"diff_sideA",            8,      JointKind::kRevolute, kZero,               kZero,               {0, 1, 0},  false,   false,
+     0.056,   kZero,           Geometry::kCylinder, {0, 0.01, 0},    {kDiffAngle, 0, 0},  kSpider,               1.0,      true},
+    {"left_rear_wheel",       11,     JointKind::kFixed,    {0, 0.1, 0},         {kWheelRoll, 0, 0},  kZero,      false,   false,
+     0.34055, {0, 0, -0.0225}, Geometry::kCylinder, {0, 0, -0.0225}, kZero,               kWheel,                0.7,      true},
+    {"diff_sideB",            8,      JointKind::kRevolute, kZero,               kZero,               {0, 1, 0},  false,   false,
+     0.056,   kZero,           Geometry::kCylinder, {0, -0.01, 0},   {-kDiffAngle, 0, 0}, kSpider,               1.0,      true},
+    {"right_rear_wheel",      13,     JointKind::kFixed,    {0, -0.1, 0},        {kWheelRoll, 0, 0},  kZero,      false,   false,
+     0.34055, {0, 0, 0.0225},  Geometry::kCylinder, {0, 0, 0.0225},  kZero,               kWheel,                0.7,      true},
+    {"diff2_ring",            -1,     JointKind::kRevolute, {0.32, 0.0, 0.0},    kZero,               {0, 1, 0},  false,   false,
+     0.0637,  kZero,           Geometry::kCylinder, {0, 0.025, 0},   {kDiffAngle, 0, 0},  kRing,                 1.0,      true},
+    {"diff2_spiderA",         15,     JointKind::kRevolute, kZero,               {0, 0, kDiffAngle},  {0, 1, 0},  false,   false,
+     0.056,   kZero,           Geometry::kCylinder, {0, 0.01, 0},    {kDiffAngle, 0, 0},  kSpider,               1.0,      true},
+    {"diff2_spiderB",         15,     JointKind::kRevolute, kZero,               {0, 0, -kDiffAngle}, {0, 1, 0},  false,   false,
+     0.056,   kZero,           Geometry::kCylinder, {0, 0.01, 0},    {kDiffAngle, 0, 0},  kSpider,               1.0,      true},
+    {"diff2_sideA",           15,     JointKind::kRevolute, kZero,               kZero,               {0, 1, 0},  false,   false,
+     0.056,   kZero,           Geometry::kCylinder, {0, 0.01, 0},    {kDiffAngle, 0, 0},  kSpider,               1.0,      true},
+    {"diff2_sideB",           15,     JointKind::kRevolute, kZero,               kZero,               {0, 1, 0},  false,   false,
+     0.056,   kZero,           Geometry::kCylinder, {0, -0.01, 0},   {-kDiffAngle, 0, 0}, kSpider,               1.0,      true},
 };
+// clang-format on
 
 // Chassis (base link): mass 4 kg, COM 0.2 (×3) ahead of the link frame. Its
 // collision mesh (chassis_differential.STL) is replaced by the convex hull of
@@ -549,94 +274,134 @@ CarAgent::CarAgent(World& world, const AgentOptions& options)
   traits_.run_speed_limit = 1.5;
   traits_.sensor_rotates = true;
   traits_.sensor_offset = btVector3(0.2, 0, 0.3);
-  build(world, options.physics == PhysicsModel::kLean);
+  if (options.physics == PhysicsModel::kLean) {
+    build_lean(world);
+  } else {
+    build_faithful(world);
+  }
 }
 
-void CarAgent::build(World& world, bool lean) {
+// The shapes and inertias both models start from: the chassis hull, and the
+// links' shapes with inertias from them, not from the URDF
+// (docs/environments.md#how-bodies-are-built).
+CarAgent::CarShapes CarAgent::make_shapes(World& world) {
+  CarShapes shapes;
   // The chassis compound holds the hull at −COM (inertial frame at COM).
-  const btTransform chassis_inertial = translation(scaled(kChassisCom));
-  btCollisionShape* hull = world.keep_shape(chassis_hull());
+  shapes.chassis_inertial = translation(scaled(kChassisCom));
+  shapes.hull = world.keep_shape(chassis_hull());
   auto chassis = std::make_unique<btCompoundShape>();
   chassis->setMargin(kMargin);
-  chassis->addChildShape(chassis_inertial.inverse(), hull);
-  btCollisionShape* chassis_shape = world.keep_shape(std::move(chassis));
-  btVector3 chassis_inertia;
-  chassis_shape->calculateLocalInertia(kChassisMassKg, chassis_inertia);
-
-  // Link shapes, and inertias from them, not from the URDF (docs/environments.md#how-bodies-are-built).
-  std::array<btCollisionShape*, kLinkCount> shapes{};
-  std::array<btVector3, kLinkCount> inertias{};
+  chassis->addChildShape(shapes.chassis_inertial.inverse(), shapes.hull);
+  shapes.chassis = world.keep_shape(std::move(chassis));
+  shapes.chassis->calculateLocalInertia(kChassisMassKg, shapes.chassis_inertia);
   for (int i = 0; i < kLinkCount; ++i) {
-    shapes[i] = link_shape(world, kLinks[i]);
-    inertias[i].setZero();
-    shapes[i]->calculateLocalInertia(kLinks[i].mass_kg, inertias[i]);
+    shapes.links[i] = link_shape(world, kLinks[i]);
+    shapes.inertias[i].setZero();
+    shapes.links[i]->calculateLocalInertia(kLinks[i].mass_kg, shapes.inertias[i]);
   }
+  return shapes;
+}
 
-  // The base: the chassis alone (faithful), or the chassis with the links
-  // welded to it (lean). base_inertial is the base's COM frame in the chassis
-  // link frame.
-  welded_base_ = lean;
-  double base_mass = kChassisMassKg;
-  btVector3 base_inertia = chassis_inertia;
-  btTransform base_inertial = chassis_inertial;
-  btCollisionShape* base_shape = chassis_shape;
-  std::array<int, kLinkCount> body_link{};  // −1: welded into the base
-  int body_link_count = 0;
+// Every PyBullet link is a body link; the base is the chassis alone.
+void CarAgent::build_faithful(World& world) {
+  const CarShapes shapes = make_shapes(world);
+  welded_base_ = false;
+  BodyLinks body_link{};
   for (int i = 0; i < kLinkCount; ++i) {
-    body_link[i] = lean && welded_into_base(i) ? -1 : body_link_count++;
+    body_link[i] = i;
     link_places_[i] = {body_link[i], btTransform::getIdentity()};
   }
-  if (lean) {
-    // COM frames of the welded links in the chassis link frame (URDF chain).
-    std::array<btTransform, kLinkCount> link_frame{};
-    std::array<btTransform, kLinkCount> com_frame{};
-    std::vector<RigidPart> parts = {
-        {kChassisMassKg, chassis_inertia, chassis_inertial.getOrigin(), btQuaternion::getIdentity()}};
-    for (int i = 0; i < kLinkCount; ++i) {
-      if (body_link[i] >= 0) continue;
-      const LinkSpec& spec = kLinks[i];
-      const btTransform parent_frame =
-          spec.parent < 0 ? btTransform::getIdentity() : link_frame[spec.parent];
-      link_frame[i] = parent_frame * urdf_origin(spec.origin_xyz, spec.origin_rpy);
-      com_frame[i] = link_frame[i] * translation(scaled(spec.com_xyz));
-      parts.push_back({spec.mass_kg, inertias[i], com_frame[i].getOrigin(), com_frame[i].getRotation()});
-    }
-    const MergedBody merged = merge_rigid_parts(parts);
-    // The laser and the cameras sit above and ahead of the chassis COM, so the
-    // merged inertia has a product I_xz; btMultiBody takes a diagonal base
-    // inertia, so the base's COM frame is the merged body's principal frame
-    // (turned about y by a small angle; the y products vanish by symmetry).
-    btMatrix3x3 principal = merged.inertia;
-    btMatrix3x3 axes;
-    principal.diagonalize(axes, SIMD_EPSILON, 32);
-    const double trace = principal[0][0] + principal[1][1] + principal[2][2];
-    const double off_diagonal = std::max(
-        {std::abs(principal[0][1]), std::abs(principal[0][2]), std::abs(principal[1][2])});
-    if (!(off_diagonal <= 1e-14 * trace) || axes.determinant() < 0) {
-      throw std::logic_error("CarAgent: the lean base's inertia has no principal frame");
-    }
-    base_mass = merged.mass;
-    base_inertia = btVector3(principal[0][0], principal[1][1], principal[2][2]);
-    base_inertial = btTransform(axes, merged.com);
-    chassis_in_base_ = base_inertial.inverse() * chassis_inertial;
-    // One compound: the chassis hull and the welded links' geometry where the
-    // faithful links put them (the shapes are expressed in the link COM frames).
-    auto compound = std::make_unique<btCompoundShape>();
-    compound->setMargin(kMargin);
-    compound->addChildShape(base_inertial.inverse(), hull);
-    for (int i = 0; i < kLinkCount; ++i) {
-      if (body_link[i] >= 0) continue;
-      link_places_[i].offset = base_inertial.inverse() * com_frame[i];
-      if (kLinks[i].geometry != Geometry::kNone) {
-        compound->addChildShape(link_places_[i].offset, shapes[i]);
-      }
-    }
-    base_shape = world.keep_shape(std::move(compound));
-  }
+  const CarBase base{kChassisMassKg, shapes.chassis_inertia, shapes.chassis_inertial, shapes.chassis};
+  assemble(world, shapes, base, body_link, kLinkCount);
+}
 
-  auto body = std::make_unique<btMultiBody>(body_link_count, base_mass, base_inertia,
+// The links joined to the chassis by fixed joints are welded into the base
+// (envs/physics/rigid_body_merge.h); the others stay body links.
+void CarAgent::build_lean(World& world) {
+  const CarShapes shapes = make_shapes(world);
+  welded_base_ = true;
+  BodyLinks body_link{};  // −1: welded into the base
+  int body_link_count = 0;
+  for (int i = 0; i < kLinkCount; ++i) {
+    body_link[i] = welded_into_base(i) ? -1 : body_link_count++;
+    link_places_[i] = {body_link[i], btTransform::getIdentity()};
+  }
+  const CarBase base = weld_into_base(world, shapes, body_link);
+  assemble(world, shapes, base, body_link, body_link_count);
+}
+
+// The lean base: mass, principal inertia and COM frame of the chassis and the
+// welded links, and one compound of their shapes. Sets the welded links'
+// places and the chassis's frame in the base.
+CarAgent::CarBase CarAgent::weld_into_base(World& world, const CarShapes& shapes, const BodyLinks& body_link) {
+  // COM frames of the welded links in the chassis link frame (URDF chain).
+  std::array<btTransform, kLinkCount> link_frame{};
+  std::array<btTransform, kLinkCount> com_frame{};
+  std::vector<RigidPart> parts = {
+      {kChassisMassKg, shapes.chassis_inertia, shapes.chassis_inertial.getOrigin(), btQuaternion::getIdentity()}};
+  for (int i = 0; i < kLinkCount; ++i) {
+    if (body_link[i] >= 0) continue;
+    const LinkSpec& spec = kLinks[i];
+    const btTransform parent_frame =
+        spec.parent < 0 ? btTransform::getIdentity() : link_frame[spec.parent];
+    link_frame[i] = parent_frame * urdf_origin(spec.origin_xyz, spec.origin_rpy);
+    com_frame[i] = link_frame[i] * translation(scaled(spec.com_xyz));
+    parts.push_back({spec.mass_kg, shapes.inertias[i], com_frame[i].getOrigin(), com_frame[i].getRotation()});
+  }
+  const MergedBody merged = merge_rigid_parts(parts);
+  // The laser and the cameras sit above and ahead of the chassis COM, so the
+  // merged inertia has a product I_xz; btMultiBody takes a diagonal base
+  // inertia, so the base's COM frame is the merged body's principal frame
+  // (turned about y by a small angle; the y products vanish by symmetry).
+  btMatrix3x3 principal = merged.inertia;
+  btMatrix3x3 axes;
+  principal.diagonalize(axes, SIMD_EPSILON, 32);
+  const double trace = principal[0][0] + principal[1][1] + principal[2][2];
+  const double off_diagonal = std::max(
+      {std::abs(principal[0][1]), std::abs(principal[0][2]), std::abs(principal[1][2])});
+  if (!(off_diagonal <= 1e-14 * trace) || axes.determinant() < 0) {
+    throw std::logic_error("CarAgent: the lean base's inertia has no principal frame");
+  }
+  CarBase base;
+  base.mass = merged.mass;
+  base.inertia = btVector3(principal[0][0], principal[1][1], principal[2][2]);
+  base.inertial = btTransform(axes, merged.com);
+  chassis_in_base_ = base.inertial.inverse() * shapes.chassis_inertial;
+  // One compound: the chassis hull and the welded links' geometry where the
+  // faithful links put them (the shapes are expressed in the link COM frames).
+  auto compound = std::make_unique<btCompoundShape>();
+  compound->setMargin(kMargin);
+  compound->addChildShape(base.inertial.inverse(), shapes.hull);
+  for (int i = 0; i < kLinkCount; ++i) {
+    if (body_link[i] >= 0) continue;
+    link_places_[i].offset = base.inertial.inverse() * com_frame[i];
+    if (kLinks[i].geometry != Geometry::kNone) {
+      compound->addChildShape(link_places_[i].offset, shapes.links[i]);
+    }
+  }
+  base.shape = world.keep_shape(std::move(compound));
+  return base;
+}
+
+// The multibody on `base` with the body links, its colliders and constraints,
+// added to the world (both models).
+void CarAgent::assemble(World& world, const CarShapes& shapes, const CarBase& base, const BodyLinks& body_link,
+                        int body_link_count) {
+  auto body = std::make_unique<btMultiBody>(body_link_count, base.mass, base.inertia,
                                             /*fixedBase=*/false, /*canSleep=*/false);
-  btMultiBody& mb = *body;
+  set_up_joints(*body, shapes, base, body_link);
+  add_colliders(world, *body, shapes, base, body_link);
+  body->setHasSelfCollision(false);
+  body->finalizeMultiDof();
+  body_ = world.add_multibody(std::move(body));
+  for (int m = 0; m < kMovableJointCount; ++m) movable_links_[m] = body_link[kMovableLinks[m]];
+  set_base_pose(traits_.initial_position, quaternion_from_euler(0, 0, traits_.initial_yaw));
+  add_constraints(world, body_link);
+}
+
+// Joint frames exactly as URDF2Bullet computes them.
+void CarAgent::set_up_joints(btMultiBody& mb, const CarShapes& shapes, const CarBase& base,
+                             const BodyLinks& body_link) {
   for (int i = 0; i < kLinkCount; ++i) {
     if (body_link[i] < 0) continue;
     const LinkSpec& spec = kLinks[i];
@@ -644,9 +409,8 @@ void CarAgent::build(World& world, bool lean) {
     if (spec.parent >= 0 && parent < 0) {
       throw std::logic_error("CarAgent: a moving link hangs from a welded one");
     }
-    // Joint frames exactly as URDF2Bullet computes them.
     const btTransform parent_inertial =
-        spec.parent < 0 ? base_inertial : translation(scaled(kLinks[spec.parent].com_xyz));
+        spec.parent < 0 ? base.inertial : translation(scaled(kLinks[spec.parent].com_xyz));
     const btTransform local_inertial = translation(scaled(spec.com_xyz));
     const btTransform parent_to_joint = urdf_origin(spec.origin_xyz, spec.origin_rpy);
     const btTransform offset_in_a = parent_inertial.inverse() * parent_to_joint;
@@ -655,7 +419,7 @@ void CarAgent::build(World& world, bool lean) {
         offset_in_b.getRotation() * offset_in_a.inverse().getRotation();
     const int link = body_link[i];
     if (spec.joint == JointKind::kRevolute) {
-      mb.setupRevolute(link, spec.mass_kg, inertias[i], parent, parent_rot_to_this,
+      mb.setupRevolute(link, spec.mass_kg, shapes.inertias[i], parent, parent_rot_to_this,
                        quatRotate(offset_in_b.getRotation(), spec.axis), offset_in_a.getOrigin(),
                        -offset_in_b.getOrigin(), /*disableParentCollision=*/true);
       if (spec.limited) {
@@ -663,13 +427,16 @@ void CarAgent::build(World& world, bool lean) {
         mb.getLink(link).m_jointUpperLimit = kSteeringLimitRad;
       }
     } else {
-      mb.setupFixed(link, spec.mass_kg, inertias[i], parent, parent_rot_to_this,
+      mb.setupFixed(link, spec.mass_kg, shapes.inertias[i], parent, parent_rot_to_this,
                     offset_in_a.getOrigin(), -offset_in_b.getOrigin());
     }
   }
+}
 
-  // Colliders in PyBullet's creation order: base, then links 0..19.
-  // No self collision (docs/environments.md#how-bodies-are-built).
+// Colliders in PyBullet's creation order: base, then links 0..19.
+// No self collision (docs/environments.md#how-bodies-are-built).
+void CarAgent::add_colliders(World& world, btMultiBody& mb, const CarShapes& shapes, const CarBase& base,
+                             const BodyLinks& body_link) {
   auto add_collider = [&](int link, btCollisionShape* shape, double friction, bool soft) {
     auto collider = std::make_unique<btMultiBodyLinkCollider>(&mb, link);
     collider->setCollisionShape(shape);
@@ -685,19 +452,15 @@ void CarAgent::build(World& world, bool lean) {
     colliders_.push_back(added);
   };
   // The welded links' friction (0.5) and hard contacts are the chassis's.
-  add_collider(-1, base_shape, kChassisFriction, false);
+  add_collider(-1, base.shape, kChassisFriction, false);
   for (int i = 0; i < kLinkCount; ++i) {
-    if (body_link[i] >= 0) add_collider(body_link[i], shapes[i], kLinks[i].friction, kLinks[i].soft_contact);
+    if (body_link[i] >= 0) add_collider(body_link[i], shapes.links[i], kLinks[i].friction, kLinks[i].soft_contact);
   }
+}
 
-  mb.setHasSelfCollision(false);
-  mb.finalizeMultiDof();
-  body_ = world.add_multibody(std::move(body));
-  for (int m = 0; m < kMovableJointCount; ++m) movable_links_[m] = body_link[kMovableLinks[m]];
-  set_base_pose(traits_.initial_position, quaternion_from_euler(0, 0, traits_.initial_yaw));
-
-  // Constraints in PyBullet's order: joint limits (importer), one motor per
-  // revolute joint (createJointMotors), then the gears (the agent's code).
+// Constraints in PyBullet's order: joint limits (importer), one motor per
+// revolute joint (createJointMotors), then the gears (the agent's code).
+void CarAgent::add_constraints(World& world, const BodyLinks& body_link) {
   for (int i = 0; i < kLinkCount; ++i) {
     if (kLinks[i].limit_constraint) {
       const btMultibodyLink& link = body_->getLink(body_link[i]);

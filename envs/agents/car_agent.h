@@ -28,7 +28,7 @@
 //              little from the chassis's); 16 links. The rear wheels stay links of
 //              their own: their friction (0.7) is not their side gears' (1.0), and a
 //              link carries one collider. The 14 motors stay (the 10 never switched
-//              on make no solver row; see build()). Same shapes, contacts, limits,
+//              on make no solver row; see add_constraints()). Same shapes, contacts, limits,
 //              gears, solver. The agent reports the chassis's COM pose and velocity.
 #pragma once
 
@@ -93,7 +93,34 @@ class CarAgent final : public Agent {
     btTransform offset = btTransform::getIdentity();
   };
 
-  void build(World& world, bool lean);
+  using BodyLinks = std::array<int, kLinkCount>;  // each PyBullet link's body link (−1: welded into the base)
+  // The shapes and inertias both models start from.
+  struct CarShapes {
+    btTransform chassis_inertial = btTransform::getIdentity();  // the chassis's COM frame in its link frame
+    btCollisionShape* hull = nullptr;
+    btCollisionShape* chassis = nullptr;  // the hull at −COM
+    btVector3 chassis_inertia{0, 0, 0};
+    std::array<btCollisionShape*, kLinkCount> links{};
+    std::array<btVector3, kLinkCount> inertias{};
+  };
+  // The multibody's base: mass, diagonal inertia, COM frame in the chassis link frame, shape.
+  struct CarBase {
+    double mass = 0;
+    btVector3 inertia{0, 0, 0};
+    btTransform inertial = btTransform::getIdentity();
+    btCollisionShape* shape = nullptr;
+  };
+
+  void build_faithful(World& world);
+  void build_lean(World& world);
+  CarShapes make_shapes(World& world);
+  CarBase weld_into_base(World& world, const CarShapes& shapes, const BodyLinks& body_link);
+  void assemble(World& world, const CarShapes& shapes, const CarBase& base, const BodyLinks& body_link,
+                int body_link_count);
+  void set_up_joints(btMultiBody& mb, const CarShapes& shapes, const CarBase& base, const BodyLinks& body_link);
+  void add_colliders(World& world, btMultiBody& mb, const CarShapes& shapes, const CarBase& base,
+                     const BodyLinks& body_link);
+  void add_constraints(World& world, const BodyLinks& body_link);
   void refresh_colliders();
   // World pose of the chassis's COM frame (the base's, unless the base is welded).
   btTransform chassis_com_transform() const;

@@ -29,9 +29,13 @@
 #include <string_view>
 #include <vector>
 
-#include "envs/description/physics_model.h"
+#include "common/physics_model.h"
 
 namespace bsg::envs {
+
+// The physics model is the run config's type too (common/physics_model.h).
+using bsg::PhysicsModel;
+using bsg::parse_physics_model;
 
 using Vec3 = std::array<double, 3>;
 using Quat = std::array<double, 4>;  // [x, y, z, w], base-to-world (PyBullet order)

@@ -1,6 +1,6 @@
 // The Lagrange multiplier of TRPO-L and PDO (docs/algorithms.md#trpo-l, #pdo, #test-oracles): the SGD
 // and Adam oracles, lambda >= 0, and the checkpoint state.
-#include "algos/lagrange/lagrange_multiplier.h"
+#include "algos/lagrange/multiplier.h"
 
 #include <gtest/gtest.h>
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "algos/lagrange/lagrange_multiplier.h"
+#include "algos/lagrange/multiplier.h"
 #include "common/random.h"
 
 namespace bsg {

@@ -18,7 +18,7 @@
 #include "algos/core/buffer.h"
 #include "algos/core/constraint_costs.h"
 #include "algos/trust_region/lag_trpo.h"
-#include "algos/lagrange/lagrange_multipliers.h"
+#include "algos/lagrange/constraint_multipliers.h"
 #include "algos/training/trainer.h"
 #include "common/config_error.h"
 

@@ -1,4 +1,4 @@
-#include "algos/lagrange/lagrange_multiplier.h"
+#include "algos/lagrange/multiplier.h"
 
 #include <algorithm>
 #include <cmath>

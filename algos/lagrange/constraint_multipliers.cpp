@@ -1,4 +1,4 @@
-#include "algos/lagrange/lagrange_multipliers.h"
+#include "algos/lagrange/constraint_multipliers.h"
 
 #include <map>
 #include <stdexcept>
@@ -41,6 +41,11 @@ std::vector<std::string> LagrangeMultipliers::diagnostic_names() const {
   std::vector<std::string> names;
   for (NamedScalar& entry : diagnostics()) names.push_back(std::move(entry.name));
   return names;
+}
+
+void LagrangeMultipliers::append_to(PolicyUpdateResult& result) const {
+  for (NamedScalar& entry : diagnostics()) result.diagnostics.push_back(std::move(entry));
+  if (count() == 1) result.lagrange_multiplier = value(0);
 }
 
 std::vector<NamedScalar> LagrangeMultipliers::diagnostics() const {

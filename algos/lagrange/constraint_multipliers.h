@@ -1,7 +1,7 @@
 // One Lagrange multiplier per constraint (docs/algorithms.md#several-constraints) for TRPO-L and
 // PDO: lambda_i >= 0 with its own optimiser state (SGD, Adam moments, or the
 // PID rule's integral, EMAs and history), each updated once per epoch on its
-// own violation J_Ci - d_i exactly as the single multiplier (lagrange_multiplier.h).
+// own violation J_Ci - d_i exactly as the single multiplier (multiplier.h).
 // With one constraint it is that multiplier, names and all, so a run without
 // `constraints:` logs and checkpoints what it did before.
 //
@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "algos/core/algorithm.h"
-#include "algos/lagrange/lagrange_multiplier.h"
+#include "algos/lagrange/multiplier.h"
 #include "common/run_config.h"
 
 namespace bsg {
@@ -34,6 +34,9 @@ class LagrangeMultipliers {
 
   std::vector<std::string> diagnostic_names() const;
   std::vector<NamedScalar> diagnostics() const;
+  // Appends diagnostics() to an update's result and, with one constraint,
+  // sets its lagrange_multiplier (what the progress line shows).
+  void append_to(PolicyUpdateResult& result) const;
   std::vector<NamedScalar> state() const;
   // Throws std::invalid_argument if the names differ from state()'s (nothing changes then).
   void restore_state(std::span<const NamedScalar> saved);

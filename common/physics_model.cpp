@@ -1,9 +1,9 @@
-#include "envs/description/physics_model.h"
+#include "common/physics_model.h"
 
 #include <stdexcept>
 #include <string>
 
-namespace bsg::envs {
+namespace bsg {
 
 std::string_view to_string(PhysicsModel model) {
   return model == PhysicsModel::kLean ? "lean" : "faithful";
@@ -16,4 +16,4 @@ PhysicsModel parse_physics_model(std::string_view name) {
                               "'; valid: faithful, lean");
 }
 
-}  // namespace bsg::envs
+}  // namespace bsg
