@@ -12,7 +12,7 @@
 // corners): an exact ray-box intersection would not match it. This file
 // repeats those steps and every exit; only the closest point on the core comes
 // from clamping instead of GJK, which agrees with it to rounding
-// (tests/envs/ray_box_cast_test.cpp measures how closely).
+// (tests/envs/physics/ray_box_cast_test.cpp measures how closely).
 //
 // What the closed form might not repeat exactly is left to Bullet
 // (kUndecided): a ray that starts within kGjkCastRadius_m of the rounded box

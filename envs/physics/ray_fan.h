@@ -11,7 +11,7 @@
 // same ray-box test against its box in the compound's tree, as Bullet does),
 // is then cast by cast_ray_at_box: Bullet's conservative advancement with the
 // point-box distance in closed form, equal to Bullet's up to rounding (the
-// fraction within 1e-9 in tests/envs/lidar_fan_test.cpp; hit or miss alike
+// fraction within 1e-9 in tests/envs/physics/lidar_fan_test.cpp; hit or miss alike
 // except for a ray that passes within 1 mm of a box without entering it and
 // ends its advancement where it runs parallel to the surface, a decision that
 // rests on the last bits of Bullet's own normal). Any other collider, and any

@@ -3,7 +3,7 @@
 // Lagrangian): one in-process training run, then over the second half of its
 // epochs the mean and the standard deviation of the epoch cost
 // (episode_cost_mean) and the mean return. Shared by
-// tests/algos/pid_learning_test.cpp and tests/bench/pid_learning_bench.cpp.
+// tests/algos/training/pid_learning_test.cpp and tests/bench/pid_learning_bench.cpp.
 #pragma once
 
 #include <cmath>

@@ -3,7 +3,7 @@
 // TRPO-L (SGD multiplier) and one TRPO-PID run with the same seed and budget;
 // over the second half of training it prints the epoch cost's mean and
 // standard deviation and the mean return, per seed and averaged over seeds.
-// Any budget and gains, for exploring; tests/algos/pid_learning_test.cpp
+// Any budget and gains, for exploring; tests/algos/training/pid_learning_test.cpp
 // asserts the comparison for the shipped gains on a short budget, and
 // docs/algorithms.md (PID Lagrangian) has the figures at the report's batch.
 //

@@ -1,0 +1,123 @@
+// The first-order algorithms in the training loop (docs/algorithms.md#first-order-updates):
+// a run stopped and resumed from its checkpoint (which holds the policy's
+// Adam moments) continues with the same numbers as an uninterrupted one, on
+// the scripted environment; and a short learning run per algorithm on
+// SafetyBallCircle-v0 raises the return, the constrained ones bringing the
+// episode cost down towards the limit.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <numeric>
+#include <string>
+
+#include "../../test_support.h"
+#include "algos/training/trainer.h"
+#include "common/run_config_resolve.h"
+#include "../scripted_env.h"
+
+namespace fs = std::filesystem;
+using bsg::testing::ScriptedEnv;
+using bsg::testing::TemporaryDirectory;
+
+namespace {
+
+bsg::RunConfig scripted_config(bsg::Algorithm alg) {
+  bsg::RunConfig config;
+  config.env_id = "Scripted-v0";
+  config.alg = alg;
+  config.use_cost_value_function = !bsg::ignores_cost(alg);
+  config.hidden_sizes = {16, 16};
+  config.epochs = 5;
+  config.steps_per_epoch = 400;  // 4 episodes of 100 steps
+  config.max_ep_len = 100;
+  config.save_freq = 10;         // only the stop and the end save
+  config.eval_episodes = 0;
+  config.cost_limit = 5;
+  config.update_iters = 3;
+  config.policy_minibatch_size = 64;
+  config.target_kl = 0.02;
+  config.lambda_optimizer = bsg::LambdaOptimizer::adam;
+  config.lambda_lr = 0.035;
+  return config;
+}
+
+TEST(FirstOrderTrainer, ResumingContinuesWithTheSameNumbers) {
+  for (const bsg::Algorithm alg :
+       {bsg::Algorithm::ppo, bsg::Algorithm::ppo_lag, bsg::Algorithm::focops, bsg::Algorithm::cup}) {
+    SCOPED_TRACE(std::string(bsg::to_string(alg)));
+    TemporaryDirectory dir;
+    const bsg::RunConfig config = scripted_config(alg);
+    bsg::OnPolicyTrainer whole(config, bsg::RunDirectory(dir.path() / "whole"), bsg::MpiContext::single_process(),
+                               {}, std::make_unique<ScriptedEnv>(100));
+    whole.run();
+    bsg::TrainerOptions stop;
+    stop.stop_after_epochs = 3;
+    {
+      bsg::OnPolicyTrainer first(config, bsg::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
+                                 stop, std::make_unique<ScriptedEnv>(100));
+      EXPECT_EQ(first.run().epochs_completed, 3);
+    }
+    bsg::TrainerOptions resume;
+    resume.resume = true;
+    bsg::OnPolicyTrainer second(config, bsg::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
+                                resume, std::make_unique<ScriptedEnv>(100));
+    ASSERT_EQ(second.epochs_completed(), 3);
+    // The checkpoint brought back the policy's Adam moments, not a fresh optimiser.
+    ASSERT_GT(second.algorithm().state().size(), 10u);
+    second.run();
+    EXPECT_EQ(second.actor_critic().policy.mean_net().parameters(),
+              whole.actor_critic().policy.mean_net().parameters());
+    EXPECT_EQ(second.actor_critic().value.net().parameters(), whole.actor_critic().value.net().parameters());
+    EXPECT_EQ(second.algorithm().state(), whole.algorithm().state());
+  }
+}
+
+// Mean of a column over epochs [first, last).
+double mean_over(const std::vector<double>& column, std::size_t first, std::size_t last) {
+  return std::accumulate(column.begin() + static_cast<long>(first), column.begin() + static_cast<long>(last), 0.0) /
+         static_cast<double>(last - first);
+}
+
+// 40 epochs of 5000 steps, seed 1, the shipped defaults except PPO-Lag's
+// multiplier step size: at OmniSafe's lambda_lr 0.035 its Adam multiplier
+// moves about 0.035 per epoch and is still rising after 40 epochs (cost about
+// 2.5 d there, measured with the annealed sigma; the 150-epoch figures of
+// docs/algorithms.md use the default),
+// so the test gives it lambda_lr 0.2. The longer runs' figures are in
+// docs/algorithms.md#first-order-updates.
+TEST(FirstOrderLearning, EachAlgorithmLearnsBallCircleOnAShortBudget) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "four training runs are too slow under the sanitizers; the updates run under them above";
+#endif
+  constexpr int kEpochs = 40;
+  constexpr double kCostLimit = 25.0;
+  for (const char* alg : {"ppo", "ppo-lag", "focops", "cup"}) {
+    SCOPED_TRACE(alg);
+    bsg::RunConfigRequest request;
+    request.configs_dir = fs::path(BSG_SOURCE_DIR) / "configs";
+    request.set_arguments = {"env_id=SafetyBallCircle-v0", std::string("alg=") + alg, "seed=1",
+                             "epochs=" + std::to_string(kEpochs), "steps_per_epoch=5000", "eval_episodes=0"};
+    if (std::string(alg) == "ppo-lag") request.set_arguments.push_back("lambda_lr=0.2");
+    const bsg::RunConfig config = bsg::resolve_run_config(request).config;
+    const TemporaryDirectory directory;
+    bsg::OnPolicyTrainer trainer(config, bsg::RunDirectory(directory.path() / "run"),
+                                 bsg::MpiContext::single_process(), {});
+    ASSERT_TRUE(trainer.run().finished);
+    auto progress = bsg::testing::read_csv_columns(directory.path() / "run" / "progress.csv");
+    const std::vector<double>& returns = progress["episode_return_mean"];
+    const std::vector<double>& costs = progress["episode_cost_mean"];
+    const double first_return = mean_over(returns, 0, 5);
+    const double last_return = mean_over(returns, kEpochs - 10, kEpochs);
+    const double last_cost = mean_over(costs, kEpochs - 10, kEpochs);
+    std::printf("  %s: return %.1f -> %.1f, cost over the last 10 epochs %.1f\n", alg, first_return, last_return,
+                last_cost);
+    EXPECT_GT(last_return, first_return + 50.0);
+    if (std::string(alg) != "ppo") {
+      EXPECT_LT(last_cost, 1.5 * kCostLimit);
+    }
+  }
+}
+
+}  // namespace
