@@ -40,7 +40,7 @@ int logged_epochs(const RunDirectory& directory) {
   return rows > 0 ? rows - 1 : 0;  // minus the header
 }
 
-std::optional<RunEvaluation> read_run_evaluation(const RunDirectory& directory) {
+std::optional<RecordedEvaluation> read_run_evaluation(const RunDirectory& directory) {
   const std::filesystem::path path = directory.evaluation();
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;
@@ -60,7 +60,7 @@ std::optional<RunEvaluation> read_run_evaluation(const RunDirectory& directory) 
     if (!parsed) throw std::runtime_error(path.string() + ": \"" + key + "\" is not a number");
     return *parsed;
   };
-  RunEvaluation evaluation;
+  RecordedEvaluation evaluation;
   evaluation.mean_return = number("mean_return");
   evaluation.mean_cost = number("mean_cost");
   evaluation.episodes = static_cast<long long>(number("episodes"));

@@ -16,7 +16,10 @@ const char* to_string(RunState state);
 
 RunState run_state(const RunDirectory& directory);
 
-struct RunEvaluation {
+// What a finished run's evaluation.json says. (Not algos/training/run_evaluation.h's
+// RunEvaluation, which evaluates a run: two classes of one name in one namespace
+// broke the One Definition Rule.)
+struct RecordedEvaluation {
   double mean_return = 0.0;  // J
   double mean_cost = 0.0;    // H
   long long episodes = 0;
@@ -32,7 +35,7 @@ int logged_epochs(const RunDirectory& directory);
 // evaluation.json of a finished run; nullopt if it does not exist. Throws
 // std::runtime_error naming the file if it is malformed. A non-finite mean
 // (written as null) reads as NaN.
-std::optional<RunEvaluation> read_run_evaluation(const RunDirectory& directory);
+std::optional<RecordedEvaluation> read_run_evaluation(const RunDirectory& directory);
 
 // One number per line (returns.csv, costs.csv); throws std::runtime_error
 // naming the file and line if it is missing or holds something else.

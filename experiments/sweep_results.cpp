@@ -166,7 +166,7 @@ std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path
           set_column_flags(config, column_flags(*run_config));
         }
       }
-      const std::optional<RunEvaluation> evaluation = read_run_evaluation(directory);
+      const std::optional<RecordedEvaluation> evaluation = read_run_evaluation(directory);
       // A run trained with eval_episodes: 0 is finished but has no J or H.
       if (!evaluation || evaluation->episodes == 0) continue;
       SeedResult seed{run.seed, evaluation->mean_return, evaluation->mean_cost, {}, evaluation->cost_rate,
