@@ -39,27 +39,27 @@ int evaluate(const EvalArguments& args) {
     }
     std::optional<Recording> recording;
     if (args.recording.any()) recording.emplace(args.recording);
-    std::optional<EvaluationActions> actions;
-    if (args.actions) actions = *args.actions == "sampled" ? EvaluationActions::sampled : EvaluationActions::mean;
-    const RunEvaluation result = evaluate_run_directory(
-        RunDirectory(args.run_dir), args.episodes, mpi,
+    std::optional<algos::EvaluationActions> actions;
+    if (args.actions) actions = *args.actions == "sampled" ? algos::EvaluationActions::sampled : algos::EvaluationActions::mean;
+    const algos::RunEvaluation result = algos::evaluate_run_directory(
+        algos::RunDirectory(args.run_dir), args.episodes, mpi,
         [&](std::unique_ptr<envs::Env> env) { return recording ? recording->wrap(std::move(env)) : std::move(env); },
         actions);
     if (recording) recording->finish(args.json ? std::cerr : std::cout);
     if (!mpi.is_root()) return 0;
     if (args.json) {
-      std::cout << evaluation_json(result.summary, true);
+      std::cout << algos::evaluation_json(result.summary, true);
     } else {
       if (result.epochs_completed < result.epochs) {
         std::cout << "note: the checkpoint covers " << result.epochs_completed << " of " << result.epochs
                   << " epochs (the run is not finished)\n";
       }
       std::cout << "episodes " << result.summary.episodes.size() << "\n"
-                << "J (mean return) " << format_csv_number(result.summary.mean_return) << "\n"
-                << "H (mean cost) " << format_csv_number(result.summary.mean_cost) << "\n"
-                << "mean length " << format_csv_number(result.summary.mean_length) << "\n"
+                << "J (mean return) " << algos::format_csv_number(result.summary.mean_return) << "\n"
+                << "H (mean cost) " << algos::format_csv_number(result.summary.mean_cost) << "\n"
+                << "mean length " << algos::format_csv_number(result.summary.mean_length) << "\n"
                 << "actions " << (result.summary.action_std > 0.0
-                                      ? "sampled, sigma " + format_csv_number(result.summary.action_std)
+                                      ? "sampled, sigma " + algos::format_csv_number(result.summary.action_std)
                                       : std::string("mean (deterministic)"))
                 << std::endl;
     }

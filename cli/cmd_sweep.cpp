@@ -43,17 +43,17 @@ struct SweepOptions {
   std::vector<std::string> only_env_ids;
   std::vector<std::string> only_algorithms;
   bool slurm = false;
-  SlurmJobOptions slurm_job;
+  experiments::SlurmJobOptions slurm_job;
   std::string status_dir;
 };
 
 // One sweep per directory: the lock names its holder to whoever finds it taken.
-RunLock lock_sweep_directory(const std::filesystem::path& out_dir) {
+experiments::RunLock lock_sweep_directory(const std::filesystem::path& out_dir) {
   std::filesystem::create_directories(out_dir);
-  const std::filesystem::path lock_file = out_dir / kSweepLockName;
-  std::optional<RunLock> lock = RunLock::try_acquire_file(lock_file);
+  const std::filesystem::path lock_file = out_dir / experiments::kSweepLockName;
+  std::optional<experiments::RunLock> lock = experiments::RunLock::try_acquire_file(lock_file);
   if (!lock) {
-    throw std::runtime_error("another bsg sweep (" + describe_lock_holder(lock_file) + ") is using " +
+    throw std::runtime_error("another bsg sweep (" + experiments::describe_lock_holder(lock_file) + ") is using " +
                              out_dir.string() + " (it holds " + lock_file.string() +
                              "); wait for it to end or choose another --out");
   }
@@ -69,7 +69,7 @@ RunLock lock_sweep_directory(const std::filesystem::path& out_dir) {
 
 int run_sweep(SweepOptions options) {
   const std::filesystem::path grid_file(options.grid_file);
-  SweepPlanRequest request;
+  experiments::SweepPlanRequest request;
   request.grid_file = grid_file;
   request.configs_dir = find_configs(options.configs_dir, grid_file, "grid file").dir;
   request.out_dir = options.out_dir.empty() ? std::filesystem::path("sweeps") / grid_file.stem()
@@ -84,32 +84,32 @@ int run_sweep(SweepOptions options) {
 
   if (options.dry_run && !options.slurm) {
     std::cout << "bsg sweep --dry-run " << grid_file.string() << " -> " << request.out_dir.string() << "\n"
-              << dry_run_listing(make_sweep_plan(request));
+              << experiments::dry_run_listing(experiments::make_sweep_plan(request));
     return 0;
   }
-  const std::optional<RunLock> sweep_lock =
-      options.dry_run ? std::nullopt : std::optional<RunLock>(lock_sweep_directory(request.out_dir));
-  SweepPlan plan = make_sweep_plan(request);
+  const std::optional<experiments::RunLock> sweep_lock =
+      options.dry_run ? std::nullopt : std::optional<experiments::RunLock>(lock_sweep_directory(request.out_dir));
+  experiments::SweepPlan plan = experiments::make_sweep_plan(request);
   if (options.slurm) {
-    SlurmLaunchOptions launch;
+    experiments::SlurmLaunchOptions launch;
     launch.job = options.slurm_job;
     launch.job.ranks_per_run = options.ranks_per_run;
     launch.configs_dir = request.configs_dir;
-    launch.bsg_program = current_executable();
+    launch.bsg_program = experiments::current_executable();
     launch.dry_run = options.dry_run;
-    if (!options.dry_run) prepare_sweep_directory(request, plan);
-    return submit_sweep_to_slurm(plan, request.out_dir, launch, std::cout);
+    if (!options.dry_run) experiments::prepare_sweep_directory(request, plan);
+    return experiments::submit_sweep_to_slurm(plan, request.out_dir, launch, std::cout);
   }
-  prepare_sweep_directory(request, plan);
+  experiments::prepare_sweep_directory(request, plan);
   // Blocked before the first child starts (children unblock them, experiments/child_process.h).
   const StopSignals stop_signals;
-  LocalLaunchOptions launch;
+  experiments::LocalLaunchOptions launch;
   launch.jobs = options.jobs;
   launch.ranks_per_run = options.ranks_per_run;
   launch.configs_dir = request.configs_dir;
-  launch.bsg_program = current_executable();
+  launch.bsg_program = experiments::current_executable();
   launch.take_stop_signal = [&stop_signals] { return stop_signals.take_pending(); };
-  return run_sweep_locally(std::move(plan), request.out_dir, launch);
+  return experiments::run_sweep_locally(std::move(plan), request.out_dir, launch);
 }
 
 }  // namespace
@@ -153,7 +153,7 @@ void add_sweep_command(CLI::App& app, Action& run) {
     if (!options->status_dir.empty()) {
       if (!options->grid_file.empty()) throw CLI::ValidationError("--status", "takes a sweep directory, not GRID");
       run = [options] {
-        std::cout << sweep_status_text(read_sweep_status(options->status_dir));
+        std::cout << experiments::sweep_status_text(experiments::read_sweep_status(options->status_dir));
         return 0;
       };
       return;

@@ -35,36 +35,36 @@ struct TableOptions {
 };
 
 int run_table(const TableOptions& options) {
-  const SelectionScore score = parse_selection_score(options.score);
+  const experiments::SelectionScore score = experiments::parse_selection_score(options.score);
   if (options.sweep_dirs.size() > 1 && options.output_dir.empty()) {
     throw std::runtime_error("bsg table: a table of " + std::to_string(options.sweep_dirs.size()) +
                              " sweeps needs --output DIR (it belongs to none of them)");
   }
-  std::vector<ConfigurationResults> results;
+  std::vector<experiments::ConfigurationResults> results;
   for (const std::string& dir : options.sweep_dirs) {
-    std::vector<ConfigurationResults> sweep =
-        load_sweep_results(std::filesystem::path(dir), score == SelectionScore::mean_minus_std);
-    for (ConfigurationResults& config : sweep) {
+    std::vector<experiments::ConfigurationResults> sweep =
+        experiments::load_sweep_results(std::filesystem::path(dir), score == experiments::SelectionScore::mean_minus_std);
+    for (experiments::ConfigurationResults& config : sweep) {
       if (options.sweep_dirs.size() > 1) config.config_dir = (std::filesystem::path(dir) / config.config_dir).generic_string();
       results.push_back(std::move(config));
     }
   }
-  Table1 table = build_table1(results, score);
+  experiments::Table1 table = experiments::build_table1(results, score);
   table.show_cost_rate = options.metric == "cost-rate";
 
   const std::filesystem::path out = options.output_dir.empty() ? std::filesystem::path(options.sweep_dirs.front())
                                                                : std::filesystem::path(options.output_dir);
-  write_table1_files(table, out);
-  std::cout << table1_markdown(table);
+  experiments::write_table1_files(table, out);
+  std::cout << experiments::table1_markdown(table);
   std::cerr << "bsg table: wrote table1.md, table1.csv, table1.tex and configurations.csv to "
             << out.string() << "\n";
   if (options.compare == "report") {
     const std::filesystem::path configs = find_configs(options.configs_dir, {}, "").dir;
-    const ReportTable1 report = load_report_table1(configs / kReportTable1File);
-    const std::string markdown = comparison_markdown(table, report);
+    const experiments::ReportTable1 report = experiments::load_report_table1(configs / experiments::kReportTable1File);
+    const std::string markdown = experiments::comparison_markdown(table, report);
     write_file_atomically(out / "table1_compare.md", markdown);
-    write_file_atomically(out / "table1_compare.csv", comparison_csv(table, report));
-    std::cout << "\nBeside the report's Table 1 (" << (configs / kReportTable1File).string() << "):\n" << markdown;
+    write_file_atomically(out / "table1_compare.csv", experiments::comparison_csv(table, report));
+    std::cout << "\nBeside the report's Table 1 (" << (configs / experiments::kReportTable1File).string() << "):\n" << markdown;
     std::cerr << "bsg table: wrote table1_compare.md and table1_compare.csv to " << out.string() << "\n";
   }
   return 0;

@@ -65,7 +65,7 @@ ResolvedTrainConfig resolve_config(const TrainArguments& args) {
   request.set_arguments = args.set_arguments;
   request.valid_env_ids = envs::registered_ids();
   resolved.config = resolve_run_config(request).config;
-  resolve_env_block(resolved.config);
+  algos::resolve_env_block(resolved.config);
   return resolved;
 }
 
@@ -85,10 +85,10 @@ void check_before_training(const RunConfig& config, int num_ranks) {
 
 // The trainer allocates its networks and buffers up front: running out of
 // memory there is reported with what was being allocated and the estimate.
-std::unique_ptr<OnPolicyTrainer> make_trainer(const RunConfig& config, const RunDirectory& directory,
-                                              const MpiContext& mpi, const TrainerOptions& options) {
+std::unique_ptr<algos::OnPolicyTrainer> make_trainer(const RunConfig& config, const algos::RunDirectory& directory,
+                                              const MpiContext& mpi, const algos::TrainerOptions& options) {
   try {
-    return std::make_unique<OnPolicyTrainer>(config, directory, mpi, options);
+    return std::make_unique<algos::OnPolicyTrainer>(config, directory, mpi, options);
   } catch (const std::bad_alloc&) {
     const std::unique_ptr<envs::Env> env =
         envs::make(config.env_id, {.physics = config.physics});
@@ -116,20 +116,20 @@ int train(const TrainArguments& args) {
     const bool resume = !args.resume_dir.empty();
     RunConfig config;
     std::optional<LocatedConfigs> configs;
-    std::optional<RunDirectory> directory;
+    std::optional<algos::RunDirectory> directory;
     if (resume) {
       directory.emplace(args.resume_dir);
-      check_is_run_directory(*directory);
+      algos::check_is_run_directory(*directory);
       config = load_resolved_run_config(directory->config(), envs::registered_ids());
     } else {
       ResolvedTrainConfig resolved = resolve_config(args);
       config = std::move(resolved.config);
       configs = std::move(resolved.configs);
-      directory.emplace(args.out_dir.empty() ? default_run_directory(config) : std::filesystem::path(args.out_dir));
+      directory.emplace(args.out_dir.empty() ? algos::default_run_directory(config) : std::filesystem::path(args.out_dir));
     }
     check_before_training(config, mpi.size());
 
-    TrainerOptions options;
+    algos::TrainerOptions options;
     options.resume = resume;
     options.stop_after_epochs = args.stop_after_epochs;
     options.log = args.quiet ? nullptr : &std::cout;
@@ -148,8 +148,8 @@ int train(const TrainArguments& args) {
                 << directory->root.string() << std::endl;
       if (configs) std::cout << describe_configs(*configs) << std::endl;
     }
-    const std::unique_ptr<OnPolicyTrainer> trainer = make_trainer(config, *directory, mpi, options);
-    const TrainingOutcome outcome = trainer->run();
+    const std::unique_ptr<algos::OnPolicyTrainer> trainer = make_trainer(config, *directory, mpi, options);
+    const algos::TrainingOutcome outcome = trainer->run();
     if (mpi.is_root() && !outcome.finished) {
       (outcome.stop_requested ? std::cerr : std::cout)
           << (outcome.stop_requested ? "bsg train: stop signal received: " : "") << "stopped after "

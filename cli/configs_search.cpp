@@ -14,7 +14,7 @@ namespace {
 // own configs. Empty if the program's location cannot be read.
 std::filesystem::path installed_configs_dir() {
   try {
-    return current_executable().parent_path() / BSG_INSTALLED_CONFIGS_FROM_PROGRAM;
+    return experiments::current_executable().parent_path() / BSG_INSTALLED_CONFIGS_FROM_PROGRAM;
   } catch (const std::exception&) {
     return {};
   }

@@ -52,13 +52,13 @@ struct TemporaryDirectory {
   TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
 };
 
-void print_table(const RunConfig& config, int ranks, const std::vector<EpochTimings>& epochs) {
+void print_table(const RunConfig& config, int ranks, const std::vector<algos::EpochTimings>& epochs) {
   std::printf("%s on %s, B = %d, dtype %s, %d rank(s); seconds per epoch on rank 0 (wall clock; cpu: processor time)\n",
               std::string(to_string(config.alg)).c_str(), config.env_id.c_str(), config.steps_per_epoch,
               std::string(to_string(config.dtype)).c_str(), ranks);
   std::printf("%6s %9s %9s %9s %9s %9s %11s %10s\n", "epoch", "collect", "policy", "value", "update", "total",
               "update cpu", "total cpu");
-  for (const EpochTimings& t : epochs) {
+  for (const algos::EpochTimings& t : epochs) {
     std::printf("%6d %9.3f %9.3f %9.3f %9.3f %9.3f %11.3f %10.3f\n", t.epoch, t.collect_seconds,
                 t.policy_update_seconds, t.value_fit_seconds, t.update_seconds, t.total_seconds,
                 t.update_cpu_seconds, t.total_cpu_seconds);
@@ -66,9 +66,9 @@ void print_table(const RunConfig& config, int ranks, const std::vector<EpochTimi
 }
 
 template <typename Field>
-std::vector<double> column(const std::vector<EpochTimings>& epochs, Field field) {
+std::vector<double> column(const std::vector<algos::EpochTimings>& epochs, Field field) {
   std::vector<double> values;
-  for (const EpochTimings& t : epochs) values.push_back(t.*field);
+  for (const algos::EpochTimings& t : epochs) values.push_back(t.*field);
   return values;
 }
 
@@ -81,24 +81,24 @@ int run_train_benchmark(const TrainBenchArguments& args) {
   return run_or_abort_job(mpi, [&]() {
     std::optional<TemporaryDirectory> directory;
     if (mpi.is_root()) directory.emplace();
-    std::vector<EpochTimings> epochs;
-    TrainerOptions options;
-    options.on_epoch_timed = [&epochs](const EpochTimings& timings) { epochs.push_back(timings); };
-    OnPolicyTrainer trainer(config, RunDirectory(directory ? directory->path / "run" : std::filesystem::path()), mpi,
+    std::vector<algos::EpochTimings> epochs;
+    algos::TrainerOptions options;
+    options.on_epoch_timed = [&epochs](const algos::EpochTimings& timings) { epochs.push_back(timings); };
+    algos::OnPolicyTrainer trainer(config, algos::RunDirectory(directory ? directory->path / "run" : std::filesystem::path()), mpi,
                             options);
     trainer.run();
     if (!mpi.is_root()) return 0;
 
-    const double collect = median(column(epochs, &EpochTimings::collect_seconds));
-    const double policy = median(column(epochs, &EpochTimings::policy_update_seconds));
-    const double value = median(column(epochs, &EpochTimings::value_fit_seconds));
-    const double update = median(column(epochs, &EpochTimings::update_seconds));
-    const double total = median(column(epochs, &EpochTimings::total_seconds));
-    const double update_cpu = median(column(epochs, &EpochTimings::update_cpu_seconds));
-    const double total_cpu = median(column(epochs, &EpochTimings::total_cpu_seconds));
+    const double collect = median(column(epochs, &algos::EpochTimings::collect_seconds));
+    const double policy = median(column(epochs, &algos::EpochTimings::policy_update_seconds));
+    const double value = median(column(epochs, &algos::EpochTimings::value_fit_seconds));
+    const double update = median(column(epochs, &algos::EpochTimings::update_seconds));
+    const double total = median(column(epochs, &algos::EpochTimings::total_seconds));
+    const double update_cpu = median(column(epochs, &algos::EpochTimings::update_cpu_seconds));
+    const double total_cpu = median(column(epochs, &algos::EpochTimings::total_cpu_seconds));
     if (args.json) {
       nlohmann::json list = nlohmann::json::array();
-      for (const EpochTimings& t : epochs) {
+      for (const algos::EpochTimings& t : epochs) {
         list.push_back({{"epoch", t.epoch},
                         {"collect_s", t.collect_seconds},
                         {"policy_update_s", t.policy_update_seconds},

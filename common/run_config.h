@@ -17,28 +17,12 @@
 #include <utility>
 #include <vector>
 
+#include "common/algorithms.h"
 #include "common/constraint_config.h"
 #include "common/physics_model.h"
 #include "common/dtype.h"
 
 namespace bsg {
-
-// The algorithms: the five trust-region ones spelled in configs as the
-// original code spells them (plus "pcpo", which the original lacks), then the
-// first-order baselines spelled as OmniSafe spells them (docs/algorithms.md#first-order-updates).
-enum class Algorithm { trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup };
-inline constexpr std::array<std::string_view, 9> kAlgorithmNames = {"trpo", "lag-trpo", "cpo", "pdo", "pcpo",
-                                                                    "ppo",  "ppo-lag",  "focops", "cup"};
-
-// Whether the algorithm maximises the return alone (TRPO, PPO): its cost
-// only judges the policy, it is not constrained.
-constexpr bool ignores_cost(Algorithm alg) { return alg == Algorithm::trpo || alg == Algorithm::ppo; }
-
-// Whether the algorithm takes the first-order update (first_order_update.h)
-// rather than the trust-region step.
-constexpr bool is_first_order(Algorithm alg) {
-  return alg == Algorithm::ppo || alg == Algorithm::ppo_lag || alg == Algorithm::focops || alg == Algorithm::cup;
-}
 
 // Update rule of the Lagrange multiplier (docs/algorithms.md#trpo-l SGD for
 // TRPO-L, docs/algorithms.md#pdo Adam for PDO; PID: the PID Lagrangian of Stooke, Achiam and Abbeel 2020, with

@@ -13,7 +13,6 @@
 #include <type_traits>
 #include <variant>
 
-#include "common/closest_name.h"
 #include "common/config_error.h"
 #include "common/message_text.h"
 #include "common/config_scalar.h"
@@ -22,7 +21,6 @@ namespace bsg {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kIntMax = 2147483647.0;
 
 // Access to an enum member through its underlying index into its names.
@@ -51,52 +49,55 @@ struct SchemaRow {
   FieldAccess field;
 };
 
-NumericRange closed(double min, double max) { return {min, max, true, true}; }
-NumericRange open_closed(double min, double max) { return {min, max, false, true}; }
-NumericRange open(double min, double max) { return {min, max, false, false}; }
-NumericRange closed_open(double min, double max) { return {min, max, true, false}; }
-NumericRange at_least(double min) { return {min, kInf, true, false}; }
-NumericRange above(double min) { return {min, kInf, false, false}; }
-
-constexpr AlgorithmSet kLagrangian = algorithm_bit(Algorithm::lag_trpo) | algorithm_bit(Algorithm::pdo) |
-                                     algorithm_bit(Algorithm::ppo_lag) | algorithm_bit(Algorithm::focops) |
-                                     algorithm_bit(Algorithm::cup);
-constexpr AlgorithmSet kTrustRegion = algorithm_bit(Algorithm::trpo) | algorithm_bit(Algorithm::lag_trpo) |
-                                      algorithm_bit(Algorithm::cpo) | algorithm_bit(Algorithm::pdo) |
-                                      algorithm_bit(Algorithm::pcpo);
-constexpr AlgorithmSet kFirstOrder = kAllAlgorithms & ~kTrustRegion;
-constexpr AlgorithmSet kClipped = algorithm_bit(Algorithm::ppo) | algorithm_bit(Algorithm::ppo_lag) |
-                                  algorithm_bit(Algorithm::cup);
+// The algorithm families the keys apply to, read off the table of algorithms (common/algorithms.h).
+constexpr AlgorithmSet algorithms_where(bool AlgorithmInfo::*property) {
+  AlgorithmSet set = 0;
+  for (const AlgorithmInfo& info : kAlgorithms) {
+    if (info.*property) set |= algorithm_bit(info.alg);
+  }
+  return set;
+}
+constexpr AlgorithmSet algorithms_in(AlgorithmFamily family) {
+  AlgorithmSet set = 0;
+  for (const AlgorithmInfo& info : kAlgorithms) {
+    if (info.family == family) set |= algorithm_bit(info.alg);
+  }
+  return set;
+}
+constexpr AlgorithmSet kLagrangian = algorithms_where(&AlgorithmInfo::lagrange_multiplier);
+constexpr AlgorithmSet kTrustRegion = algorithms_in(AlgorithmFamily::trust_region);
+constexpr AlgorithmSet kFirstOrder = algorithms_in(AlgorithmFamily::first_order);
+constexpr AlgorithmSet kClipped = algorithms_where(&AlgorithmInfo::clipped_surrogate);
 
 SchemaRow boolean(std::string_view key, bool RunConfig::*member, ConfigLayer layer,
                   AlgorithmSet used_by, std::string_view description) {
-  return {{key, ConfigValueType::boolean, layer, {}, {}, used_by, description}, member};
+  return {{key, ValueType::boolean, layer, {}, {}, used_by, description}, member};
 }
 template <typename Int>
 SchemaRow integer(std::string_view key, Int RunConfig::*member, ConfigLayer layer,
                   NumericRange range, AlgorithmSet used_by, std::string_view description) {
-  return {{key, ConfigValueType::integer, layer, range, {}, used_by, description}, member};
+  return {{key, ValueType::integer, layer, range, {}, used_by, description}, member};
 }
 SchemaRow real(std::string_view key, double RunConfig::*member, ConfigLayer layer,
                NumericRange range, AlgorithmSet used_by, std::string_view description) {
-  return {{key, ConfigValueType::real, layer, range, {}, used_by, description}, member};
+  return {{key, ValueType::real, layer, range, {}, used_by, description}, member};
 }
 SchemaRow text(std::string_view key, std::string RunConfig::*member, ConfigLayer layer,
                std::string_view description) {
-  return {{key, ConfigValueType::text, layer, {}, {}, kAllAlgorithms, description}, member};
+  return {{key, ValueType::text, layer, {}, {}, kAllAlgorithms, description}, member};
 }
 SchemaRow choice(std::string_view key, EnumAccess access, std::span<const std::string_view> names,
                  ConfigLayer layer, AlgorithmSet used_by, std::string_view description) {
-  return {{key, ConfigValueType::choice, layer, {}, names, used_by, description}, access};
+  return {{key, ValueType::choice, layer, {}, names, used_by, description}, access};
 }
 SchemaRow constraint_list(std::string_view key, std::vector<ConstraintConfig> RunConfig::*member,
                           AlgorithmSet used_by, std::string_view description) {
-  return {{key, ConfigValueType::constraint_list, ConfigLayer::run, {}, {}, used_by, description}, member};
+  return {{key, ValueType::constraint_list, ConfigLayer::run, {}, {}, used_by, description}, member};
 }
 SchemaRow integer_list(std::string_view key, std::vector<int> RunConfig::*member,
                        ConfigLayer layer, NumericRange element_range, AlgorithmSet used_by,
                        std::string_view description) {
-  return {{key, ConfigValueType::integer_list, layer, element_range, {}, used_by, description},
+  return {{key, ValueType::integer_list, layer, element_range, {}, used_by, description},
           member};
 }
 
@@ -104,6 +105,7 @@ SchemaRow integer_list(std::string_view key, std::vector<int> RunConfig::*member
 const std::vector<SchemaRow>& schema_rows() {
   using L = ConfigLayer;
   using R = RunConfig;
+  using N = NumericRange;
   constexpr AlgorithmSet all = kAllAlgorithms;
   static const std::vector<SchemaRow> rows = {
     // --- run ---
@@ -111,7 +113,7 @@ const std::vector<SchemaRow>& schema_rows() {
          "environment id, e.g. SafetyBallCircle-v0 (report Table 3)"),
     choice("alg", enum_access<&R::alg>(), kAlgorithmNames, L::run, all,
            "algorithm: trpo, lag-trpo (TRPO-L), cpo, pdo, pcpo, or the first-order ppo, ppo-lag, focops, cup"),
-    integer("seed", &R::seed, L::run, closed(0, 4294967295.0), all,
+    integer("seed", &R::seed, L::run, N::closed(0, 4294967295.0), all,
             "base seed; per-rank and per-environment seeds are derived from it (seeding.h)"),
     text("log_dir", &R::log_dir, L::run,
          "directory under which the run directory is created"),
@@ -120,22 +122,22 @@ const std::vector<SchemaRow>& schema_rows() {
     choice("learner", enum_access<&R::learner>(), kLearnerNames, L::run, all,
            "preset: faithful (the original's learner) or corrected (every corrected switch on: Q1, Q4, Q5, "
            "Q10, Q19, Q20; a switch the run file or --set names itself keeps that value)"),
-    {{"env", ConfigValueType::mapping, L::run, {}, {}, all,
+    {{"env", ValueType::mapping, L::run, {}, {}, all,
       "environment parameters, e.g. {bombs: 12} (`bsg envs --describe ID` lists them)"}, &R::env},
     constraint_list("constraints", &R::constraints, all,
                     "several constraints, each summing named cost terms (or all) against its own limit: "
                     "[{terms: [cost_outside_bounds], limit: 20}, ...]; absent: the cost against cost_limit"),
     // --- environment (report Table 3, docs/reproducing.md#environment-settings) ---
-    real("cost_limit", &R::cost_limit, L::environment, at_least(0), all,
+    real("cost_limit", &R::cost_limit, L::environment, N::at_least(0), all,
          "d: limit on the undiscounted episode cost"),
-    integer("epochs", &R::epochs, L::environment, closed(1, kIntMax), all,
+    integer("epochs", &R::epochs, L::environment, N::closed(1, kIntMax), all,
             "E: number of training epochs"),
-    integer("steps_per_epoch", &R::steps_per_epoch, L::environment, closed(1, kIntMax), all,
+    integer("steps_per_epoch", &R::steps_per_epoch, L::environment, N::closed(1, kIntMax), all,
             "B: environment steps per epoch, summed over all MPI ranks"),
-    integer("max_ep_len", &R::max_ep_len, L::environment, closed(1, kIntMax), all,
+    integer("max_ep_len", &R::max_ep_len, L::environment, N::closed(1, kIntMax), all,
             "maximum episode length in steps (the environment's time limit)"),
     // --- networks (docs/algorithms.md#networks) ---
-    integer_list("hidden_sizes", &R::hidden_sizes, L::algorithm, closed(1, 4096), all,
+    integer_list("hidden_sizes", &R::hidden_sizes, L::algorithm, N::closed(1, 4096), all,
                  "hidden layer widths of the policy net and both value nets"),
     choice("activation", enum_access<&R::activation>(), kActivationNames, L::algorithm, all,
            "hidden-layer activation of all nets"),
@@ -146,18 +148,18 @@ const std::vector<SchemaRow>& schema_rows() {
            "value fits): float32 (the original's PyTorch default; faster, learning within seed spread) or "
            "float64; parameters, optimiser moments and CG vectors stay float64"),
     // --- returns, advantages, normalisation (docs/algorithms.md#normalisers, #rollout-and-gae) ---
-    real("gamma", &R::gamma, L::algorithm, open_closed(0, 1), all,
+    real("gamma", &R::gamma, L::algorithm, N::open_closed(0, 1), all,
          "discount factor for rewards and costs"),
-    real("lam", &R::lam, L::algorithm, closed(0, 1), all,
+    real("lam", &R::lam, L::algorithm, N::closed(0, 1), all,
          "GAE lambda for reward advantages"),
-    real("lam_c", &R::lam_c, L::algorithm, closed(0, 1), all,
+    real("lam_c", &R::lam_c, L::algorithm, N::closed(0, 1), all,
          "GAE lambda for cost advantages"),
     boolean("use_exploration_noise_anneal", &R::use_exploration_noise_anneal, L::algorithm, all,
             "anneal the exploration std: sigma_k = 0.499 (1 - k/E) + 0.01 (else fixed 0.5)"),
-    integer("exploration_anneal_epochs", &R::exploration_anneal_epochs, L::algorithm, closed(0, kIntMax), all,
+    integer("exploration_anneal_epochs", &R::exploration_anneal_epochs, L::algorithm, N::closed(0, kIntMax), all,
             "n > 0: the annealing ends at epoch n, sigma_k = 0.499 (1 - min(k, n)/n) + 0.01, and sigma holds "
             "0.01 for the epochs after it; 0 = E, the original's schedule; at most epochs"),
-    real("exploration_std_floor", &R::exploration_std_floor, L::algorithm, at_least(0), all,
+    real("exploration_std_floor", &R::exploration_std_floor, L::algorithm, N::at_least(0), all,
          "sigma_k = max(annealed sigma_k, floor): the noise never falls below the floor (keeps room for a KL "
          "step to move the mean action late in training); 0 = no floor (original)"),
     boolean("use_standardized_obs", &R::use_standardized_obs, L::algorithm, all,
@@ -169,7 +171,7 @@ const std::vector<SchemaRow>& schema_rows() {
     boolean("center_advantages", &R::center_advantages, L::algorithm, all,
             "Q6: subtract the batch mean of the reward and cost advantages, keeping their scale "
             "(original: not centred; implied by use_standardized_advantages)"),
-    real("obs_clip", &R::obs_clip, L::algorithm, at_least(0), all,
+    real("obs_clip", &R::obs_clip, L::algorithm, N::at_least(0), all,
          "Q3: clip normalised observations to +-obs_clip; 0 = no clipping (original)"),
     boolean("exact_parallel_variance", &R::exact_parallel_variance, L::algorithm, all,
             "Q4: Chan's exact parallel variance instead of the original's update"),
@@ -179,7 +181,7 @@ const std::vector<SchemaRow>& schema_rows() {
     boolean("rescale_value_output", &R::rescale_value_output, L::algorithm, all,
             "Q19: when the return statistic changes, scale V's output layer by old/new std so that "
             "V's predictions in raw units are kept (PopArt)"),
-    integer("reward_scale_warmup_epochs", &R::reward_scale_warmup_epochs, L::algorithm, closed(0, kIntMax), all,
+    integer("reward_scale_warmup_epochs", &R::reward_scale_warmup_epochs, L::algorithm, N::closed(0, kIntMax), all,
             "update the return statistic only in the first n epochs, then keep it; 0 = every epoch (original)"),
     boolean("timeout_bootstrap", &R::timeout_bootstrap, L::algorithm, all,
             "bootstrap with V (V_C) of the next observation at a time-out (original); false: as a terminal"),
@@ -187,47 +189,47 @@ const std::vector<SchemaRow>& schema_rows() {
             "Q20: V and V_C also see the fraction of the time limit left, (max_ep_len - t)/max_ep_len at "
             "episode step t; false: the observation alone (original)"),
     // --- trust region (docs/algorithms.md#trust-region-tools) ---
-    real("target_kl", &R::target_kl, L::algorithm, above(0), all,
+    real("target_kl", &R::target_kl, L::algorithm, N::above(0), all,
          "delta: trust-region size (mean KL per action dimension, Q8); first-order algorithms: the "
          "early-stop KL (per sample summed over action dimensions, averaged over samples)"),
-    real("cg_damping", &R::cg_damping, L::algorithm, at_least(0), kTrustRegion,
+    real("cg_damping", &R::cg_damping, L::algorithm, N::at_least(0), kTrustRegion,
          "damping added to the Fisher-vector product"),
-    integer("cg_iters", &R::cg_iters, L::algorithm, closed(1, 1000), kTrustRegion,
+    integer("cg_iters", &R::cg_iters, L::algorithm, N::closed(1, 1000), kTrustRegion,
             "conjugate-gradient iterations"),
-    integer("fvp_subsample", &R::fvp_subsample, L::algorithm, closed(1, 1000), kTrustRegion,
+    integer("fvp_subsample", &R::fvp_subsample, L::algorithm, N::closed(1, 1000), kTrustRegion,
             "the Fisher-vector product uses every k-th observation of the batch"),
-    integer("backtrack_budget", &R::backtrack_budget, L::algorithm, closed(1, 1000), kTrustRegion,
+    integer("backtrack_budget", &R::backtrack_budget, L::algorithm, N::closed(1, 1000), kTrustRegion,
             "Q11: line-search steps (original: 15, CPO 20; report: CPO and PCPO 25)"),
-    real("backtrack_decay", &R::backtrack_decay, L::algorithm, open(0, 1), kTrustRegion,
+    real("backtrack_decay", &R::backtrack_decay, L::algorithm, N::open(0, 1), kTrustRegion,
          "line-search step shrink factor"),
-    real("kl_accept_factor", &R::kl_accept_factor, L::algorithm, above(0), kTrustRegion,
+    real("kl_accept_factor", &R::kl_accept_factor, L::algorithm, N::above(0), kTrustRegion,
          "Q13: the line search accepts a step with KL <= kl_accept_factor * target_kl"),
     // --- Lagrange multiplier (docs/algorithms.md#trpo-l, #pdo) ---
     real("lagrangian_multiplier_init", &R::lagrangian_multiplier_init, L::algorithm,
-         at_least(0), kLagrangian, "initial Lagrange multiplier lambda (PID: the initial integral I)"),
-    real("lambda_lr", &R::lambda_lr, L::algorithm, above(0), kLagrangian,
+         N::at_least(0), kLagrangian, "initial Lagrange multiplier lambda (PID: the initial integral I)"),
+    real("lambda_lr", &R::lambda_lr, L::algorithm, N::above(0), kLagrangian,
          "alpha_lambda: learning rate of the Lagrange multiplier (SGD, Adam; PID uses pid_ki)"),
     choice("lambda_optimizer", enum_access<&R::lambda_optimizer>(), kLambdaOptimizerNames,
            L::algorithm, kLagrangian,
            "update rule of the Lagrange multiplier: SGD or Adam step of lambda_lr on "
            "-lambda (J_C - d), or PID (Stooke et al. 2020) with the pid_* keys"),
-    real("lagrangian_upper_bound", &R::lagrangian_upper_bound, L::algorithm, at_least(0),
+    real("lagrangian_upper_bound", &R::lagrangian_upper_bound, L::algorithm, N::at_least(0),
          algorithm_bit(Algorithm::focops),
          "FOCOPS's nu_max: each multiplier is projected onto [0, nu_max] after its update; 0 = no bound"),
     // --- PID Lagrange multiplier (lambda_optimizer PID; algos/lagrange/pid_lagrangian.h) ---
-    real("pid_kp", &R::pid_kp, L::algorithm, at_least(0), kLagrangian,
+    real("pid_kp", &R::pid_kp, L::algorithm, N::at_least(0), kLagrangian,
          "PID only: K_P, proportional gain on the (smoothed) violation J_C - d"),
-    real("pid_ki", &R::pid_ki, L::algorithm, at_least(0), kLagrangian,
+    real("pid_ki", &R::pid_ki, L::algorithm, N::at_least(0), kLagrangian,
          "PID only: K_I, integral gain, I <- max(0, I + K_I (J_C - d)) (the SGD rule's lambda_lr)"),
-    real("pid_kd", &R::pid_kd, L::algorithm, at_least(0), kLagrangian,
+    real("pid_kd", &R::pid_kd, L::algorithm, N::at_least(0), kLagrangian,
          "PID only: K_D, derivative gain on the cost rise max(0, J_ema - J_ema[k - pid_d_delay])"),
-    integer("pid_d_delay", &R::pid_d_delay, L::algorithm, closed(1, 1000), kLagrangian,
+    integer("pid_d_delay", &R::pid_d_delay, L::algorithm, N::closed(1, 1000), kLagrangian,
             "PID only: epochs between the two smoothed costs the derivative compares"),
-    real("pid_delta_p_ema_alpha", &R::pid_delta_p_ema_alpha, L::algorithm, closed_open(0, 1),
+    real("pid_delta_p_ema_alpha", &R::pid_delta_p_ema_alpha, L::algorithm, N::closed_open(0, 1),
          kLagrangian, "PID only: EMA factor a of the P input, x <- a x + (1 - a) (J_C - d); 0 = none"),
-    real("pid_delta_d_ema_alpha", &R::pid_delta_d_ema_alpha, L::algorithm, closed_open(0, 1),
+    real("pid_delta_d_ema_alpha", &R::pid_delta_d_ema_alpha, L::algorithm, N::closed_open(0, 1),
          kLagrangian, "PID only: EMA factor a of the D input, J_ema <- a J_ema + (1 - a) J_C; 0 = none"),
-    real("pid_lambda_max", &R::pid_lambda_max, L::algorithm, at_least(0), kLagrangian,
+    real("pid_lambda_max", &R::pid_lambda_max, L::algorithm, N::at_least(0), kLagrangian,
          "PID only: upper bound on lambda; 0 = no bound"),
     // --- algorithm switches (docs/algorithms.md#pdo, #cpo, #pcpo) ---
     choice("cpo_r_sign", enum_access<&R::cpo_r_sign>(), kCpoRSignNames, L::algorithm,
@@ -244,41 +246,41 @@ const std::vector<SchemaRow>& schema_rows() {
     boolean("pdo_line_search", &R::pdo_line_search, L::algorithm, algorithm_bit(Algorithm::pdo),
             "Q14: run the TRPO line search on PDO's reward loss (original); false: apply step"),
     // --- first-order updates (docs/algorithms.md#first-order-updates) ---
-    real("actor_lr", &R::actor_lr, L::algorithm, above(0), kFirstOrder,
+    real("actor_lr", &R::actor_lr, L::algorithm, N::above(0), kFirstOrder,
          "Adam step size on the policy (first-order updates)"),
-    integer("update_iters", &R::update_iters, L::algorithm, closed(1, 10000), kFirstOrder,
+    integer("update_iters", &R::update_iters, L::algorithm, N::closed(1, 10000), kFirstOrder,
             "passes over the batch per policy update (fewer after a KL early stop)"),
-    integer("policy_minibatch_size", &R::policy_minibatch_size, L::algorithm, closed(1, kIntMax), kFirstOrder,
+    integer("policy_minibatch_size", &R::policy_minibatch_size, L::algorithm, N::closed(1, kIntMax), kFirstOrder,
             "samples per policy minibatch, summed over ranks: floor(B / size) minibatches per pass"),
     boolean("kl_early_stop", &R::kl_early_stop, L::algorithm, kFirstOrder,
             "end the passes after one whose mean KL to the update's start exceeds target_kl"),
-    real("max_grad_norm", &R::max_grad_norm, L::algorithm, at_least(0), kFirstOrder,
+    real("max_grad_norm", &R::max_grad_norm, L::algorithm, N::at_least(0), kFirstOrder,
          "rescale the rank-averaged policy gradient to at most this norm; 0 = never"),
-    real("clip", &R::clip, L::algorithm, open(0, 1), kClipped,
+    real("clip", &R::clip, L::algorithm, N::open(0, 1), kClipped,
          "epsilon of PPO's clipped surrogate (ppo, ppo-lag, cup's performance step)"),
-    real("focops_lam", &R::focops_lam, L::algorithm, above(0), algorithm_bit(Algorithm::focops),
+    real("focops_lam", &R::focops_lam, L::algorithm, N::above(0), algorithm_bit(Algorithm::focops),
          "FOCOPS's temperature lambda: the loss is KL - rho (A - nu A^C) / lambda"),
-    real("focops_eta", &R::focops_eta, L::algorithm, above(0), algorithm_bit(Algorithm::focops),
+    real("focops_eta", &R::focops_eta, L::algorithm, N::above(0), algorithm_bit(Algorithm::focops),
          "FOCOPS's mask: samples whose KL to the old policy exceeds eta leave the loss"),
     boolean("learn_log_std", &R::learn_log_std, L::algorithm, kFirstOrder,
             "learn a log sigma per action dimension with the policy's Adam (replaces the annealed sigma)"),
-    real("learned_std_init", &R::learned_std_init, L::algorithm, above(0), kFirstOrder,
+    real("learned_std_init", &R::learned_std_init, L::algorithm, N::above(0), kFirstOrder,
          "initial sigma of every dimension with learn_log_std"),
     // --- value networks (docs/algorithms.md#value-fits) ---
     boolean("use_cost_value_function", &R::use_cost_value_function, L::algorithm, all,
             "train the cost value net V_C"),
-    real("vf_lr", &R::vf_lr, L::algorithm, above(0), all,
+    real("vf_lr", &R::vf_lr, L::algorithm, N::above(0), all,
          "Adam learning rate of the value nets"),
-    integer("train_v_iterations", &R::train_v_iterations, L::algorithm, closed(1, 10000), all,
+    integer("train_v_iterations", &R::train_v_iterations, L::algorithm, N::closed(1, 10000), all,
             "Q15: passes over the local batch per epoch when fitting the value nets"),
-    integer("num_mini_batches", &R::num_mini_batches, L::algorithm, closed(1, 100000), all,
+    integer("num_mini_batches", &R::num_mini_batches, L::algorithm, N::closed(1, 100000), all,
             "Q15: minibatches per pass; minibatch size floor(N / num_mini_batches) per rank"),
     // --- bookkeeping (docs/algorithms.md#the-epoch-loop, docs/reproducing.md#evaluation) ---
-    integer("save_freq", &R::save_freq, L::algorithm, closed(1, kIntMax), all,
+    integer("save_freq", &R::save_freq, L::algorithm, N::closed(1, kIntMax), all,
             "save a checkpoint every save_freq epochs and after the last"),
-    integer("check_freq", &R::check_freq, L::algorithm, closed(1, kIntMax), all,
+    integer("check_freq", &R::check_freq, L::algorithm, N::closed(1, kIntMax), all,
             "check that parameters agree across ranks every check_freq epochs"),
-    integer("eval_episodes", &R::eval_episodes, L::algorithm, closed(0, kIntMax), all,
+    integer("eval_episodes", &R::eval_episodes, L::algorithm, N::closed(0, kIntMax), all,
             "evaluation episodes after training, split over ranks"),
     boolean("sampled_evaluation", &R::sampled_evaluation, L::algorithm, all,
             "evaluate the policy as it was trained, a = mu + sigma eps at the last epoch's sigma, with "
@@ -289,9 +291,7 @@ const std::vector<SchemaRow>& schema_rows() {
 // clang-format on
 
 const SchemaRow& row_of(const ConfigKey& key) {
-  for (const SchemaRow& row : schema_rows()) {
-    if (row.info.key == key.key) return row;
-  }
+  if (const SchemaRow* row = find_row(schema_rows(), key.key)) return *row;
   throw ConfigError("internal: '" + std::string(key.key) + "' is not in the schema table");
 }
 
@@ -310,15 +310,15 @@ std::string describe_node(const YAML::Node& node) {
 
 std::string expected_text(const ConfigKey& key) {
   switch (key.type) {
-    case ConfigValueType::boolean: return "true or false";
-    case ConfigValueType::integer: return "an integer in " + key.range.to_string();
-    case ConfigValueType::real: return "a real number in " + key.range.to_string();
-    case ConfigValueType::text: return "a non-empty string";
-    case ConfigValueType::choice: return "one of " + key.valid_values();
-    case ConfigValueType::integer_list:
+    case ValueType::boolean: return "true or false";
+    case ValueType::integer: return "an integer in " + key.range.to_string();
+    case ValueType::real: return "a real number in " + key.range.to_string();
+    case ValueType::text: return "a non-empty string";
+    case ValueType::choice: return "one of " + key.valid_values();
+    case ValueType::integer_list:
       return "a non-empty list of integers in " + key.range.to_string() + ", e.g. [64, 64]";
-    case ConfigValueType::constraint_list: return "a list of {terms, limit}";
-    case ConfigValueType::mapping: return "a mapping of parameter: value, e.g. {bombs: 12}";
+    case ValueType::constraint_list: return "a list of {terms, limit}";
+    case ValueType::mapping: return "a mapping of parameter: value, e.g. {bombs: 12}";
   }
   return "";
 }
@@ -340,17 +340,21 @@ std::string expected_text(const ConfigKey& key) {
 // A plain (unquoted) scalar: quoted text such as '5' is a string, not a number.
 bool is_plain_scalar(const YAML::Node& node) { return node.IsScalar() && node.Tag() != "!"; }
 
-std::int64_t read_integer(const ConfigKey& key, const YAML::Node& value,
-                          const std::string& origin) {
+// Reads a plain scalar into a bool, integer or real member through the shared
+// parser (common/parameter_table.h); fails naming key, value and origin.
+template <typename T>
+T read_scalar(const ConfigKey& key, const YAML::Node& value, const std::string& origin) {
   if (!is_plain_scalar(value)) {
-    throw_type_error(key, value, origin, value.IsScalar() ? "quoted text is a string" : "");
+    throw_type_error(key, value, origin,
+                     value.IsScalar() && !std::is_same_v<T, bool> ? "quoted text is a string" : "");
   }
-  const auto parsed = parse_config_integer(value.Scalar());
-  if (!parsed) throw_type_error(key, value, origin);
-  if (!key.range.contains(static_cast<double>(*parsed))) {
-    throw_range_error(key, value.Scalar(), origin);
+  T parsed{};
+  switch (parse_scalar(value.Scalar(), key.range, parsed)) {
+    case ScalarProblem::none: break;
+    case ScalarProblem::not_a_value: throw_type_error(key, value, origin);
+    case ScalarProblem::out_of_range: throw_range_error(key, value.Scalar(), origin);
   }
-  return *parsed;
+  return parsed;
 }
 
 }  // namespace
@@ -364,53 +368,16 @@ std::string_view to_string(ConfigLayer layer) {
   return "<invalid>";
 }
 
-std::string_view to_string(ConfigValueType type) {
-  switch (type) {
-    case ConfigValueType::boolean: return "bool";
-    case ConfigValueType::integer: return "int";
-    case ConfigValueType::real: return "real";
-    case ConfigValueType::text: return "string";
-    case ConfigValueType::choice: return "choice";
-    case ConfigValueType::integer_list: return "int list";
-    case ConfigValueType::constraint_list: return "constraint list";
-    case ConfigValueType::mapping: return "mapping";
-  }
-  return "<invalid>";
-}
-
-bool NumericRange::contains(double value) const {
-  const bool above_min = min_inclusive ? value >= min : value > min;
-  const bool below_max = max_inclusive ? value <= max : value < max;
-  return above_min && below_max;
-}
-
-std::string NumericRange::to_string() const {
-  auto bound = [](double x) {
-    if (std::isinf(x)) return std::string(x > 0 ? "inf" : "-inf");
-    if (x == std::floor(x) && std::fabs(x) < 1e15) {
-      return std::to_string(static_cast<long long>(x));
-    }
-    return format_config_real(x);
-  };
-  std::string text;
-  text += min_inclusive ? '[' : '(';
-  text += bound(min);
-  text += ", ";
-  text += bound(max);
-  text += max_inclusive ? ']' : ')';
-  return text;
-}
-
 std::string ConfigKey::valid_values() const {
   switch (type) {
-    case ConfigValueType::boolean: return "true | false";
-    case ConfigValueType::integer:
-    case ConfigValueType::real: return range.to_string();
-    case ConfigValueType::integer_list: return "list of " + range.to_string();
-    case ConfigValueType::constraint_list: return "list of {terms: [names] or all, limit: >= 0}";
-    case ConfigValueType::text: return "non-empty text";
-    case ConfigValueType::mapping: return "parameter: value pairs";
-    case ConfigValueType::choice: {
+    case ValueType::boolean: return "true | false";
+    case ValueType::integer:
+    case ValueType::real: return range.to_string();
+    case ValueType::integer_list: return "list of " + range.to_string();
+    case ValueType::constraint_list: return "list of {terms: [names] or all, limit: >= 0}";
+    case ValueType::text: return "non-empty text";
+    case ValueType::mapping: return "parameter: value pairs";
+    case ValueType::choice: {
       std::string joined;
       for (std::string_view name : choices) {
         if (!joined.empty()) joined += " | ";
@@ -463,10 +430,8 @@ std::string config_schema_markdown() {
 }
 
 const ConfigKey* find_config_key(std::string_view key) {
-  for (const ConfigKey& entry : run_config_schema()) {
-    if (entry.key == key) return &entry;
-  }
-  return nullptr;
+  const SchemaRow* row = find_row(schema_rows(), key);
+  return row != nullptr ? &row->info : nullptr;
 }
 
 std::string config_key_list() {
@@ -478,11 +443,7 @@ std::string config_key_list() {
   return joined;
 }
 
-std::string closest_config_key(std::string_view unknown) {
-  std::vector<std::string_view> keys;
-  for (const ConfigKey& entry : run_config_schema()) keys.push_back(entry.key);
-  return closest_name(unknown, keys);
-}
+std::string closest_config_key(std::string_view unknown) { return closest_row_key(schema_rows(), unknown); }
 
 void set_config_value(RunConfig& config, const ConfigKey& key, const YAML::Node& value,
                       const std::string& origin) {
@@ -490,24 +451,11 @@ void set_config_value(RunConfig& config, const ConfigKey& key, const YAML::Node&
   std::visit(
       [&](auto&& access) {
         using Access = std::decay_t<decltype(access)>;
-        if constexpr (std::is_same_v<Access, bool RunConfig::*>) {
-          const auto parsed = is_plain_scalar(value) ? parse_config_bool(value.Scalar())
-                                                     : std::nullopt;
-          if (!parsed) throw_type_error(key, value, origin);
-          config.*access = *parsed;
-        } else if constexpr (std::is_same_v<Access, int RunConfig::*>) {
-          config.*access = static_cast<int>(read_integer(key, value, origin));
-        } else if constexpr (std::is_same_v<Access, std::int64_t RunConfig::*>) {
-          config.*access = read_integer(key, value, origin);
-        } else if constexpr (std::is_same_v<Access, double RunConfig::*>) {
-          if (!is_plain_scalar(value)) {
-            throw_type_error(key, value, origin,
-                             value.IsScalar() ? "quoted text is a string" : "");
-          }
-          const auto parsed = parse_config_real(value.Scalar());
-          if (!parsed) throw_type_error(key, value, origin);
-          if (!key.range.contains(*parsed)) throw_range_error(key, value.Scalar(), origin);
-          config.*access = *parsed;
+        if constexpr (std::is_same_v<Access, bool RunConfig::*> || std::is_same_v<Access, int RunConfig::*> ||
+                      std::is_same_v<Access, std::int64_t RunConfig::*> ||
+                      std::is_same_v<Access, double RunConfig::*>) {
+          using T = std::remove_cvref_t<decltype(config.*access)>;
+          config.*access = read_scalar<T>(key, value, origin);
         } else if constexpr (std::is_same_v<Access, std::string RunConfig::*>) {
           if (!value.IsScalar() || value.Scalar().empty()) throw_type_error(key, value, origin);
           config.*access = value.Scalar();
@@ -532,14 +480,15 @@ void set_config_value(RunConfig& config, const ConfigKey& key, const YAML::Node&
           if (!value.IsSequence() || value.size() == 0) throw_type_error(key, value, origin);
           std::vector<int> list;
           for (const YAML::Node& element : value) {
-            const auto parsed = is_plain_scalar(element) ? parse_config_integer(element.Scalar())
-                                                         : std::nullopt;
-            if (!parsed) throw_type_error(key, value, origin);
-            if (!key.range.contains(static_cast<double>(*parsed))) {
+            int parsed = 0;
+            const ScalarProblem problem = is_plain_scalar(element) ? parse_scalar(element.Scalar(), key.range, parsed)
+                                                                   : ScalarProblem::not_a_value;
+            if (problem == ScalarProblem::not_a_value) throw_type_error(key, value, origin);
+            if (problem == ScalarProblem::out_of_range) {
               throw_range_error(key, describe_node(value) + " (element " + printable_excerpt(element.Scalar()) + ")",
                                 origin);
             }
-            list.push_back(static_cast<int>(*parsed));
+            list.push_back(parsed);
           }
           config.*access = std::move(list);
         } else if constexpr (std::is_same_v<Access, std::vector<ConstraintConfig> RunConfig::*>) {
@@ -563,13 +512,10 @@ std::string config_value_to_yaml(const RunConfig& config, const ConfigKey& key) 
   return std::visit(
       [&](auto&& access) -> std::string {
         using Access = std::decay_t<decltype(access)>;
-        if constexpr (std::is_same_v<Access, bool RunConfig::*>) {
-          return config.*access ? "true" : "false";
-        } else if constexpr (std::is_same_v<Access, int RunConfig::*> ||
-                             std::is_same_v<Access, std::int64_t RunConfig::*>) {
-          return std::to_string(config.*access);
-        } else if constexpr (std::is_same_v<Access, double RunConfig::*>) {
-          return format_config_real(config.*access);
+        if constexpr (std::is_same_v<Access, bool RunConfig::*> || std::is_same_v<Access, int RunConfig::*> ||
+                      std::is_same_v<Access, std::int64_t RunConfig::*> ||
+                      std::is_same_v<Access, double RunConfig::*>) {
+          return scalar_text(config.*access);
         } else if constexpr (std::is_same_v<Access, std::string RunConfig::*>) {
           YAML::Emitter out;  // quotes the text where YAML would misread it
           out << config.*access;

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/parameter_table.h"
 #include "common/run_config.h"
 
 namespace YAML {
@@ -23,20 +24,6 @@ namespace bsg {
 enum class ConfigLayer { run, algorithm, environment };
 std::string_view to_string(ConfigLayer layer);
 
-enum class ConfigValueType { boolean, integer, real, text, choice, integer_list, constraint_list, mapping };
-std::string_view to_string(ConfigValueType type);
-
-// Numeric bounds of an integer, a real, or each element of an integer list.
-struct NumericRange {
-  double min = 0.0;
-  double max = 0.0;
-  bool min_inclusive = true;
-  bool max_inclusive = true;
-
-  bool contains(double value) const;
-  std::string to_string() const;  // e.g. "(0, 1]", "[1, inf)"
-};
-
 // Bit set of the algorithms a key applies to.
 using AlgorithmSet = unsigned;
 constexpr AlgorithmSet algorithm_bit(Algorithm alg) { return 1u << static_cast<unsigned>(alg); }
@@ -44,7 +31,7 @@ inline constexpr AlgorithmSet kAllAlgorithms = (1u << kAlgorithmNames.size()) - 
 
 struct ConfigKey {
   std::string_view key;
-  ConfigValueType type = ConfigValueType::boolean;
+  ValueType type = ValueType::boolean;
   ConfigLayer default_source = ConfigLayer::algorithm;
   NumericRange range;                          // integer, real, integer_list
   std::span<const std::string_view> choices;   // choice

@@ -39,7 +39,7 @@ RunConfig from_document(const YAML::Node& document, const std::string& source_na
     origins["dtype"] = source_name + " (no dtype: written before the key existed, float64)";
   }
   for (const ConfigKey& key : run_config_schema()) {
-    if (key.type == ConfigValueType::constraint_list) continue;  // absent: one constraint (cost_limit)
+    if (key.type == ValueType::constraint_list) continue;  // absent: one constraint (cost_limit)
     if (key.applies_to(config.alg) && origins.count(std::string(key.key)) == 0) {
       throw ConfigError(source_name + ": resolved config lacks key '" + std::string(key.key) +
                         "' (" + std::string(key.description) + ")");
@@ -59,9 +59,9 @@ std::string to_yaml(const RunConfig& config) {
   bool first = true;
   for (const ConfigKey& key : run_config_schema()) {
     if (!key.applies_to(config.alg)) continue;
-    if (key.type == ConfigValueType::constraint_list && config.constraints.empty()) continue;  // as before the key
+    if (key.type == ValueType::constraint_list && config.constraints.empty()) continue;  // as before the key
     // No env: block for a standard environment, as before the key existed.
-    if (key.type == ConfigValueType::mapping && config.env.empty()) continue;
+    if (key.type == ValueType::mapping && config.env.empty()) continue;
     if (first || key.default_source != section) {
       section = key.default_source;
       out << "# --- " << to_string(section) << " ---\n";

@@ -13,7 +13,7 @@
 
 extern char** environ;
 
-namespace bsg {
+namespace bsg::experiments {
 
 namespace {
 
@@ -99,4 +99,4 @@ std::optional<std::filesystem::path> find_on_path(const std::string& program) {
   return std::nullopt;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace bsg {
+namespace bsg::experiments {
 
 struct CapturedOutput {
   int exit_code = -1;  // -1 if killed by a signal
@@ -22,4 +22,4 @@ CapturedOutput run_captured(const std::vector<std::string>& argv);
 // The full path of a program found in $PATH, or nullopt.
 std::optional<std::filesystem::path> find_on_path(const std::string& program);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -10,7 +10,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace bsg {
+namespace bsg::experiments {
 
 pid_t start_child(const ChildCommand& command) {
   if (command.argv.empty()) throw std::invalid_argument("start_child: empty command");
@@ -100,4 +100,4 @@ std::string command_line_text(const std::vector<std::string>& argv) {
   return text;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-namespace bsg {
+namespace bsg::experiments {
 
 struct ChildCommand {
   std::vector<std::string> argv;  // argv[0] is looked up in PATH if it has no '/'
@@ -48,4 +48,4 @@ std::filesystem::path current_executable();
 // Shell-quoted words joined by spaces, for logs and messages.
 std::string command_line_text(const std::vector<std::string>& argv);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

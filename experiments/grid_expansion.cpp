@@ -4,7 +4,7 @@
 #include "common/run_config_resolve.h"
 #include "common/run_config_schema.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 std::filesystem::path GridRun::relative_dir() const {
   return std::filesystem::path(env_id) / std::string(to_string(alg)) / config_name /
@@ -73,4 +73,4 @@ RunConfig resolve_grid_run(const GridRun& run, const std::filesystem::path& conf
   }
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -19,7 +19,7 @@
 #include "common/run_config.h"
 #include "experiments/grid_file.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 struct GridRun {
   std::string env_id;
@@ -48,4 +48,4 @@ std::vector<GridRun> expand_grid(const GridSpec& grid);
 RunConfig resolve_grid_run(const GridRun& run, const std::filesystem::path& configs_dir,
                            const std::string& grid_source_name);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -12,7 +12,7 @@
 #include "common/config_scalar.h"
 #include "common/run_config_schema.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 namespace {
 
@@ -122,8 +122,8 @@ std::vector<GridSetting> parse_fixed(const YAML::Node& node, const std::string& 
       fail(location(source_name, pair.second), what + ": '" + std::string(key.key) +
                                                    "' must have a single value, not a mapping");
     }
-    if (pair.second.IsSequence() && key.type != ConfigValueType::integer_list &&
-        key.type != ConfigValueType::constraint_list) {
+    if (pair.second.IsSequence() && key.type != ValueType::integer_list &&
+        key.type != ValueType::constraint_list) {
       fail(location(source_name, pair.second),
            what + ": '" + std::string(key.key) +
                "' has a list of values; a swept key belongs under 'axes' of an algorithm");
@@ -314,4 +314,4 @@ GridSpec load_grid_file(const std::filesystem::path& path) {
   return parse_grid(text.str(), path.string());
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -28,7 +28,7 @@
 
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 // One `key: value` of a grid: the value as `--set` text (key=value_text) and
 // as a directory-name fragment (the value as written; lists joined by 'x').
@@ -66,4 +66,4 @@ GridSpec parse_grid(std::string_view yaml_text, const std::string& source_name);
 // parse_grid on a file (a missing or malformed file is an error naming it).
 GridSpec load_grid_file(const std::filesystem::path& path);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -22,7 +22,7 @@
 #include "experiments/sweep_manifest.h"
 #include "experiments/sweep_progress.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 namespace {
 
@@ -64,7 +64,7 @@ ChildCommand train_command(const PlannedRun& run, const std::filesystem::path& b
 
 // Leftovers of a start killed before its first checkpoint would make
 // `bsg train` refuse the directory; a fresh start owns it.
-void clear_unstarted_run(const RunDirectory& directory) {
+void clear_unstarted_run(const algos::RunDirectory& directory) {
   std::error_code error;
   std::filesystem::remove(directory.progress(), error);
   std::filesystem::remove(directory.config(), error);
@@ -127,7 +127,7 @@ double SweepRunner::steps_done_now() const {
   for (const PlannedRun& run : plan_.runs) done += static_cast<double>(run.steps_logged());
   for (const auto& [pid, running] : running_) {
     const PlannedRun& run = plan_.runs[running.index];
-    const int epochs = std::min(logged_epochs(RunDirectory(run.dir)), run.config.epochs);
+    const int epochs = std::min(logged_epochs(algos::RunDirectory(run.dir)), run.config.epochs);
     done += static_cast<double>(epochs) * run.config.steps_per_epoch - static_cast<double>(run.steps_logged());
   }
   return done;
@@ -141,7 +141,7 @@ void SweepRunner::start(std::size_t index) {
     wait_for(index);
     return;
   }
-  const RunDirectory directory(run.dir);
+  const algos::RunDirectory directory(run.dir);
   run.state = run_state(directory);
   if (run.state == RunState::finished) {  // finished since the plan was made
     ++finished_;
@@ -174,20 +174,20 @@ void SweepRunner::finish(const ChildExit& exit) {
   PlannedRun& run = plan_.runs[index];
   const double seconds = std::chrono::duration<double>(Clock::now() - found->second.started).count();
   running_.erase(found);
-  run.state = run_state(RunDirectory(run.dir));
+  run.state = run_state(algos::RunDirectory(run.dir));
   const std::filesystem::path log = run.dir / kSweepRunLogName;
   if (exit.exit_code == 0 && run.state == RunState::finished) {
     ++finished_;
-    events_.record("done", run.run.relative_dir(), format_duration(seconds));
+    events_.record("done", run.run.relative_dir(), algos::format_duration(seconds));
     if (!interactive_) {
-      std::cerr << "done   " << run.run.relative_dir().string() << " (" << format_duration(seconds) << ")\n";
+      std::cerr << "done   " << run.run.relative_dir().string() << " (" << algos::format_duration(seconds) << ")\n";
     }
     return;
   }
   if (exit.exit_code == kSweepExitStopped && run.state == RunState::resumable) {
     stopped_.push_back(index);
     const std::string detail = "stop signal: checkpoint after " +
-                               std::to_string(std::min(logged_epochs(RunDirectory(run.dir)), run.config.epochs)) +
+                               std::to_string(std::min(logged_epochs(algos::RunDirectory(run.dir)), run.config.epochs)) +
                                " of " + std::to_string(run.config.epochs) + " epochs";
     events_.record("stopped", run.run.relative_dir(), detail);
     if (interactive_) std::cerr << "\r\033[K";
@@ -195,7 +195,7 @@ void SweepRunner::finish(const ChildExit& exit) {
     return;
   }
   failed_.push_back(index);
-  const std::string why = exit.exit_code == 0 ? "exit code 0 but no " + RunDirectory(run.dir).evaluation().filename().string()
+  const std::string why = exit.exit_code == 0 ? "exit code 0 but no " + algos::RunDirectory(run.dir).evaluation().filename().string()
                                               : describe(exit);
   events_.record("failed", run.run.relative_dir(), why);
   if (interactive_) std::cerr << "\r\033[K";
@@ -242,7 +242,7 @@ void SweepRunner::check_waiting(std::vector<std::size_t>& queue, std::size_t& ne
       ++it;
       continue;
     }
-    run.state = run_state(RunDirectory(run.dir));
+    run.state = run_state(algos::RunDirectory(run.dir));
     if (run.state == RunState::finished) {
       ++finished_;
       events_.record("done", run.run.relative_dir(), "finished by the process this sweep waited for");
@@ -273,7 +273,7 @@ void SweepRunner::reconcile_earlier_sweep(std::vector<std::size_t>& queue) {
       continue;
     }
     const bool queued = std::find(queue.begin(), queue.end(), index) != queue.end();
-    run.state = run_state(RunDirectory(run.dir));
+    run.state = run_state(algos::RunDirectory(run.dir));
     if (run.state == RunState::finished) {
       events_.record("done", run.run.relative_dir(), "finished after the sweep that started it ended");
       if (queued) {  // finished between the plan and now
@@ -283,7 +283,7 @@ void SweepRunner::reconcile_earlier_sweep(std::vector<std::size_t>& queue) {
     } else {
       events_.record("interrupted", run.run.relative_dir(),
                      "the sweep that started it ended while it ran; " +
-                         std::to_string(std::min(logged_epochs(RunDirectory(run.dir)), run.config.epochs)) +
+                         std::to_string(std::min(logged_epochs(algos::RunDirectory(run.dir)), run.config.epochs)) +
                          " epochs logged");
     }
   }
@@ -392,4 +392,4 @@ int run_sweep_locally(SweepPlan plan, const std::filesystem::path& sweep_dir,
   return SweepRunner(std::move(plan), options, sweep_dir).run();
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

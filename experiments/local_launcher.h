@@ -26,7 +26,7 @@
 
 #include "experiments/sweep_plan.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 struct LocalLaunchOptions {
   int jobs = 1;           // runs at a time (>= 1)
@@ -45,4 +45,4 @@ inline constexpr int kSweepExitStopped = 75;  // as `bsg train` (cli/stop_signal
 int run_sweep_locally(SweepPlan plan, const std::filesystem::path& sweep_dir,
                       const LocalLaunchOptions& options);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

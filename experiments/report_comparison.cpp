@@ -7,7 +7,7 @@
 
 #include "common/csv_text.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 namespace {
 
@@ -160,4 +160,4 @@ std::string comparison_csv(const Table1& table, const ReportTable1& report) {
   return text;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -12,7 +12,7 @@
 
 #include "experiments/table1.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 inline constexpr const char* kReportTable1File = "report_table1.csv";
 
@@ -35,4 +35,4 @@ std::string comparison_markdown(const Table1& table, const ReportTable1& report)
 // report_h_ratio, h_ratio_diff (empty where a side has no value).
 std::string comparison_csv(const Table1& table, const ReportTable1& report);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

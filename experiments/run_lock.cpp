@@ -9,7 +9,7 @@
 #include <fstream>
 #include <stdexcept>
 
-namespace bsg {
+namespace bsg::experiments {
 
 std::optional<RunLock> RunLock::try_acquire(const std::filesystem::path& run_dir) {
   return try_acquire_file(run_dir / kRunLockName);
@@ -52,4 +52,4 @@ RunLock::~RunLock() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -15,7 +15,7 @@
 #include <optional>
 #include <string>
 
-namespace bsg {
+namespace bsg::experiments {
 
 inline constexpr const char* kRunLockName = "train.lock";
 inline constexpr const char* kSweepLockName = "sweep.lock";
@@ -52,4 +52,4 @@ std::optional<long> recorded_lock_holder(const std::filesystem::path& lock_file)
 // "pid 1234" or "an unknown process", for messages.
 std::string describe_lock_holder(const std::filesystem::path& lock_file);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

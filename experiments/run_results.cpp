@@ -9,7 +9,7 @@
 
 #include "common/config_scalar.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 const char* to_string(RunState state) {
   switch (state) {
@@ -20,7 +20,7 @@ const char* to_string(RunState state) {
   return "?";
 }
 
-RunState run_state(const RunDirectory& directory) {
+RunState run_state(const algos::RunDirectory& directory) {
   std::error_code error;
   if (std::filesystem::is_regular_file(directory.evaluation(), error)) return RunState::finished;
   if (std::filesystem::is_regular_file(directory.checkpoint(), error) &&
@@ -30,7 +30,7 @@ RunState run_state(const RunDirectory& directory) {
   return RunState::fresh;
 }
 
-int logged_epochs(const RunDirectory& directory) {
+int logged_epochs(const algos::RunDirectory& directory) {
   std::ifstream in(directory.progress());
   int rows = 0;
   std::string line;
@@ -40,7 +40,7 @@ int logged_epochs(const RunDirectory& directory) {
   return rows > 0 ? rows - 1 : 0;  // minus the header
 }
 
-std::optional<RecordedEvaluation> read_run_evaluation(const RunDirectory& directory) {
+std::optional<RecordedEvaluation> read_run_evaluation(const algos::RunDirectory& directory) {
   const std::filesystem::path path = directory.evaluation();
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;
@@ -107,4 +107,4 @@ std::vector<double> read_value_per_line(const std::filesystem::path& path) {
   return values;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -9,12 +9,12 @@
 
 #include "algos/training/run_directory.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 enum class RunState { fresh, resumable, finished };
 const char* to_string(RunState state);
 
-RunState run_state(const RunDirectory& directory);
+RunState run_state(const algos::RunDirectory& directory);
 
 // What a finished run's evaluation.json says. (Not algos/training/run_evaluation.h's
 // RunEvaluation, which evaluates a run: two classes of one name in one namespace
@@ -30,15 +30,15 @@ struct RecordedEvaluation {
 };
 
 // Epochs logged so far: the data rows of progress.csv (0 if it does not exist).
-int logged_epochs(const RunDirectory& directory);
+int logged_epochs(const algos::RunDirectory& directory);
 
 // evaluation.json of a finished run; nullopt if it does not exist. Throws
 // std::runtime_error naming the file if it is malformed. A non-finite mean
 // (written as null) reads as NaN.
-std::optional<RecordedEvaluation> read_run_evaluation(const RunDirectory& directory);
+std::optional<RecordedEvaluation> read_run_evaluation(const algos::RunDirectory& directory);
 
 // One number per line (returns.csv, costs.csv); throws std::runtime_error
 // naming the file and line if it is missing or holds something else.
 std::vector<double> read_value_per_line(const std::filesystem::path& path);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace bsg {
+namespace bsg::experiments {
 
 std::string_view to_string(SelectionScore score) {
   return score == SelectionScore::mean_return ? "mean" : "mean_minus_std";
@@ -92,4 +92,4 @@ std::optional<Selection> select_configuration(const std::vector<ConfigurationRes
   return best_feasible ? best_feasible : least_violating;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -24,7 +24,7 @@
 
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 enum class SelectionScore { mean_return, mean_minus_std };
 std::string_view to_string(SelectionScore score);
@@ -86,4 +86,4 @@ struct Selection {
 std::optional<Selection> select_configuration(const std::vector<ConfigurationResults>& candidates,
                                               SelectionScore score);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

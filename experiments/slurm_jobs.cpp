@@ -9,7 +9,7 @@
 #include "common/csv_text.h"
 #include "experiments/captured_program.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 void append_slurm_records(const std::filesystem::path& sweep_dir, const std::vector<SlurmTaskRecord>& records) {
   const std::filesystem::path path = sweep_dir / kSlurmJobsName;
@@ -87,4 +87,4 @@ std::map<std::filesystem::path, SlurmTaskRecord> latest_record_per_run(const std
   return latest;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace bsg {
+namespace bsg::experiments {
 
 inline constexpr const char* kSlurmJobsName = "slurm_jobs.csv";
 
@@ -40,4 +40,4 @@ std::map<std::string, SlurmTaskState> query_slurm_tasks();
 // The latest record of each run (run_dir -> record).
 std::map<std::filesystem::path, SlurmTaskRecord> latest_record_per_run(const std::vector<SlurmTaskRecord>& records);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -13,7 +13,7 @@
 #include "experiments/run_lock.h"
 #include "experiments/slurm_jobs.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 namespace {
 
@@ -136,4 +136,4 @@ int submit_sweep_to_slurm(const SweepPlan& plan, const std::filesystem::path& sw
   return 0;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -13,7 +13,7 @@
 #include "experiments/slurm_script.h"
 #include "experiments/sweep_plan.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 struct SlurmLaunchOptions {
   SlurmJobOptions job;
@@ -28,4 +28,4 @@ struct SlurmLaunchOptions {
 int submit_sweep_to_slurm(const SweepPlan& plan, const std::filesystem::path& sweep_dir,
                           const SlurmLaunchOptions& options, std::ostream& out);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

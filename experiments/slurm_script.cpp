@@ -7,7 +7,7 @@
 #include "experiments/run_lock.h"
 #include "experiments/sweep_manifest.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 namespace {
 
@@ -32,7 +32,7 @@ std::string slurm_array_spec(const std::vector<int>& tasks, int max_running) {
 std::string slurm_array_script(const SlurmScriptInput& input) {
   if (input.array_tasks.empty()) throw std::invalid_argument("slurm_array_script: no array task");
   const SlurmJobOptions& job = input.job;
-  const RunDirectory files(".");  // the trainer's file names
+  const algos::RunDirectory files(".");  // the trainer's file names
   const std::string sweep = input.sweep_dir.string();
   std::string s;
   s += "#!/bin/bash\n";
@@ -96,4 +96,4 @@ std::string slurm_array_script(const SlurmScriptInput& input) {
   return s;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

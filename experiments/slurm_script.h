@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-namespace bsg {
+namespace bsg::experiments {
 
 inline constexpr const char* kSlurmScriptName = "slurm_array.sh";
 inline constexpr const char* kSlurmLogDirName = "slurm";  // <sweep>/slurm/<job>_<task>.out
@@ -45,4 +45,4 @@ std::string slurm_array_spec(const std::vector<int>& tasks, int max_running);
 
 std::string slurm_array_script(const SlurmScriptInput& input);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -7,7 +7,7 @@
 #include "common/csv_text.h"
 #include "experiments/sweep_manifest.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 std::string sweep_timestamp() {
   const std::time_t now = std::time(nullptr);
@@ -55,4 +55,4 @@ std::map<std::filesystem::path, std::pair<std::string, std::string>> last_sweep_
   return events;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

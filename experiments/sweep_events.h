@@ -12,7 +12,7 @@
 #include <string>
 #include <utility>
 
-namespace bsg {
+namespace bsg::experiments {
 
 class SweepEventLog {
  public:
@@ -32,4 +32,4 @@ std::string sweep_timestamp();
 std::map<std::filesystem::path, std::pair<std::string, std::string>> last_sweep_events(
     const std::filesystem::path& sweep_dir);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

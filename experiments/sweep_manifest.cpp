@@ -8,7 +8,7 @@
 #include "common/config_scalar.h"
 #include "common/csv_text.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 namespace {
 constexpr const char* kHeader = "env_id,alg,config,seed,run_dir";
@@ -62,4 +62,4 @@ std::vector<GridRun> read_sweep_manifest(const std::filesystem::path& sweep_dir)
   return runs;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

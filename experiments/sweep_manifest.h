@@ -24,7 +24,7 @@
 
 #include "experiments/grid_expansion.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 inline constexpr const char* kSweepGridCopyName = "grid.yaml";
 inline constexpr const char* kSweepManifestName = "sweep_runs.csv";
@@ -40,4 +40,4 @@ void write_sweep_manifest(const std::filesystem::path& sweep_dir, const std::vec
 // and line if it is malformed.
 std::vector<GridRun> read_sweep_manifest(const std::filesystem::path& sweep_dir);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

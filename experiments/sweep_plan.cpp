@@ -15,7 +15,7 @@
 #include "experiments/sweep_manifest.h"
 #include "experiments/sweep_progress.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 namespace {
 
@@ -99,7 +99,7 @@ SweepPlan make_sweep_plan(const SweepPlanRequest& request) {
                           std::to_string(request.ranks_per_run) + ": " + e.what());
       }
     }
-    const RunDirectory directory(planned.dir);
+    const algos::RunDirectory directory(planned.dir);
     planned.state = run_state(directory);
     planned.epochs_logged = logged_epochs(directory);
     std::error_code error;
@@ -161,4 +161,4 @@ std::string dry_run_listing(const SweepPlan& plan) {
   return text;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -13,7 +13,7 @@
 #include "experiments/grid_expansion.h"
 #include "experiments/run_results.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 struct PlannedRun {
   GridRun run;
@@ -61,4 +61,4 @@ void prepare_run_directory(const PlannedRun& run);
 // The listing of --dry-run: one line per run, then the cost in env steps.
 std::string dry_run_listing(const SweepPlan& plan);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -6,7 +6,7 @@
 
 #include "algos/training/progress_line.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 std::string progress_line(const SweepCounts& counts, std::optional<double> eta_seconds,
                           std::size_t bar_width) {
@@ -17,7 +17,7 @@ std::string progress_line(const SweepCounts& counts, std::optional<double> eta_s
   line += std::to_string(counts.finished) + "/" + std::to_string(counts.total) + " runs done";
   line += ", " + std::to_string(counts.running) + " running";
   if (counts.failed > 0) line += ", " + std::to_string(counts.failed) + " failed";
-  line += ", ETA " + (eta_seconds ? format_duration(*eta_seconds) : std::string("--"));
+  line += ", ETA " + (eta_seconds ? algos::format_duration(*eta_seconds) : std::string("--"));
   return line;
 }
 
@@ -38,4 +38,4 @@ std::string format_count(long long count) {
   return (count < 0 ? "-" : "") + text;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

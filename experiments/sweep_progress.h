@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-namespace bsg {
+namespace bsg::experiments {
 
 struct SweepCounts {
   std::size_t total = 0;     // runs this sweep covers
@@ -29,4 +29,4 @@ std::optional<double> estimate_seconds_left(double steps_done, double elapsed_se
 // 12345678 -> "12 345 678".
 std::string format_count(long long count);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -12,7 +12,7 @@
 #include "experiments/run_results.h"
 #include "experiments/sweep_manifest.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 namespace {
 
@@ -30,7 +30,7 @@ struct ConfigurationSlots {
 std::optional<RunConfig> read_run_directory_config(const std::filesystem::path& run_dir) {
   std::error_code error;
   for (const std::filesystem::path& file :
-       {RunDirectory(run_dir).config(), run_dir / kSweepRunFileName}) {
+       {algos::RunDirectory(run_dir).config(), run_dir / kSweepRunFileName}) {
     if (std::filesystem::is_regular_file(file, error)) return load_resolved_run_config(file);
   }
   return std::nullopt;
@@ -38,9 +38,7 @@ std::optional<RunConfig> read_run_directory_config(const std::filesystem::path& 
 
 // Whether a run uses the PID multiplier (a Table 1 column of its own).
 bool uses_pid_multiplier(const RunConfig& config) {
-  return (config.alg == Algorithm::lag_trpo || config.alg == Algorithm::pdo || config.alg == Algorithm::ppo_lag ||
-          config.alg == Algorithm::focops || config.alg == Algorithm::cup) &&
-         config.lambda_optimizer == LambdaOptimizer::pid;
+  return has_lagrange_multiplier(config.alg) && config.lambda_optimizer == LambdaOptimizer::pid;
 }
 
 // The Table 1 column flags of a configuration.
@@ -79,9 +77,9 @@ std::map<std::string, ColumnFlags> column_flags_of_grid_copy(const std::filesyst
 
 bool is_run_directory(const std::filesystem::path& dir) {
   std::error_code error;
-  return std::filesystem::is_regular_file(RunDirectory(dir).config(), error) ||
+  return std::filesystem::is_regular_file(algos::RunDirectory(dir).config(), error) ||
          std::filesystem::is_regular_file(dir / kSweepRunFileName, error) ||
-         std::filesystem::is_regular_file(RunDirectory(dir).evaluation(), error);
+         std::filesystem::is_regular_file(algos::RunDirectory(dir).evaluation(), error);
 }
 
 }  // namespace
@@ -156,7 +154,7 @@ std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path
     config.config_dir = name;
     if (const auto found = grid_flags.find(name); found != grid_flags.end()) set_column_flags(config, found->second);
     for (const RunSlot& run : slots.runs) {
-      const RunDirectory directory(run.run_dir);
+      const algos::RunDirectory directory(run.run_dir);
       if (std::isnan(config.cost_limit) && is_run_directory(run.run_dir)) {
         if (const std::optional<RunConfig> run_config = read_run_directory_config(run.run_dir)) {
           config.cost_limit = run_config->cost_limit;
@@ -179,4 +177,4 @@ std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path
   return results;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

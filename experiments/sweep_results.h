@@ -15,7 +15,7 @@
 
 #include "experiments/selection.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 // In manifest order, then the others sorted by path. With
 // `with_episode_returns`, each finished seed's returns.csv is read too.
@@ -24,4 +24,4 @@ namespace bsg {
 std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path& sweep_dir,
                                                      bool with_episode_returns);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

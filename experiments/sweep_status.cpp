@@ -17,13 +17,13 @@
 #include "experiments/slurm_jobs.h"
 #include "experiments/sweep_manifest.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 namespace {
 
 // Mean wall seconds per epoch from progress.csv: the last row's time_s over
 // the rows; nullopt without rows or without the column.
-std::optional<double> measured_seconds_per_epoch(const RunDirectory& directory) {
+std::optional<double> measured_seconds_per_epoch(const algos::RunDirectory& directory) {
   std::ifstream file(directory.progress());
   std::string header;
   if (!file || !std::getline(file, header)) return std::nullopt;
@@ -102,7 +102,7 @@ SweepStatus read_sweep_status(const std::filesystem::path& sweep_dir) {
     report.run_dir = run.relative_dir();
     report.env_id = run.env_id;
     const std::filesystem::path dir = sweep_dir / report.run_dir;
-    const RunDirectory directory(dir);
+    const algos::RunDirectory directory(dir);
     report.log = dir / kSweepRunLogName;
     report.epochs_done = logged_epochs(directory);
     report.seconds_per_epoch = measured_seconds_per_epoch(directory);
@@ -203,7 +203,7 @@ std::string sweep_status_text(const SweepStatus& status) {
   if (counts[SweepRunStatus::finished] == static_cast<int>(status.runs.size())) {
     text += "all runs finished; `bsg table " + status.sweep_dir.string() + "` tabulates them\n";
   } else if (const std::optional<double> eta = sweep_eta_seconds(status)) {
-    text += "ETA " + format_duration(*eta) + " (epochs left at their runs' measured epoch times, " +
+    text += "ETA " + algos::format_duration(*eta) + " (epochs left at their runs' measured epoch times, " +
             std::to_string(std::max(1, counts[SweepRunStatus::running])) + " at a time)\n";
   } else {
     text += "ETA unknown (no epoch timed yet, or a run's length is not known yet)\n";
@@ -218,4 +218,4 @@ std::string sweep_status_text(const SweepStatus& status) {
   return text;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-namespace bsg {
+namespace bsg::experiments {
 
 enum class SweepRunStatus { finished, running, queued, failed, stopped, not_started };
 const char* to_string(SweepRunStatus status);
@@ -52,4 +52,4 @@ std::optional<double> sweep_eta_seconds(const SweepStatus& status);
 // The report: counts, one line per run, the ETA, the failed runs' logs.
 std::string sweep_status_text(const SweepStatus& status);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -7,7 +7,7 @@
 #include <map>
 #include <set>
 
-namespace bsg {
+namespace bsg::experiments {
 
 namespace {
 
@@ -67,28 +67,11 @@ std::string table1_column_label(Table1Column column) {
     column.corrected_learner = false;
     return table1_column_label(column) + " corrected";
   }
-  if (column.pid_multiplier) {
-    if (column.alg == Algorithm::lag_trpo) return "TRPO-PID";
-    if (column.alg == Algorithm::ppo_lag) return "CPPO-PID";  // Stooke, Achiam and Abbeel's name
-    return table1_column_label(column.alg) + "-PID";  // PDO-PID
-  }
+  if (column.pid_multiplier) return std::string(algorithm_info(column.alg).pid_label);
   return table1_column_label(column.alg);
 }
 
-std::string table1_column_label(Algorithm alg) {
-  switch (alg) {
-    case Algorithm::trpo: return "TRPO";
-    case Algorithm::lag_trpo: return "TRPO-L";
-    case Algorithm::cpo: return "CPO";
-    case Algorithm::pdo: return "PDO";
-    case Algorithm::pcpo: return "PCPO";
-    case Algorithm::ppo: return "PPO";
-    case Algorithm::ppo_lag: return "PPO-Lag";
-    case Algorithm::focops: return "FOCOPS";
-    case Algorithm::cup: return "CUP";
-  }
-  return "?";
-}
+std::string table1_column_label(Algorithm alg) { return std::string(algorithm_info(alg).label); }
 
 Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionScore score) {
   Table1 table;
@@ -162,4 +145,4 @@ Table1 build_table1(const std::vector<ConfigurationResults>& results, SelectionS
   return table;
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -16,7 +16,7 @@
 #include "common/run_config.h"
 #include "experiments/selection.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 // A column: an algorithm, with TRPO-L and PDO split by their multiplier rule
 // (SGD or Adam: the report's columns; PID: one more column each).
@@ -91,4 +91,4 @@ Table1Column table1_column_of(const Table1Cell& cell);
 Table1Column table1_column_of(const ConfigurationSummary& config);
 std::string table1_column_label(Algorithm alg);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -8,7 +8,7 @@
 #include "common/config_scalar.h"
 #include "common/csv_text.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 namespace {
 
@@ -165,4 +165,4 @@ void write_table1_files(const Table1& table, const std::filesystem::path& out_di
   write_file_atomically(out_dir / "configurations.csv", configurations_csv(table));
 }
 
-}  // namespace bsg
+}  // namespace bsg::experiments

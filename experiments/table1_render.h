@@ -13,7 +13,7 @@
 
 #include "experiments/table1.h"
 
-namespace bsg {
+namespace bsg::experiments {
 
 std::string table1_markdown(const Table1& table);
 std::string table1_latex(const Table1& table);
@@ -28,4 +28,4 @@ std::string configurations_csv(const Table1& table);
 // `out_dir` (created if missing), each atomically.
 void write_table1_files(const Table1& table, const std::filesystem::path& out_dir);
 
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -57,12 +57,12 @@ inline void write_text_file(const std::filesystem::path& path, const std::string
 }
 
 // The lines of a CSV file (such as progress.csv) split into fields with
-// bsg::split_csv_line; the header is the first row.
+// bsg::algos::split_csv_line; the header is the first row.
 inline std::vector<std::vector<std::string>> read_csv_rows(const std::filesystem::path& path) {
   std::ifstream file(path);
   std::vector<std::vector<std::string>> rows;
   std::string line;
-  while (std::getline(file, line)) rows.push_back(split_csv_line(line));
+  while (std::getline(file, line)) rows.push_back(algos::split_csv_line(line));
   return rows;
 }
 

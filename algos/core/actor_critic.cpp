@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 MlpOptions init_options(const RunConfig& config) { return MlpOptions{config.zero_bias_init, config.dtype}; }
@@ -222,4 +222,4 @@ void ActorCritic::load(BinaryReader& reader) {
   }
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

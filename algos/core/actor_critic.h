@@ -24,7 +24,7 @@
 #include "common/run_config.h"
 #include "common/running_mean_std.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct ActorCritic {
   // Draws the initial parameters of policy, V and V_C (in that order), then
@@ -85,4 +85,4 @@ struct ActorCritic {
   void load(BinaryReader& reader);
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -2,7 +2,7 @@
 
 #include "algos/core/epoch_statistics.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 void center_cost_advantages(Eigen::MatrixXd& costs, const MpiContext& mpi) {
@@ -28,4 +28,4 @@ void center_advantages(Eigen::VectorXd& reward, Eigen::MatrixXd& costs, const Mp
   center_cost_advantages(costs, mpi);
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

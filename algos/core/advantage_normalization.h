@@ -14,10 +14,10 @@
 
 #include "common/mpi_context.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // `reward`: the rank's reward advantages; `costs`: one column of cost advantages per constraint.
 void standardize_advantages(Eigen::VectorXd& reward, Eigen::MatrixXd& costs, const MpiContext& mpi);
 void center_advantages(Eigen::VectorXd& reward, Eigen::MatrixXd& costs, const MpiContext& mpi);
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 
 double PolicyUpdateResult::value(std::string_view name) const {
   for (const NamedScalar& entry : diagnostics) {
@@ -93,4 +93,4 @@ void OnPolicyAlgorithm::restore_state(std::span<const NamedScalar> saved) {
   }
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

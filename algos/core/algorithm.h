@@ -30,7 +30,7 @@
 #include "common/random.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // One logged scalar (a progress.csv column, docs/algorithms.md#logged-columns) or one saved state value.
 struct NamedScalar {
@@ -171,4 +171,4 @@ std::vector<NamedScalar> common_diagnostics(const PolicyUpdateInputs& inputs, co
 std::vector<NamedScalar> common_diagnostics(const PolicyUpdateInputs& inputs, const SurrogateValues& before,
                                             double reward_weight, double cost_weight);
 
-}  // namespace bsg
+}  // namespace bsg::algos

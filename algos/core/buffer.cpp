@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 // A_t = sum_l (gamma lambda)^l delta_t+l, backwards over one path, with
@@ -186,4 +186,4 @@ void Buffer::check_ready() const {
   if (path_start_ != size_) throw std::logic_error("Buffer: the last path is not finished (call finish_path)");
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

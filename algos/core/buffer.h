@@ -23,7 +23,7 @@
 #include <optional>
 #include <vector>
 
-namespace bsg {
+namespace bsg::algos {
 
 struct BufferOptions {
   double gamma = 0.99;
@@ -134,4 +134,4 @@ class Buffer {
   std::vector<EpisodeStats> episodes_;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

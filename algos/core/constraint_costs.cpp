@@ -6,7 +6,7 @@
 #include "common/config_error.h"
 #include "common/message_text.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 int constraint_count(const RunConfig& config) {
   return config.constraints.empty() ? 1 : static_cast<int>(config.constraints.size());
@@ -72,4 +72,4 @@ void StepCostSelector::select(const envs::StepResult& step, Eigen::Ref<Eigen::Ve
   }
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

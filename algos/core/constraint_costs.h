@@ -12,7 +12,7 @@
 #include "common/run_config.h"
 #include "envs/env.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // m = the number of constraints of a config: its `constraints:` list, else 1.
 int constraint_count(const RunConfig& config);
@@ -50,4 +50,4 @@ class StepCostSelector {
   bool bound_ = false;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

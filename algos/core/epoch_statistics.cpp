@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-namespace bsg {
+namespace bsg::algos {
 
 PooledStatistics pool_statistics(const Eigen::Ref<const Eigen::VectorXd>& local_values, const MpiContext& mpi) {
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
@@ -27,4 +27,4 @@ PooledStatistics pool_statistics(const Eigen::Ref<const Eigen::VectorXd>& local_
   return stats;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

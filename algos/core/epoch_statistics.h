@@ -9,7 +9,7 @@
 
 #include "common/mpi_context.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct PooledStatistics {
   double mean = 0.0;
@@ -21,4 +21,4 @@ struct PooledStatistics {
 
 PooledStatistics pool_statistics(const Eigen::Ref<const Eigen::VectorXd>& local_values, const MpiContext& mpi);
 
-}  // namespace bsg
+}  // namespace bsg::algos

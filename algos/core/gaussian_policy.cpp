@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 std::vector<int> layer_sizes_of(int observation_size, int action_size, const std::vector<int>& hidden_sizes) {
@@ -173,4 +173,4 @@ double GaussianPolicy::mean_kl(const Eigen::Ref<const Eigen::MatrixXd>& old_mean
   return means_part + (log_stds_.array() - old_log_stds.array() + old_variances / (2.0 * variances) - 0.5).mean();
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

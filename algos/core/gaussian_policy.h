@@ -19,7 +19,7 @@
 #include "common/mlp.h"
 #include "common/random.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 class GaussianPolicy {
  public:
@@ -87,4 +87,4 @@ class GaussianPolicy {
   Eigen::VectorXd log_stds_;  // s_j = log sigma_j when learned; empty: the scalar std_
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 
 PolicySurrogate::PolicySurrogate(const Eigen::Ref<const Eigen::MatrixXd>& observations,
                                  const Eigen::Ref<const Eigen::MatrixXd>& actions,
@@ -132,4 +132,4 @@ void PolicySurrogate::gradient(const GaussianPolicy& policy, double reward_weigh
       gradient);
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -21,7 +21,7 @@
 #include "common/constraint_config.h"
 #include "common/mlp.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct SurrogateValues {
   double reward_surrogate = 0.0;  // L_R
@@ -90,4 +90,4 @@ class PolicySurrogate {
   Eigen::VectorXd ratios_;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -4,7 +4,7 @@
 #include <numeric>
 #include <utility>
 
-namespace bsg {
+namespace bsg::algos {
 
 void shuffle_permutation(std::vector<Eigen::Index>& permutation, Rng& rng) {
   // Fisher–Yates shuffle with the rank's RNG (not NumPy's permutation stream).
@@ -15,4 +15,4 @@ void shuffle_permutation(std::vector<Eigen::Index>& permutation, Rng& rng) {
   }
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

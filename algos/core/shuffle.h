@@ -7,9 +7,9 @@
 
 #include "common/random.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // permutation <- a uniformly shuffled 0 .. permutation.size() - 1 (its size is kept).
 void shuffle_permutation(std::vector<Eigen::Index>& permutation, Rng& rng);
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -9,7 +9,7 @@
 
 #include "algos/core/shuffle.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 std::vector<int> value_layer_sizes(int observation_size, const std::vector<int>& hidden_sizes) {
@@ -163,4 +163,4 @@ std::vector<ValueFitStats> fit_value_functions(std::span<const ValueFitJob> jobs
   return stats;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -26,7 +26,7 @@
 #include "common/mpi_context.h"
 #include "common/random.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct ValueFitOptions {
   int iterations = 5;
@@ -93,4 +93,4 @@ std::vector<ValueFitStats> fit_value_functions(std::span<const ValueFitJob> jobs
                                                const Eigen::Ref<const Eigen::MatrixXd>& observations, Rng& rng,
                                                const MpiContext& mpi, const ValueFitOptions& options = {});
 
-}  // namespace bsg
+}  // namespace bsg::algos

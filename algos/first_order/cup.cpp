@@ -4,7 +4,7 @@
 
 #include "algos/first_order/ppo.h"  // clipped_surrogate_loss
 
-namespace bsg {
+namespace bsg::algos {
 
 SampleLossFunction cup_projection_loss(const Eigen::VectorXd& weighted_cost_advantages) {
   return [&weighted_cost_advantages](Eigen::Index sample, double ratio, double kl) {
@@ -42,4 +42,4 @@ PolicyUpdateResult Cup::update(const PolicyUpdateInputs& inputs) {
                      {{"Misc/SecondStepStopIter", static_cast<double>(projection.passes)}});
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -19,7 +19,7 @@
 #include "algos/first_order/first_order_update.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // l_i = KL_i + rho_i cost_advantages[i] for the already weighted c sum_j nu_j A^Cj_i
 // (which must outlive the function).
@@ -33,4 +33,4 @@ class Cup final : public FirstOrderAlgorithm {
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <utility>
 
-namespace bsg {
+namespace bsg::algos {
 
 FirstOrderAlgorithm::FirstOrderAlgorithm(const RunConfig& config, bool constrained,
                                          std::vector<std::string> own_columns)
@@ -59,4 +59,4 @@ PolicyUpdateResult FirstOrderAlgorithm::make_result(std::vector<NamedScalar> com
   return result;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -17,7 +17,7 @@
 #include "algos/lagrange/constraint_multipliers.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 class FirstOrderAlgorithm : public OnPolicyAlgorithm {
  public:
@@ -49,4 +49,4 @@ class FirstOrderAlgorithm : public OnPolicyAlgorithm {
   PolicyAdam adam_;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

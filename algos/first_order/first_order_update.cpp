@@ -7,7 +7,7 @@
 
 #include "algos/core/shuffle.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 constexpr const char* kAdamStep = "policy_adam/t";
@@ -330,4 +330,4 @@ Eigen::VectorXd combined_advantages(const PolicySurrogate& surrogate, double rew
   return combined;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

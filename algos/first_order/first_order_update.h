@@ -39,7 +39,7 @@
 #include "common/mlp.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // l_i and its partial derivatives at (rho_i, KL_i).
 struct SampleLoss {
@@ -166,4 +166,4 @@ void append_first_order_diagnostics(std::vector<NamedScalar>& diagnostics, const
 Eigen::VectorXd combined_advantages(const PolicySurrogate& surrogate, double reward_weight,
                                     std::span<const double> cost_weights);
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-namespace bsg {
+namespace bsg::algos {
 
 SampleLossFunction focops_loss(const Eigen::VectorXd& advantages, double temperature, double kl_bound) {
   return [&advantages, temperature, kl_bound](Eigen::Index sample, double ratio, double kl) {
@@ -28,4 +28,4 @@ PolicyUpdateResult Focops::update(const PolicyUpdateInputs& inputs) {
   return make_result(common_diagnostics(inputs, start.before, 1.0, std::span<const double>(cost_weights)), passes, {});
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -19,7 +19,7 @@
 #include "algos/first_order/first_order_update.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // l_i = (KL_i - rho_i A_i / temperature) 1[KL_i <= kl_bound] for A_i = advantages[i]
 // (which must outlive the function).
@@ -33,4 +33,4 @@ class Focops final : public FirstOrderAlgorithm {
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

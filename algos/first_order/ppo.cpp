@@ -6,7 +6,7 @@
 
 #include "algos/lagrange/lagrangian_weights.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 SampleLossFunction clipped_surrogate_loss(const Eigen::VectorXd& advantages, double clip) {
   return [&advantages, clip](Eigen::Index sample, double ratio, double) {
@@ -41,4 +41,4 @@ PolicyUpdateResult Ppo::update(const PolicyUpdateInputs& inputs) {
                      passes, {});
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

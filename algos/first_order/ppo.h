@@ -22,7 +22,7 @@
 #include "algos/first_order/first_order_update.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // l_i = -min(rho_i A_i, clip(rho_i, 1 - clip, 1 + clip) A_i) for A_i = advantages[i]
 // (which must outlive the function); KL_i plays no part.
@@ -37,4 +37,4 @@ class Ppo final : public FirstOrderAlgorithm {
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -5,7 +5,7 @@
 
 #include "algos/core/constraint_costs.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 std::string column_name(int i, const std::string& diagnostic) {
@@ -102,4 +102,4 @@ void LagrangeMultipliers::restore_state(std::span<const NamedScalar> saved) {
   multipliers_ = std::move(restored);
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -18,7 +18,7 @@
 #include "algos/lagrange/multiplier.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 class LagrangeMultipliers {
  public:
@@ -45,4 +45,4 @@ class LagrangeMultipliers {
   std::vector<LagrangeMultiplier> multipliers_;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

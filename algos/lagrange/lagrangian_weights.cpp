@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 
 SurrogateWeights lagrangian_surrogate_weights(double lagrange_multiplier) {
   const ConstraintSurrogateWeights weights =
@@ -27,4 +27,4 @@ ConstraintSurrogateWeights lagrangian_surrogate_weights(std::span<const double> 
   return weights;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-namespace bsg {
+namespace bsg::algos {
 
 // Weights (w_R, w_C) with -l_L = w_R L_R + w_C L_C: (1/(1+lambda), -lambda/(1+lambda)).
 struct SurrogateWeights {
@@ -24,4 +24,4 @@ struct ConstraintSurrogateWeights {
 };
 ConstraintSurrogateWeights lagrangian_surrogate_weights(std::span<const double> lagrange_multipliers);
 
-}  // namespace bsg
+}  // namespace bsg::algos

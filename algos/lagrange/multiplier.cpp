@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 AdamOptions lambda_adam_options(double learning_rate) {
@@ -125,4 +125,4 @@ void LagrangeMultiplier::restore_state(std::span<const NamedScalar> saved) {
   }
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -27,7 +27,7 @@
 #include "common/adam.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 class LagrangeMultiplier {
  public:
@@ -62,4 +62,4 @@ class LagrangeMultiplier {
   double upper_bound_ = 0.0;  // lagrangian_upper_bound (FOCOPS's nu_max); 0: none
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

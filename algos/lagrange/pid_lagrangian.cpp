@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 void check_gain(double value, const char* key) {
@@ -123,4 +123,4 @@ void PidLagrangian::restore_state(std::span<const NamedScalar> saved) {
   terms_.integral = integral_;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

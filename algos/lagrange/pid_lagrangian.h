@@ -40,7 +40,7 @@
 #include "algos/core/algorithm.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct PidLagrangianOptions {
   double proportional_gain = 0.0;  // K_P
@@ -93,4 +93,4 @@ class PidLagrangian {
   PidTerms terms_;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -6,7 +6,7 @@
 
 #include "algos/core/constraint_costs.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 void add(std::vector<NamedScalar>& row, std::string name, double value) { row.push_back({std::move(name), value}); }
@@ -217,4 +217,4 @@ std::vector<NamedScalar> make_epoch_log_row(const EpochLogInputs& in, const MpiC
   return epoch_log_entries(layout, &in, &mpi);
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

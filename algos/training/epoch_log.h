@@ -58,7 +58,7 @@
 #include "common/mpi_context.h"
 #include "common/running_mean_std.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // Episode statistics of one epoch, pooled over ranks (needed before the
 // update: J_C and L feed the algorithms).
@@ -120,4 +120,4 @@ std::string progress_column_name(std::string_view diagnostic_name);
 // only ones in which two runs with the same seed may differ.
 bool is_timing_column(std::string_view column);
 
-}  // namespace bsg
+}  // namespace bsg::algos

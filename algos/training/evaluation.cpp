@@ -7,7 +7,7 @@
 
 #include "common/seeding.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, const ActorCritic& actor_critic,
                                                        int num_episodes, std::uint64_t env_seed, int max_ep_len,
@@ -133,4 +133,4 @@ EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_criti
   return summary;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

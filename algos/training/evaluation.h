@@ -22,7 +22,7 @@
 #include "common/random.h"
 #include "envs/env.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct EvaluationEpisode {
   double episode_return = 0.0;  // J
@@ -60,4 +60,4 @@ EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_criti
                                   const std::vector<std::string>& term_names = {},
                                   EvaluationActions actions = EvaluationActions::mean);
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -2,8 +2,8 @@
 // mean, as the report does, or sampling a = mu + sigma eps (sampled_evaluation).
 #pragma once
 
-namespace bsg {
+namespace bsg::algos {
 
 enum class EvaluationActions { mean, sampled };
 
-}  // namespace bsg
+}  // namespace bsg::algos

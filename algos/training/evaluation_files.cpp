@@ -5,7 +5,7 @@
 #include "algos/training/progress_csv.h"
 #include "common/atomic_file.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 // JSON has no NaN or infinity: write null for them.
@@ -94,4 +94,4 @@ void write_evaluation_files(const RunDirectory& directory, const EvaluationSumma
   write_file_atomically(directory.evaluation(), evaluation_json(summary, false, safety));
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

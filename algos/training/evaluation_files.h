@@ -20,7 +20,7 @@
 #include "algos/training/training_cost.h"
 #include "common/constraint_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // What training adds to evaluation.json.
 struct TrainingSafety {
@@ -36,4 +36,4 @@ void write_evaluation_files(const RunDirectory& directory, const EvaluationSumma
 // "returns", "costs" and "lengths"; with `safety` the training cost and the constraints.
 std::string evaluation_json(const EvaluationSummary& summary, bool per_episode, const TrainingSafety* safety = nullptr);
 
-}  // namespace bsg
+}  // namespace bsg::algos

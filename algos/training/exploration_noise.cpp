@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 
 double exploration_std(const RunConfig& config, int epoch) {
   if (epoch < 0 || epoch >= config.epochs) {
@@ -27,4 +27,4 @@ EvaluationActions evaluation_actions(const RunConfig& config) {
   return config.sampled_evaluation ? EvaluationActions::sampled : EvaluationActions::mean;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

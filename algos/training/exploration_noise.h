@@ -8,7 +8,7 @@
 #include "algos/core/gaussian_policy.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // sigma of epoch `epoch` in [0, config.epochs): max(schedule, floor). Throws
 // std::invalid_argument for an epoch outside the run. Meaningless with a learned
@@ -23,4 +23,4 @@ void set_last_epoch_std(const RunConfig& config, int epochs_completed, GaussianP
 // The evaluation's actions: sampled with sampled_evaluation, else the mean (the original's).
 EvaluationActions evaluation_actions(const RunConfig& config);
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -12,7 +12,7 @@
 #include "algos/first_order/ppo.h"
 #include "algos/trust_region/trpo.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 std::unique_ptr<OnPolicyAlgorithm> make_algorithm(const RunConfig& config) {
   switch (config.alg) {
@@ -29,4 +29,4 @@ std::unique_ptr<OnPolicyAlgorithm> make_algorithm(const RunConfig& config) {
   throw std::invalid_argument("make_algorithm: unknown alg value " + std::to_string(static_cast<int>(config.alg)));
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

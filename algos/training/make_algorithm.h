@@ -9,8 +9,8 @@
 #include "algos/core/algorithm.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 std::unique_ptr<OnPolicyAlgorithm> make_algorithm(const RunConfig& config);
 
-}  // namespace bsg
+}  // namespace bsg::algos

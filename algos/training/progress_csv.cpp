@@ -16,7 +16,7 @@
 #include "common/atomic_file.h"
 #include "common/file_reading.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 std::string header_of(const std::vector<NamedScalar>& row) {
@@ -134,4 +134,4 @@ void ProgressCsv::write_row(const std::vector<NamedScalar>& row) {
   contents_ += lines;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

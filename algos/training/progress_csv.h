@@ -26,7 +26,7 @@
 #include "algos/core/algorithm.h"
 #include "algos/training/progress_csv_fields.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // What a resume knows from the checkpoint.
 struct ProgressResume {
@@ -70,4 +70,4 @@ class ProgressCsv {
   int fd_ = -1;           // O_APPEND
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-namespace bsg {
+namespace bsg::algos {
 
 std::string format_csv_number(double value) {
   if (std::isnan(value)) return "nan";
@@ -23,4 +23,4 @@ std::vector<std::string> split_csv_line(const std::string& line) {
   return fields;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace bsg {
+namespace bsg::algos {
 
 // The shortest decimal text of `value` that reads back exactly ("nan", "inf" for non-finite values).
 std::string format_csv_number(double value);
@@ -13,4 +13,4 @@ std::string format_csv_number(double value);
 // Splits a CSV line at commas (no quoting: names and numbers only).
 std::vector<std::string> split_csv_line(const std::string& line);
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -7,7 +7,7 @@
 #include "algos/training/progress_csv_fields.h"
 #include "common/message_text.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 [[noreturn]] void fail(const std::string& source_name, std::size_t line, const std::string& what) {
@@ -115,4 +115,4 @@ std::string progress_log_text(const ProgressLogText& log, std::size_t rows) {
   return text;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

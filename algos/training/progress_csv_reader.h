@@ -19,7 +19,7 @@
 
 #include "common/message_text.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 class ProgressLogError : public std::runtime_error {
  public:
@@ -40,4 +40,4 @@ ProgressLogText read_progress_log(std::string_view text, const std::string& sour
 // The text the rows make again: header and rows, each with its newline ("" without a header).
 std::string progress_log_text(const ProgressLogText& log, std::size_t rows);
 
-}  // namespace bsg
+}  // namespace bsg::algos

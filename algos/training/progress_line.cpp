@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace bsg {
+namespace bsg::algos {
 
 std::string format_duration(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "?";
@@ -40,4 +40,4 @@ std::string format_progress_line(const ProgressLineInputs& in) {
   return line;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

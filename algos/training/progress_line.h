@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 
 struct ProgressLineInputs {
   int epoch = 0;   // 0-based; printed 1-based as "epoch/epochs"
@@ -26,4 +26,4 @@ std::string format_progress_line(const ProgressLineInputs& inputs);
 // "45s", "3m08s", "2h05m", "3d04h"; "?" if not finite or negative.
 std::string format_duration(double seconds);
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -5,7 +5,7 @@
 #include <string>
 #include <utility>
 
-namespace bsg {
+namespace bsg::algos {
 
 RolloutCollector::RolloutCollector(int observation_size, int action_size, RolloutOptions options,
                                    StepCostSelector costs)
@@ -102,4 +102,4 @@ void RolloutCollector::collect(envs::Env& env, std::uint64_t epoch_env_seed, con
   buffer.check_ready();
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -31,7 +31,7 @@
 #include "common/random.h"
 #include "envs/env.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct RolloutOptions {
   int local_steps = 0;
@@ -77,4 +77,4 @@ class RolloutCollector {
   std::vector<MlpSampleWorkspace> cost_value_workspaces_;  // one per constraint
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

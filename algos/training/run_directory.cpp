@@ -6,7 +6,7 @@
 
 #include "common/file_reading.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 std::filesystem::path default_run_directory(const RunConfig& config) {
   char seed[32];
@@ -38,4 +38,4 @@ void prepare_new_run_directory(const RunDirectory& directory) {
   if (error) throw std::runtime_error("cannot create run directory " + directory.root.string() + ": " + error.message());
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

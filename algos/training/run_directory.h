@@ -16,7 +16,7 @@
 
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct RunDirectory {
   explicit RunDirectory(std::filesystem::path root) : root(std::move(root)) {}
@@ -43,4 +43,4 @@ void check_is_run_directory(const RunDirectory& directory);
 // another --out.
 void prepare_new_run_directory(const RunDirectory& directory);
 
-}  // namespace bsg
+}  // namespace bsg::algos

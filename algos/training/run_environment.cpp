@@ -5,7 +5,7 @@
 
 #include "common/config_error.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 envs::EnvDescription run_env_description(const RunConfig& config) {
   try {
@@ -31,4 +31,4 @@ void resolve_env_block(RunConfig& config) {
   config.env = envs::to_env_overrides(description);
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -8,7 +8,7 @@
 #include "common/run_config.h"
 #include "envs/env.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // env_id's description with config.env applied; throws ConfigError naming the
 // env: key and value at fault.
@@ -25,4 +25,4 @@ std::unique_ptr<envs::Env> make_run_env(const RunConfig& config);
 // description).
 void resolve_env_block(RunConfig& config);
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -7,7 +7,7 @@
 #include "algos/training/training_checkpoint.h"
 #include "common/run_config_yaml.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
                                      const MpiContext& mpi) {
@@ -37,4 +37,4 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
   return result;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

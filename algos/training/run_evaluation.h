@@ -10,7 +10,7 @@
 #include "algos/training/run_directory.h"
 #include "common/mpi_context.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct RunEvaluation {
   EvaluationSummary summary;  // rank 0 only
@@ -32,4 +32,4 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
                                      const MpiContext& mpi, const EnvDecorator& decorate,
                                      std::optional<EvaluationActions> actions = std::nullopt);
 
-}  // namespace bsg
+}  // namespace bsg::algos

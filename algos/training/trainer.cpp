@@ -24,7 +24,7 @@
 #include "common/run_config_yaml.h"
 #include "common/seeding.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -442,4 +442,4 @@ TrainingOutcome OnPolicyTrainer::run() {
   return outcome;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

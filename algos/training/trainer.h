@@ -60,7 +60,7 @@
 #include "common/run_config.h"
 #include "envs/env.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 class NonFiniteError : public std::runtime_error {
  public:
@@ -178,4 +178,4 @@ class OnPolicyTrainer {
   int epochs_this_process_ = 0;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -10,7 +10,7 @@
 #include "common/message_text.h"
 #include "common/run_config_yaml.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 // The recorded log must hold exactly the completed epochs' rows, with this
@@ -148,4 +148,4 @@ TrainingProgress load_training_checkpoint(const std::filesystem::path& path, con
                                     contents.format_version);
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -33,7 +33,7 @@
 #include "algos/training/training_cost.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct TrainingProgress {
   int epochs_completed = 0;      // epochs 0 .. epochs_completed - 1 are done
@@ -69,4 +69,4 @@ TrainingProgress decode_training_checkpoint(std::string_view payload, const std:
                                             OnPolicyAlgorithm& algorithm,
                                             std::uint32_t format_version = kCheckpointFormatVersion);
 
-}  // namespace bsg
+}  // namespace bsg::algos

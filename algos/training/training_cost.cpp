@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 
 TrainingCost TrainingCost::for_constraints(int constraint_count) {
   TrainingCost cost;
@@ -65,4 +65,4 @@ TrainingCost load_training_cost(BinaryReader& reader, int constraint_count) {
   return cost;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -16,7 +16,7 @@
 #include "algos/core/algorithm.h"
 #include "common/binary_io.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct TrainingCost {
   double cumulative_cost = 0.0;
@@ -43,4 +43,4 @@ void save_training_cost(const TrainingCost& cost, BinaryWriter& writer);
 // fails on the reader otherwise.
 TrainingCost load_training_cost(BinaryReader& reader, int constraint_count);
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 
 ConjugateGradientResult conjugate_gradient(const LinearOperator& apply_matrix,
                                            const Eigen::Ref<const Eigen::VectorXd>& rhs,
@@ -41,4 +41,4 @@ ConjugateGradientResult conjugate_gradient(const LinearOperator& apply_matrix,
   return result;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -13,7 +13,7 @@
 #include <Eigen/Core>
 #include <functional>
 
-namespace bsg {
+namespace bsg::algos {
 
 // product = A direction (A symmetric positive definite, e.g. the damped Fisher matrix).
 using LinearOperator =
@@ -35,4 +35,4 @@ ConjugateGradientResult conjugate_gradient(const LinearOperator& apply_matrix,
                                            const Eigen::Ref<const Eigen::VectorXd>& rhs,
                                            ConjugateGradientOptions options = {});
 
-}  // namespace bsg
+}  // namespace bsg::algos

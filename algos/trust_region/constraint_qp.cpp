@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 void check_sizes(const char* where, const Eigen::Ref<const Eigen::MatrixXd>& S,
@@ -156,4 +156,4 @@ CpoDualSolution solve_cpo_dual(double q, const Eigen::Ref<const Eigen::VectorXd>
   return solution;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

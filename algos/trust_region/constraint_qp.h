@@ -37,7 +37,7 @@
 
 #include "common/constraint_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // The largest m these exact methods accept (2^m active sets).
 inline constexpr int kMaxConstraints = kMaxConstraintCount;
@@ -81,4 +81,4 @@ CpoDualSolution solve_cpo_dual(double q, const Eigen::Ref<const Eigen::VectorXd>
 Eigen::VectorXd nonnegative_projection_weights(const Eigen::Ref<const Eigen::MatrixXd>& S,
                                                const Eigen::Ref<const Eigen::VectorXd>& v);
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -11,7 +11,7 @@
 #include "algos/trust_region/natural_gradient.h"
 #include "algos/trust_region/trpo.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 constexpr double kEpsilon = 1e-8;  // every epsilon of docs/algorithms.md#cpo, step 7
@@ -281,4 +281,4 @@ PolicyUpdateResult Cpo::update(const PolicyUpdateInputs& inputs) {
   return result;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

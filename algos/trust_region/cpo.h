@@ -37,7 +37,7 @@
 #include "algos/trust_region/natural_gradient.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // The case numbers of docs/algorithms.md#cpo (logged as Misc/OptimCase).
 enum class CpoCase : int {
@@ -143,4 +143,4 @@ struct CpoColumns {
 void append_cpo_diagnostics(std::vector<NamedScalar>& diagnostics, const CpoColumns& columns);
 std::vector<std::string> cpo_diagnostic_names();
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 
 FisherVectorProduct::FisherVectorProduct(const GaussianPolicy& policy,
                                          const Eigen::Ref<const Eigen::MatrixXd>& observations,
@@ -51,4 +51,4 @@ void FisherVectorProduct::apply(const Eigen::Ref<const Eigen::VectorXd>& directi
   product += options_.damping_coeff * direction;  // + damping v
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

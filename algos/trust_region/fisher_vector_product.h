@@ -20,7 +20,7 @@
 #include "common/mlp.h"
 #include "common/mpi_context.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct FisherVectorProductOptions {
   double damping_coeff = 0.1;
@@ -51,4 +51,4 @@ class FisherVectorProduct {
   long long call_count_ = 0;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -7,7 +7,7 @@
 #include "algos/trust_region/natural_gradient.h"
 #include "algos/trust_region/trpo.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 LagTrpo::LagTrpo(const RunConfig& config)
     : OnPolicyAlgorithm(config),
@@ -54,4 +54,4 @@ PolicyUpdateResult LagTrpo::update(const PolicyUpdateInputs& inputs) {
   return result;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -21,7 +21,7 @@
 #include "algos/lagrange/lagrangian_weights.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 class LagTrpo final : public OnPolicyAlgorithm {
  public:
@@ -40,4 +40,4 @@ class LagTrpo final : public OnPolicyAlgorithm {
   LagrangeMultipliers multiplier_;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

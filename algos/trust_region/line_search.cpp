@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 void check_options(const LineSearchOptions& options, const char* where) {
@@ -94,4 +94,4 @@ LineSearchResult constrained_line_search(const Eigen::Ref<const Eigen::VectorXd>
   return result;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -21,7 +21,7 @@
 
 #include "common/mpi_context.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct LineSearchOptions {
   int budget = 15;
@@ -74,4 +74,4 @@ LineSearchResult constrained_line_search(const Eigen::Ref<const Eigen::VectorXd>
                                          const ConstrainedEvaluator& evaluate, const MpiContext& mpi,
                                          const LineSearchOptions& options);
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 
 double trust_region_step_size(double x_fisher_x, double target_kl) {
   if (!(target_kl > 0.0) || !std::isfinite(target_kl)) {
@@ -35,4 +35,4 @@ NaturalGradientStep natural_gradient_step(const LinearOperator& fisher,
   return step;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -7,7 +7,7 @@
 
 #include "algos/trust_region/conjugate_gradient.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct NaturalGradientStep {
   Eigen::VectorXd direction;  // x = F^-1 g (approximately)
@@ -23,4 +23,4 @@ double trust_region_step_size(double x_fisher_x, double target_kl);
 NaturalGradientStep natural_gradient_step(const LinearOperator& fisher, const Eigen::Ref<const Eigen::VectorXd>& gradient,
                                           double target_kl, ConjugateGradientOptions cg_options = {});
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -11,7 +11,7 @@
 #include "algos/trust_region/natural_gradient.h"
 #include "algos/trust_region/trpo.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 PcpoStep pcpo_step(const LinearOperator& fisher, const Eigen::Ref<const Eigen::VectorXd>& reward_gradient,
                    const Eigen::Ref<const Eigen::VectorXd>& cost_gradient, double constraint_violation,
@@ -165,4 +165,4 @@ PolicyUpdateResult Pcpo::update(const PolicyUpdateInputs& inputs) {
   return result;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

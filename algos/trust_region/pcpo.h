@@ -34,7 +34,7 @@
 #include "algos/trust_region/conjugate_gradient.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 struct PcpoStepOptions {
   double target_kl = 1e-4;  // delta
@@ -72,4 +72,4 @@ class Pcpo final : public OnPolicyAlgorithm {
   PolicyUpdateResult update_several(const PolicyUpdateInputs& inputs, const std::vector<ConstraintEstimate>& constraints);
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

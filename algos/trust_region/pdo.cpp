@@ -6,7 +6,7 @@
 #include "algos/trust_region/natural_gradient.h"
 #include "algos/trust_region/trpo.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 Eigen::VectorXd pdo_search_direction(const Eigen::Ref<const Eigen::VectorXd>& reward_gradient,
                                      const Eigen::Ref<const Eigen::VectorXd>& cost_gradient,
@@ -83,4 +83,4 @@ PolicyUpdateResult Pdo::update(const PolicyUpdateInputs& inputs) {
   return result;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

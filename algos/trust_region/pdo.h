@@ -22,7 +22,7 @@
 #include "algos/lagrange/constraint_multipliers.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // p = g - lambda b
 Eigen::VectorXd pdo_search_direction(const Eigen::Ref<const Eigen::VectorXd>& reward_gradient,
@@ -46,4 +46,4 @@ class Pdo final : public OnPolicyAlgorithm {
   LagrangeMultipliers multiplier_;
 };
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -5,7 +5,7 @@
 
 #include "algos/trust_region/natural_gradient.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 std::vector<std::string> trpo_diagnostic_names() {
   std::vector<NamedScalar> columns;
@@ -61,4 +61,4 @@ PolicyUpdateResult Trpo::update(const PolicyUpdateInputs& inputs) {
   return result;
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -14,7 +14,7 @@
 #include "algos/trust_region/trust_region_steps.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 class Trpo final : public OnPolicyAlgorithm {
  public:
@@ -34,4 +34,4 @@ void append_trpo_diagnostics(std::vector<NamedScalar>& diagnostics, const LineSe
                              double alpha, double gradient_norm, double x_fisher_x,
                              double direction_norm);
 
-}  // namespace bsg
+}  // namespace bsg::algos

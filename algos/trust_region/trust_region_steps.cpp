@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bsg {
+namespace bsg::algos {
 
 ConjugateGradientOptions conjugate_gradient_options(const RunConfig& config) {
   ConjugateGradientOptions options;
@@ -154,4 +154,4 @@ ConstrainedEvaluator constrained_evaluator(const PolicyUpdateInputs& inputs, con
   };
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -17,7 +17,7 @@
 #include "common/mpi_context.h"
 #include "common/run_config.h"
 
-namespace bsg {
+namespace bsg::algos {
 
 // CG, FVP and line-search options from the RunConfig (cg_iters, cg_damping,
 // fvp_subsample, backtrack_budget, backtrack_decay, target_kl, kl_accept_factor).
@@ -86,4 +86,4 @@ ConstrainedEvaluator constrained_evaluator(const PolicyUpdateInputs& inputs, con
 LossEvaluator surrogate_loss_evaluator(const PolicyUpdateInputs& inputs, const Eigen::VectorXd& theta_old,
                                        double reward_weight, std::vector<double> cost_weights);
 
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -20,139 +20,125 @@ namespace {
 using D = EnvDescription;
 using Field = std::variant<bool D::*, int D::*, double D::*, std::string D::*>;
 
-// What a numeric value must satisfy.
-enum class Bound { any, positive, non_negative, at_least_one };
+using N = NumericRange;
 
 struct Row {
   EnvParameter info;
   Field field;
-  Bound bound = Bound::any;
-  std::vector<std::string_view> choices;  // text keys: the valid values
 };
 
-constexpr std::string_view bound_text(Bound bound) {
-  switch (bound) {
-    case Bound::any: return "any finite number";
-    case Bound::positive: return "> 0";
-    case Bound::non_negative: return ">= 0";
-    case Bound::at_least_one: return ">= 1";
-  }
-  return "";
-}
-
 Row real(std::string_view key, double D::*member, TaskSet tasks, std::string_view unit,
-         Bound bound, std::string_view description) {
-  return {{key, ParameterType::real, tasks, "", unit, bound_text(bound), description}, member, bound, {}};
+         NumericRange range, std::string_view description) {
+  return {{key, ValueType::real, tasks, "", unit, range, {}, description}, member};
 }
-Row integer(std::string_view key, int D::*member, TaskSet tasks, Bound bound,
+Row integer(std::string_view key, int D::*member, TaskSet tasks, NumericRange range,
             std::string_view description) {
-  return {{key, ParameterType::integer, tasks, "", "", bound_text(bound), description}, member, bound, {}};
+  return {{key, ValueType::integer, tasks, "", "", range, {}, description}, member};
 }
 Row boolean(std::string_view key, bool D::*member, TaskSet tasks, std::string_view description) {
-  return {{key, ParameterType::boolean, tasks, "", "", "true or false", description}, member, Bound::any, {}};
+  return {{key, ValueType::boolean, tasks, "", "", {}, {}, description}, member};
 }
-Row choice(std::string_view key, std::string D::*member, TaskSet tasks, std::string_view valid,
+Row choice(std::string_view key, std::string D::*member, TaskSet tasks,
            std::vector<std::string_view> choices, std::string_view description) {
-  return {{key, ParameterType::choice, tasks, "", "", valid, description}, member, Bound::any,
-          std::move(choices)};
+  return {{key, ValueType::choice, tasks, "", "", {}, std::move(choices), description}, member};
 }
 
 // clang-format off
 const std::vector<Row>& rows() {
   static const std::vector<Row> table = [] {
     std::vector<Row> r = {
-      {{"name", ParameterType::text, kAllTasks, "", "", "letters, digits, -, _, .",
-        "id reported by spec(), e.g. SafetyBallCircle-v0 or your own name"}, &D::name, Bound::any, {}},
-      choice("agent", &D::agent, kAllTasks, "Ball, Car, Drone, Ant",
+      {{"name", ValueType::text, kAllTasks, "", "", {}, {},
+        "id reported by spec(), e.g. SafetyBallCircle-v0 or your own name"}, &D::name},
+      choice("agent", &D::agent, kAllTasks,
              {"Ball", "Car", "Drone", "Ant"}, "the robot; changing it restarts from the standard description"),
-      choice("task", &D::task, kAllTasks, "Circle, Gather, Reach, Run",
+      choice("task", &D::task, kAllTasks,
              {"Circle", "Gather", "Reach", "Run"}, "the task; changing it restarts from the standard description"),
-      choice("world", &D::world, kAllTasks, "SmallRoom, Octagon, Plane200",
+      choice("world", &D::world, kAllTasks,
              {"SmallRoom", "Octagon", "Plane200"},
              "arena: SmallRoom (walls at ±10 m), Octagon (30 m wide), Plane200 (500 m plane)"),
-      real("time_step", &D::time_step, kAllTasks, "s", Bound::positive,
+      real("time_step", &D::time_step, kAllTasks, "s", N::above(0),
            "duration of one internal physics step"),
-      integer("frame_skip", &D::frame_skip, kAllTasks, Bound::at_least_one,
+      integer("frame_skip", &D::frame_skip, kAllTasks, N::at_least(1),
               "internal physics steps per environment step (one action is held for all)"),
-      integer("max_episode_steps", &D::max_episode_steps, kAllTasks, Bound::at_least_one,
+      integer("max_episode_steps", &D::max_episode_steps, kAllTasks, N::at_least(1),
               "environment steps after which an episode is truncated"),
-      real("cost_limit", &D::cost_limit, kAllTasks, "", Bound::non_negative,
+      real("cost_limit", &D::cost_limit, kAllTasks, "", N::at_least(0),
            "d: limit on the undiscounted episode cost (report Table 3)"),
       boolean("power_upgrade", &D::power_upgrade, kAllTasks,
               "stronger motors for the Car and the Ant (the original's Gather and Reach)"),
-      {{"clip_actions", ParameterType::boolean, kAllTasks, "Car", "", "true or false",
+      {{"clip_actions", ValueType::boolean, kAllTasks, "Car", "", {}, {},
         "clip the Car's actions to [-1, 1] (the Ball, Drone and Ant always clip)"},
-       &D::clip_actions, Bound::any, {}},
-      real("circle_radius", &D::circle_radius, kCircle, "m", Bound::positive,
+       &D::clip_actions},
+      real("circle_radius", &D::circle_radius, kCircle, "m", N::above(0),
            "R: radius of the circle the reward follows"),
-      real("circle_x_limit", &D::circle_x_limit, kCircle, "m", Bound::positive,
+      real("circle_x_limit", &D::circle_x_limit, kCircle, "m", N::above(0),
            "cost_outside_bounds when |x| exceeds it"),
-      real("circle_spawn_min_radius", &D::circle_spawn_min_radius, kCircle, "m", Bound::non_negative,
+      real("circle_spawn_min_radius", &D::circle_spawn_min_radius, kCircle, "m", N::at_least(0),
            "spawn distance from the centre, lower bound"),
-      real("circle_spawn_max_radius", &D::circle_spawn_max_radius, kCircle, "m", Bound::positive,
+      real("circle_spawn_max_radius", &D::circle_spawn_max_radius, kCircle, "m", N::above(0),
            "spawn distance from the centre, upper bound (> circle_spawn_min_radius)"),
       boolean("count_outside_bounds", &D::count_outside_bounds, kCircle | kRun,
               "cost_outside_bounds counts towards the cost"),
-      real("placement_half_width", &D::placement_half_width, kGather | kReach, "m", Bound::positive,
+      real("placement_half_width", &D::placement_half_width, kGather | kReach, "m", N::above(0),
            "goals and obstacles are drawn in the square [-w, w]²"),
-      real("max_altitude", &D::max_altitude, kGather | kReach, "m", Bound::positive,
+      real("max_altitude", &D::max_altitude, kGather | kReach, "m", N::above(0),
            "cost_out_of_range when the agent's z exceeds it"),
       boolean("count_out_of_range", &D::count_out_of_range, kGather | kReach,
               "cost_out_of_range counts towards the cost"),
-      integer("apples", &D::apples, kGather, Bound::at_least_one, "apples to collect"),
-      integer("bombs", &D::bombs, kGather, Bound::non_negative, "bombs to avoid"),
-      real("gather_detection_distance", &D::gather_detection_distance, kGather, "m", Bound::positive,
+      integer("apples", &D::apples, kGather, N::at_least(1), "apples to collect"),
+      integer("bombs", &D::bombs, kGather, N::at_least(0), "bombs to avoid"),
+      real("gather_detection_distance", &D::gather_detection_distance, kGather, "m", N::above(0),
            "an object is collected closer than this (planar)"),
-      real("apple_reward", &D::apple_reward, kGather, "", Bound::any, "reward per apple"),
-      real("death_reward", &D::death_reward, kGather, "", Bound::any,
+      real("apple_reward", &D::apple_reward, kGather, "", N::any(), "reward per apple"),
+      real("death_reward", &D::death_reward, kGather, "", N::any(),
            "reward of a step in which the agent dies (replaces the step's reward)"),
-      real("gather_agent_clearance", &D::gather_agent_clearance, kGather, "m", Bound::non_negative,
+      real("gather_agent_clearance", &D::gather_agent_clearance, kGather, "m", N::at_least(0),
            "no object is placed closer than this to the agent (planar)"),
-      real("gather_spacing", &D::gather_spacing, kGather, "m", Bound::non_negative,
+      real("gather_spacing", &D::gather_spacing, kGather, "m", N::at_least(0),
            "objects are placed farther apart than this"),
-      integer("gather_sensor_bins", &D::gather_sensor_bins, kGather, Bound::at_least_one,
+      integer("gather_sensor_bins", &D::gather_sensor_bins, kGather, N::at_least(1),
               "bins of each of the two pseudo-LIDARs (apples, bombs)"),
-      real("gather_sensor_range", &D::gather_sensor_range, kGather, "m", Bound::positive,
+      real("gather_sensor_range", &D::gather_sensor_range, kGather, "m", N::above(0),
            "range of the two pseudo-LIDARs"),
       boolean("count_gathered_bombs", &D::count_gathered_bombs, kGather,
               "cost_gathered_bombs counts towards the cost"),
-      real("goal_radius", &D::goal_radius, kReach, "m", Bound::positive,
+      real("goal_radius", &D::goal_radius, kReach, "m", N::above(0),
            "the goal is reached closer than this (planar)"),
-      real("goal_bonus", &D::goal_bonus, kReach, "", Bound::any, "reward for reaching the goal"),
-      real("goal_max_speed", &D::goal_max_speed, kReach, "m/s", Bound::positive,
+      real("goal_bonus", &D::goal_bonus, kReach, "", N::any(), "reward for reaching the goal"),
+      real("goal_max_speed", &D::goal_max_speed, kReach, "m/s", N::above(0),
            "a goal counts only below this 3-d speed"),
-      real("goal_respawn_clearance", &D::goal_respawn_clearance, kReach, "m", Bound::non_negative,
+      real("goal_respawn_clearance", &D::goal_respawn_clearance, kReach, "m", N::at_least(0),
            "a new goal is drawn farther than this from agent, Box and zones"),
-      real("reach_spacing", &D::reach_spacing, kReach, "m", Bound::non_negative,
+      real("reach_spacing", &D::reach_spacing, kReach, "m", N::at_least(0),
            "placement clearance: agent-goal, agent-obstacle, obstacle-obstacle and obstacle-goal"),
-      real("reach_reward_scale", &D::reach_reward_scale, kReach, "", Bound::any,
+      real("reach_reward_scale", &D::reach_reward_scale, kReach, "", N::any(),
            "factor on the progress term d_prev - d"),
-      choice("goal_scheme", &D::goal_scheme, kReach, "random, corners", {"random", "corners"},
+      choice("goal_scheme", &D::goal_scheme, kReach, {"random", "corners"},
              "random: drawn in the room; corners: alternates (-6, 6) and (6, 6) (the fork)"),
-      integer("zones", &D::zones, kReach, Bound::non_negative, "puddles or pillars"),
-      choice("zone_type", &D::zone_type, kReach, "puddle, pillar", {"puddle", "pillar"},
+      integer("zones", &D::zones, kReach, N::at_least(0), "puddles or pillars"),
+      choice("zone_type", &D::zone_type, kReach, {"puddle", "pillar"},
              "puddle (radius 1 m) or pillar (radius 0.45 m); sets zone_radius"),
-      choice("zone_layout", &D::zone_layout, kReach, "random, barrier", {"random", "barrier"},
+      choice("zone_layout", &D::zone_layout, kReach, {"random", "barrier"},
              "random: zones drawn at every reset; barrier: the fork's CarReach map of 17 fixed "
              "puddles with the spawn at (-6, 6) (needs zones: 17)"),
-      real("zone_radius", &D::zone_radius, kReach, "m", Bound::positive,
+      real("zone_radius", &D::zone_radius, kReach, "m", N::above(0),
            "a zone costs when the agent's disc overlaps it"),
       boolean("box", &D::box, kReach, "the moving Box (a collision obstacle)"),
-      real("box_circle_radius", &D::box_circle_radius, kReach, "m", Bound::non_negative,
+      real("box_circle_radius", &D::box_circle_radius, kReach, "m", N::at_least(0),
            "radius of the circle the Box's pivot follows"),
-      integer("lidar_rays", &D::lidar_rays, kReach, Bound::non_negative, "rays of the LIDAR (0: no LIDAR)"),
-      real("lidar_range", &D::lidar_range, kReach, "m", Bound::positive, "range of the LIDAR"),
-      integer("reach_sensor_bins", &D::reach_sensor_bins, kReach, Bound::non_negative,
+      integer("lidar_rays", &D::lidar_rays, kReach, N::at_least(0), "rays of the LIDAR (0: no LIDAR)"),
+      real("lidar_range", &D::lidar_range, kReach, "m", N::above(0), "range of the LIDAR"),
+      integer("reach_sensor_bins", &D::reach_sensor_bins, kReach, N::at_least(0),
               "bins of the pseudo-LIDAR over the zones (0: none)"),
-      real("reach_sensor_range", &D::reach_sensor_range, kReach, "m", Bound::positive,
+      real("reach_sensor_range", &D::reach_sensor_range, kReach, "m", N::above(0),
            "range of the pseudo-LIDAR over the zones"),
       boolean("count_collisions", &D::count_collisions, kReach,
               "cost_collisions counts towards the cost"),
-      real("run_y_limit", &D::run_y_limit, kRun, "m", Bound::positive,
+      real("run_y_limit", &D::run_y_limit, kRun, "m", N::above(0),
            "avenue half-width: cost_outside_bounds when |y| exceeds it"),
-      real("run_speed_limit", &D::run_speed_limit, kRun, "m/s", Bound::positive,
+      real("run_speed_limit", &D::run_speed_limit, kRun, "m/s", N::above(0),
            "cost_velocity_violation above this planar speed"),
-      real("run_spawn_range", &D::run_spawn_range, kRun, "m", Bound::non_negative,
+      real("run_spawn_range", &D::run_spawn_range, kRun, "m", N::at_least(0),
            "spawn x and y are drawn in [-range, range]"),
       boolean("count_velocity_violation", &D::count_velocity_violation, kRun,
               "cost_velocity_violation counts towards the cost"),
@@ -164,9 +150,7 @@ const std::vector<Row>& rows() {
 // clang-format on
 
 const Row& row_of(const EnvParameter& parameter) {
-  for (const Row& row : rows()) {
-    if (row.info.key == parameter.key) return row;
-  }
+  if (const Row* row = find_row(rows(), parameter.key)) return *row;
   throw std::logic_error("internal: '" + std::string(parameter.key) + "' is not an env parameter");
 }
 
@@ -192,62 +176,48 @@ TaskSet task_bit(const std::string& task) {
   return 0;
 }
 
-bool bound_holds(Bound bound, double value) {
-  switch (bound) {
-    case Bound::any: return true;
-    case Bound::positive: return value > 0;
-    case Bound::non_negative: return value >= 0;
-    case Bound::at_least_one: return value >= 1;
+constexpr std::string_view expected_text(ValueType type) {
+  switch (type) {
+    case ValueType::boolean: return "expects true or false";
+    case ValueType::integer: return "expects an integer";
+    case ValueType::real: return "expects a finite real number";
+    default: return "expects non-empty text";
   }
-  return false;
 }
 
-// Parses `text` into the field of `row`; fails naming key and value.
+// Parses `text` into the field of `row` through the shared parser
+// (common/parameter_table.h); fails naming key and value.
 void set_value(EnvDescription& d, const Row& row, const std::string& text) {
   const std::string key(row.info.key);
   std::visit(
       [&](auto member) {
-        using T = std::remove_cvref_t<decltype(d.*member)>;
-        if constexpr (std::is_same_v<T, bool>) {
-          const auto value = parse_config_bool(text);
-          if (!value) fail(key, text, "expects true or false");
-          d.*member = *value;
-        } else if constexpr (std::is_same_v<T, int>) {
-          const auto value = parse_config_integer(text);
-          if (!value || *value < -2147483647 || *value > 2147483647) fail(key, text, "expects an integer");
-          if (!bound_holds(row.bound, static_cast<double>(*value))) {
-            fail(key, text, "must be " + std::string(row.info.valid));
-          }
-          d.*member = static_cast<int>(*value);
-        } else if constexpr (std::is_same_v<T, double>) {
-          const auto value = parse_config_real(text);
-          if (!value) fail(key, text, "expects a finite real number");
-          if (!bound_holds(row.bound, *value)) fail(key, text, "must be " + std::string(row.info.valid));
-          d.*member = *value;
-        } else {
-          if (text.empty()) fail(key, text, "expects non-empty text");
+        auto value = d.*member;
+        switch (parse_scalar(text, row.info.range, value)) {
+          case ScalarProblem::none: break;
+          case ScalarProblem::not_a_value: fail(key, text, std::string(expected_text(row.info.type)));
+          case ScalarProblem::out_of_range: fail(key, text, "must be " + row.info.valid_text());
+        }
+        if constexpr (std::is_same_v<decltype(value), std::string>) {
           // A name is an id: it goes into YAML, logs and directory names unquoted.
           const bool id_like = std::all_of(text.begin(), text.end(), [](char c) {
             return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_' || c == '.';
           });
-          if (row.choices.empty() && !id_like) fail(key, text, "use letters, digits, '-', '_' and '.' only");
-          if (!row.choices.empty() &&
-              std::find(row.choices.begin(), row.choices.end(), text) == row.choices.end()) {
-            const std::string guess = closest_name(text, row.choices);
+          const auto& choices = row.info.choices;
+          if (choices.empty() && !id_like) fail(key, text, "use letters, digits, '-', '_' and '.' only");
+          if (!choices.empty() && std::find(choices.begin(), choices.end(), text) == choices.end()) {
+            const std::string guess = closest_name(text, choices);
             fail(key, text, "unknown " + key + (guess.empty() ? "" : " (did you mean " + guess + "?)") +
-                                "; valid: " + comma_separated(row.choices));
+                                "; valid: " + comma_separated(choices));
           }
-          d.*member = text;
         }
+        d.*member = std::move(value);
       },
       row.field);
 }
 
-const Row& find_row(const std::string& key, const std::string& value) {
-  if (const EnvParameter* parameter = find_env_parameter(key)) return row_of(*parameter);
-  std::vector<std::string_view> keys;
-  for (const Row& row : rows()) keys.push_back(row.info.key);
-  const std::string guess = closest_name(key, keys);
+const Row& row_named(const std::string& key, const std::string& value) {
+  if (const Row* row = find_row(rows(), key)) return *row;
+  const std::string guess = closest_row_key(rows(), key);
   fail(key, value, "unknown parameter" + (guess.empty() ? std::string() : " (did you mean " + guess + "?)") +
                        "; `bsg envs --describe ID` lists the parameters of an environment");
 }
@@ -290,27 +260,22 @@ const std::vector<EnvParameter>& env_parameters() {
 }
 
 const EnvParameter* find_env_parameter(std::string_view key) {
-  for (const EnvParameter& parameter : env_parameters()) {
-    if (parameter.key == key) return &parameter;
-  }
-  return nullptr;
+  const Row* row = find_row(rows(), key);
+  return row != nullptr ? &row->info : nullptr;
 }
 
 std::string env_parameter_text(const EnvDescription& d, const EnvParameter& parameter) {
-  return std::visit(
-      [&](auto member) -> std::string {
-        using T = std::remove_cvref_t<decltype(d.*member)>;
-        if constexpr (std::is_same_v<T, bool>) {
-          return d.*member ? "true" : "false";
-        } else if constexpr (std::is_same_v<T, int>) {
-          return std::to_string(d.*member);
-        } else if constexpr (std::is_same_v<T, double>) {
-          return format_config_real(d.*member);
-        } else {
-          return d.*member;
-        }
-      },
-      row_of(parameter).field);
+  return std::visit([&](auto member) { return scalar_text(d.*member); }, row_of(parameter).field);
+}
+
+std::string EnvParameter::valid_text() const {
+  switch (type) {
+    case ValueType::boolean: return "true or false";
+    case ValueType::integer:
+    case ValueType::real: return range.inequality_text();
+    case ValueType::choice: return comma_separated(choices);
+    default: return "letters, digits, -, _, .";
+  }
 }
 
 bool applies_to(const EnvParameter& parameter, const EnvDescription& description) {
@@ -352,7 +317,7 @@ EnvDescription apply_env_overrides(const EnvDescription& base, const EnvOverride
   std::string agent = base.agent, task = base.task;
   bool combination_changed = false;
   for (const auto& [key, value] : overrides) {
-    const Row& row = find_row(key, value);
+    const Row& row = row_named(key, value);
     if (key == "agent" || key == "task") {
       EnvDescription probe = d;
       set_value(probe, row, value);
@@ -364,7 +329,7 @@ EnvDescription apply_env_overrides(const EnvDescription& base, const EnvOverride
   bool radius_given = false;
   for (const auto& [key, value] : overrides) radius_given = radius_given || key == "zone_radius";
   for (const auto& [key, value] : overrides) {
-    const Row& row = find_row(key, value);
+    const Row& row = row_named(key, value);
     if (key == "agent" || key == "task") continue;
     if (!applies_to(row.info, d)) {
       const std::string who = row.info.agent.empty()

@@ -9,25 +9,30 @@
 #include <utility>
 #include <vector>
 
+#include "common/parameter_table.h"
 #include "envs/description/env_description.h"
 
 namespace bsg::envs {
-
-enum class ParameterType { boolean, integer, real, text, choice };
 
 // Bit set of the tasks a key applies to.
 using TaskSet = unsigned;
 inline constexpr TaskSet kCircle = 1, kGather = 2, kReach = 4, kRun = 8;
 inline constexpr TaskSet kAllTasks = kCircle | kGather | kReach | kRun;
 
+// A key's row as the rest of bsg sees it; the value type and range are the
+// shared ones of common/parameter_table.h, as the run configuration's keys.
 struct EnvParameter {
   std::string_view key;
-  ParameterType type = ParameterType::real;
+  ValueType type = ValueType::real;  // boolean, integer, real, text or choice
   TaskSet tasks = kAllTasks;
   std::string_view agent;        // non-empty: only this agent has the key
   std::string_view unit;         // "m", "s", "m/s", "" (a count or a factor)
-  std::string_view valid;        // e.g. "> 0", ">= 1", "Ball, Car, Drone, Ant"
+  NumericRange range;            // integer and real keys
+  std::vector<std::string_view> choices;  // choice keys: the valid values
   std::string_view description;
+
+  // What a value may be: e.g. "> 0", ">= 1", "Ball, Car, Drone, Ant".
+  std::string valid_text() const;
 };
 
 // (key, value) pairs as text: "bombs" → "12". Applied in order.

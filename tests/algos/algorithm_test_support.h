@@ -35,7 +35,7 @@ struct SyntheticBatch {
   static constexpr int kActionSize = 2;
 
   Rng policy_rng;
-  GaussianPolicy policy;
+  algos::GaussianPolicy policy;
   Eigen::MatrixXd observations, actions;
   Eigen::VectorXd old_log_probs, advantages, cost_advantages;
 
@@ -60,8 +60,8 @@ struct SyntheticBatch {
     }
   }
 
-  PolicySurrogate surrogate() const {
-    return PolicySurrogate(observations, actions, old_log_probs, advantages, cost_advantages);
+  algos::PolicySurrogate surrogate() const {
+    return algos::PolicySurrogate(observations, actions, old_log_probs, advantages, cost_advantages);
   }
 
   Eigen::MatrixXd means() const {
@@ -147,9 +147,9 @@ inline const MpiContext& single_process() {
   return context;
 }
 
-inline PolicyUpdateInputs inputs_for(SyntheticBatch& batch, PolicySurrogate& surrogate, double mean_episode_cost,
+inline algos::PolicyUpdateInputs inputs_for(SyntheticBatch& batch, algos::PolicySurrogate& surrogate, double mean_episode_cost,
                                      double mean_episode_length, const MpiContext& mpi = single_process()) {
-  return PolicyUpdateInputs{batch.policy, surrogate, mean_episode_cost, mean_episode_length, mpi};
+  return algos::PolicyUpdateInputs{batch.policy, surrogate, mean_episode_cost, mean_episode_length, mpi};
 }
 
 // A RunConfig for `alg` with the algorithm's shipped defaults that matter here.
@@ -184,7 +184,7 @@ inline RunConfig config_for(Algorithm alg) {
 }
 
 // The dense matrix M as a LinearOperator.
-inline LinearOperator dense_operator(const Eigen::MatrixXd& matrix) {
+inline algos::LinearOperator dense_operator(const Eigen::MatrixXd& matrix) {
   return [matrix](const Eigen::Ref<const Eigen::VectorXd>& direction, Eigen::Ref<Eigen::VectorXd> product) {
     product = matrix * direction;
   };
@@ -239,12 +239,12 @@ void expect_pid_multiplier_steers_like_sgd(Algorithm algorithm) {
 
   SyntheticBatch pid_batch(64, 3, 4);
   SyntheticBatch sgd_batch(64, 3, 4);
-  PolicySurrogate pid_surrogate = pid_batch.surrogate();
-  PolicySurrogate sgd_surrogate = sgd_batch.surrogate();
+  algos::PolicySurrogate pid_surrogate = pid_batch.surrogate();
+  algos::PolicySurrogate sgd_surrogate = sgd_batch.surrogate();
   Update pid(pid_config);
   Update sgd(sgd_config);
-  const PolicyUpdateResult pid_result = pid.update(testing::inputs_for(pid_batch, pid_surrogate, 30.0, 100.0));
-  const PolicyUpdateResult sgd_result = sgd.update(testing::inputs_for(sgd_batch, sgd_surrogate, 30.0, 100.0));
+  const algos::PolicyUpdateResult pid_result = pid.update(testing::inputs_for(pid_batch, pid_surrogate, 30.0, 100.0));
+  const algos::PolicyUpdateResult sgd_result = sgd.update(testing::inputs_for(sgd_batch, sgd_surrogate, 30.0, 100.0));
 
   EXPECT_NEAR(pid_result.value("PID/P"), 0.5, 1e-15);
   EXPECT_NEAR(pid_result.value("PID/I"), 0.251, 1e-15);

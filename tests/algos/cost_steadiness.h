@@ -57,7 +57,7 @@ inline SecondHalf train_ball_circle_second_half(const std::string& lambda_optimi
   request.set_arguments.insert(request.set_arguments.end(), settings.begin(), settings.end());
   const RunConfig config = resolve_run_config(request).config;
   const TemporaryDirectory directory;
-  OnPolicyTrainer trainer(config, RunDirectory(directory.path() / "run"), MpiContext::single_process(), {});
+  algos::OnPolicyTrainer trainer(config, algos::RunDirectory(directory.path() / "run"), MpiContext::single_process(), {});
   if (!trainer.run().finished) throw std::runtime_error("training did not finish");
   auto progress = read_csv_columns(directory.path() / "run" / "progress.csv");
   return second_half_of(progress["episode_cost_mean"], progress["episode_return_mean"]);

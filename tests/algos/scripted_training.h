@@ -32,10 +32,10 @@ inline RunConfig scripted_config() {
 inline std::vector<double> sigma_of_each_epoch(const RunConfig& config) {
   TemporaryDirectory dir;
   std::vector<double> sigmas;
-  TrainerOptions options;
-  OnPolicyTrainer* running = nullptr;
-  options.on_epoch_timed = [&](const EpochTimings&) { sigmas.push_back(running->actor_critic().policy.std()); };
-  OnPolicyTrainer trainer(config, RunDirectory(dir.path() / "run"), MpiContext::single_process(), options,
+  algos::TrainerOptions options;
+  algos::OnPolicyTrainer* running = nullptr;
+  options.on_epoch_timed = [&](const algos::EpochTimings&) { sigmas.push_back(running->actor_critic().policy.std()); };
+  algos::OnPolicyTrainer trainer(config, algos::RunDirectory(dir.path() / "run"), MpiContext::single_process(), options,
                           std::make_unique<ScriptedEnv>(100));
   running = &trainer;
   trainer.run();

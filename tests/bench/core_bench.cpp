@@ -43,7 +43,7 @@ volatile double sink = 0.0;  // keeps results alive
 
 void run_case(int observation_size, int action_size, bsg::Dtype dtype) {
   bsg::Rng rng(0);
-  bsg::GaussianPolicy policy(observation_size, action_size, {64, 64}, rng, bsg::MlpOptions{false, dtype});
+  bsg::algos::GaussianPolicy policy(observation_size, action_size, {64, 64}, rng, bsg::MlpOptions{false, dtype});
   const bsg::Mlp& net = policy.mean_net();
 
   const Eigen::VectorXd observation = random_matrix(observation_size, 1, rng);
@@ -73,7 +73,7 @@ void run_case(int observation_size, int action_size, bsg::Dtype dtype) {
     sink = sink + gradient[0];
   });
 
-  bsg::FisherVectorProduct fvp(policy, batch_32000, bsg::MpiContext::single_process());
+  bsg::algos::FisherVectorProduct fvp(policy, batch_32000, bsg::MpiContext::single_process());
   const Eigen::VectorXd direction = random_matrix(net.num_parameters(), 1, rng);
   Eigen::VectorXd product(net.num_parameters());
   const double fvp_8000 = time_us([&] {

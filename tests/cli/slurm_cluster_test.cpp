@@ -90,7 +90,7 @@ TEST_F(LocalSlurmCluster, ACancelledTaskResumesOnResubmissionAndEveryRunFinishes
   const std::string submit = "sweep " + grid.string() + " --configs " + (kSource / "configs").string() +
                              " --slurm --max-running 2 --out " + sweep.string();
   std::vector<fs::path> runs;
-  for (const bsg::GridRun& run : bsg::expand_grid(bsg::load_grid_file(grid))) runs.push_back(run.relative_dir());
+  for (const bsg::experiments::GridRun& run : bsg::experiments::expand_grid(bsg::experiments::load_grid_file(grid))) runs.push_back(run.relative_dir());
   ASSERT_EQ(runs.size(), 2u);
 
   const auto first = run_bsg(submit);
@@ -164,7 +164,7 @@ TEST_F(LocalSlurmCluster, ARunOfTwoRanksTrainsUnderMpirunInsideItsAllocationLike
                                  " --ranks-per-run 2 --out " + local.string());
   ::unsetenv("ASAN_OPTIONS");
   ASSERT_EQ(local_run.exit_code, 0) << local_run.output;
-  const fs::path run = bsg::expand_grid(bsg::load_grid_file(grid)).front().relative_dir();
+  const fs::path run = bsg::experiments::expand_grid(bsg::experiments::load_grid_file(grid)).front().relative_dir();
   const std::string log = read_text_file(sweep / run / "train.log");
   EXPECT_NE(log.find("on 2 ranks"), std::string::npos) << log;
   ASSERT_TRUE(fs::exists(sweep / run / "evaluation.json")) << log;

@@ -57,7 +57,7 @@ struct TinySweep {
   }
   std::vector<fs::path> run_dirs(const fs::path& out) const {
     std::vector<fs::path> dirs;
-    for (const bsg::GridRun& run : bsg::expand_grid(bsg::load_grid_file(grid))) dirs.push_back(out / run.relative_dir());
+    for (const bsg::experiments::GridRun& run : bsg::experiments::expand_grid(bsg::experiments::load_grid_file(grid))) dirs.push_back(out / run.relative_dir());
     return dirs;
   }
   TemporaryDirectory temp;
@@ -67,7 +67,7 @@ struct TinySweep {
 // (event, run_dir) of every line of sweep_events.csv.
 std::vector<std::pair<std::string, std::string>> events_of(const fs::path& out) {
   std::vector<std::pair<std::string, std::string>> events;
-  std::istringstream lines(read_text_file(out / bsg::kSweepEventsName));
+  std::istringstream lines(read_text_file(out / bsg::experiments::kSweepEventsName));
   std::string line;
   std::getline(lines, line);  // header
   while (std::getline(lines, line)) {
@@ -91,7 +91,7 @@ bool wait_for_epochs(pid_t sweep, const std::vector<fs::path>& runs, int epochs)
     int status = 0;
     if (waitpid(sweep, &status, WNOHANG) == sweep) return false;
     bool all = true;
-    for (const fs::path& run : runs) all &= bsg::testing::progress_rows(bsg::RunDirectory(run).progress()) >= epochs;
+    for (const fs::path& run : runs) all &= bsg::testing::progress_rows(bsg::algos::RunDirectory(run).progress()) >= epochs;
     if (all) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
@@ -142,11 +142,11 @@ TEST_P(SweepStopSignal, StopsChildrenWithCheckpointsAndTheRerunMatchesAnUninterr
   EXPECT_EQ(bsg::testing::live_processes_in_group(pid), 0) << "no child left running";
   for (const fs::path& run : runs) {
     const std::string name = fs::relative(run, out).generic_string();
-    EXPECT_EQ(bsg::run_state(bsg::RunDirectory(run)), bsg::RunState::resumable) << name;
+    EXPECT_EQ(bsg::experiments::run_state(bsg::algos::RunDirectory(run)), bsg::experiments::RunState::resumable) << name;
     const auto events = events_of(out);
     ASSERT_FALSE(events.empty());
     EXPECT_EQ(count(events, "stopped", name), 1u) << name;
-    EXPECT_NE(read_text_file(run / bsg::kSweepRunLogName).find("stop signal received"), std::string::npos) << name;
+    EXPECT_NE(read_text_file(run / bsg::experiments::kSweepRunLogName).find("stop signal received"), std::string::npos) << name;
   }
   const std::size_t events_before = events_of(out).size();
 
@@ -170,8 +170,8 @@ TEST_P(SweepStopSignal, StopsChildrenWithCheckpointsAndTheRerunMatchesAnUninterr
     EXPECT_EQ(count(after, "resume", name), 1u) << name;
     EXPECT_EQ(count(after, "start", name), 0u) << name;
     EXPECT_EQ(count(after, "done", name), 1u) << name;
-    const bsg::RunDirectory stopped(runs[i]);
-    const bsg::RunDirectory oracle(reference_runs[i]);
+    const bsg::algos::RunDirectory stopped(runs[i]);
+    const bsg::algos::RunDirectory oracle(reference_runs[i]);
     EXPECT_EQ(bsg::testing::progress_without_timings(stopped.progress()),
               bsg::testing::progress_without_timings(oracle.progress()))
         << name;
@@ -199,11 +199,11 @@ TEST(SweepKilled, TheRerunWaitsForChildrenStillRunningAndLogsTheirTrueState) {
   for (const auto& [event, run] : events) last[run] = event;
   for (const fs::path& run : runs) {
     const std::string name = fs::relative(run, out).generic_string();
-    EXPECT_EQ(bsg::run_state(bsg::RunDirectory(run)), bsg::RunState::finished) << name;
-    EXPECT_EQ(last[name], "done") << name << "\n" << read_text_file(out / bsg::kSweepEventsName);
+    EXPECT_EQ(bsg::experiments::run_state(bsg::algos::RunDirectory(run)), bsg::experiments::RunState::finished) << name;
+    EXPECT_EQ(last[name], "done") << name << "\n" << read_text_file(out / bsg::experiments::kSweepEventsName);
     EXPECT_EQ(count(events, "failed", name), 0u) << name;
     // Finished once: by the orphan (then no resume) or by the rerun after it.
-    EXPECT_EQ(bsg::testing::progress_rows(bsg::RunDirectory(run).progress()), 30) << name;
+    EXPECT_EQ(bsg::testing::progress_rows(bsg::algos::RunDirectory(run).progress()), 30) << name;
   }
   EXPECT_NE(rerun.output.find("waiting SafetyBallCircle-v0/trpo/default/seed="), std::string::npos) << rerun.output;
 }
@@ -226,8 +226,8 @@ TEST(SweepLock, ASecondSweepOnADirectoryInUseNamesTheFirstAndExits) {
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
   EXPECT_EQ(exit_code_of(status), 0) << read_text_file(log);
   for (const fs::path& run : runs) {
-    EXPECT_EQ(bsg::run_state(bsg::RunDirectory(run)), bsg::RunState::finished) << run;
-    EXPECT_EQ(bsg::testing::progress_rows(bsg::RunDirectory(run).progress()), 30) << run;
+    EXPECT_EQ(bsg::experiments::run_state(bsg::algos::RunDirectory(run)), bsg::experiments::RunState::finished) << run;
+    EXPECT_EQ(bsg::testing::progress_rows(bsg::algos::RunDirectory(run).progress()), 30) << run;
   }
 }
 

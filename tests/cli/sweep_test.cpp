@@ -55,7 +55,7 @@ std::vector<std::string> lines_of(const std::string& text) {
 // Runs of the quick grid as the sweep names them.
 std::vector<fs::path> quick_run_dirs(const fs::path& out) {
   std::vector<fs::path> dirs;
-  for (const bsg::GridRun& run : bsg::expand_grid(bsg::load_grid_file(kQuickGrid))) {
+  for (const bsg::experiments::GridRun& run : bsg::experiments::expand_grid(bsg::experiments::load_grid_file(kQuickGrid))) {
     dirs.push_back(out / run.relative_dir());
   }
   return dirs;
@@ -72,7 +72,7 @@ std::vector<std::string> logged_epoch_values(const fs::path& progress) {
 // (event, run_dir) of sweep_events.csv from line `first` on.
 std::vector<std::pair<std::string, std::string>> events_from(const fs::path& out, std::size_t first) {
   std::vector<std::pair<std::string, std::string>> events;
-  const std::vector<std::string> lines = lines_of(read_text_file(out / bsg::kSweepEventsName));
+  const std::vector<std::string> lines = lines_of(read_text_file(out / bsg::experiments::kSweepEventsName));
   for (std::size_t i = std::max<std::size_t>(first, 1); i < lines.size(); ++i) {
     const std::vector<std::string> fields = bsg::parse_csv_fields(lines[i]);
     events.emplace_back(fields.at(1), fields.at(2));
@@ -109,7 +109,7 @@ struct OneRunSweep {
   TemporaryDirectory temp;
   fs::path grid = write_grid(temp.path() / "one.yaml");
   fs::path out = temp.path() / "out";
-  bsg::GridRun run = bsg::expand_grid(bsg::load_grid_file(grid)).front();
+  bsg::experiments::GridRun run = bsg::experiments::expand_grid(bsg::experiments::load_grid_file(grid)).front();
   fs::path run_dir = out / run.relative_dir();
 };
 
@@ -134,10 +134,10 @@ TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots)
     bool some_finished = false;
     bool some_partial = false;
     for (const fs::path& run : runs) {
-      const bsg::RunDirectory directory(run);
-      const bsg::RunState state = bsg::run_state(directory);
-      some_finished |= state == bsg::RunState::finished;
-      some_partial |= state == bsg::RunState::resumable && bsg::logged_epochs(directory) >= 1;
+      const bsg::algos::RunDirectory directory(run);
+      const bsg::experiments::RunState state = bsg::experiments::run_state(directory);
+      some_finished |= state == bsg::experiments::RunState::finished;
+      some_partial |= state == bsg::experiments::RunState::resumable && bsg::experiments::logged_epochs(directory) >= 1;
     }
     midway = some_finished && some_partial;
     if (!midway) std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -156,16 +156,16 @@ TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots)
   }
   ASSERT_EQ(live_processes_in_group(sweep), 0) << "processes of the killed sweep still run after 30 s";
 
-  std::map<fs::path, bsg::RunState> state_at_kill;
+  std::map<fs::path, bsg::experiments::RunState> state_at_kill;
   std::size_t unfinished = 0;
   std::size_t resumable = 0;
   for (const fs::path& run : runs) {
-    state_at_kill[run] = bsg::run_state(bsg::RunDirectory(run));
-    unfinished += state_at_kill[run] != bsg::RunState::finished ? 1 : 0;
-    resumable += state_at_kill[run] == bsg::RunState::resumable ? 1 : 0;
+    state_at_kill[run] = bsg::experiments::run_state(bsg::algos::RunDirectory(run));
+    unfinished += state_at_kill[run] != bsg::experiments::RunState::finished ? 1 : 0;
+    resumable += state_at_kill[run] == bsg::experiments::RunState::resumable ? 1 : 0;
   }
   ASSERT_GE(resumable, 1u) << "the kill should leave a run part-way through";
-  const std::size_t events_before = lines_of(read_text_file(out / bsg::kSweepEventsName)).size();
+  const std::size_t events_before = lines_of(read_text_file(out / bsg::experiments::kSweepEventsName)).size();
 
   // 2. Start again: it finishes the rest.
   const auto second = run_bsg("sweep " + kQuickGrid.string() + " --jobs 2 --out " + out.string());
@@ -176,26 +176,26 @@ TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots)
   const auto events = events_from(out, events_before);
   for (const fs::path& run : runs) {
     const std::string name = fs::relative(run, out).generic_string();
-    const bsg::RunDirectory directory(run);
-    ASSERT_EQ(bsg::run_state(directory), bsg::RunState::finished) << name;
+    const bsg::algos::RunDirectory directory(run);
+    ASSERT_EQ(bsg::experiments::run_state(directory), bsg::experiments::RunState::finished) << name;
     // Each epoch logged once, in order; the evaluation written once.
     EXPECT_EQ(logged_epoch_values(directory.progress()),
               (std::vector<std::string>{"0", "1", "2", "3", "4", "5"}))
         << name;
     EXPECT_EQ(lines_of(read_text_file(directory.returns())).size(), 2u) << name;
     // The resolved run file reproduces the run's configuration.
-    EXPECT_EQ(bsg::load_resolved_run_config(run / bsg::kSweepRunFileName).seed,
+    EXPECT_EQ(bsg::load_resolved_run_config(run / bsg::experiments::kSweepRunFileName).seed,
               bsg::load_resolved_run_config(directory.config()).seed);
     switch (state_at_kill[run]) {
-      case bsg::RunState::finished:  // not touched again
+      case bsg::experiments::RunState::finished:  // not touched again
         EXPECT_EQ(count_events(events, "start", name) + count_events(events, "resume", name), 0u) << name;
         break;
-      case bsg::RunState::resumable:  // continued from its checkpoint, not restarted
+      case bsg::experiments::RunState::resumable:  // continued from its checkpoint, not restarted
         EXPECT_EQ(count_events(events, "resume", name), 1u) << name;
         EXPECT_EQ(count_events(events, "start", name), 0u) << name;
         EXPECT_EQ(count_events(events, "done", name), 1u) << name;
         break;
-      case bsg::RunState::fresh:
+      case bsg::experiments::RunState::fresh:
         EXPECT_EQ(count_events(events, "start", name), 1u) << name;
         EXPECT_EQ(count_events(events, "done", name), 1u) << name;
         break;
@@ -204,11 +204,11 @@ TEST(Sweep, KilledMidwayAndResumedFinishesEveryRunExactlyOnceThenTablesAndPlots)
 
   // 3. A third start has nothing to do.
   const std::size_t events_before_third =
-      lines_of(read_text_file(out / bsg::kSweepEventsName)).size();
+      lines_of(read_text_file(out / bsg::experiments::kSweepEventsName)).size();
   const auto third = run_bsg("sweep " + kQuickGrid.string() + " --out " + out.string());
   EXPECT_EQ(third.exit_code, 0) << third.output;
   EXPECT_NE(third.output.find("4 already finished, 0 to run"), std::string::npos) << third.output;
-  EXPECT_EQ(lines_of(read_text_file(out / bsg::kSweepEventsName)).size(), events_before_third);
+  EXPECT_EQ(lines_of(read_text_file(out / bsg::experiments::kSweepEventsName)).size(), events_before_third);
 
   // 4. Table 1 and the learning curves.
   const auto table = run_bsg("table " + out.string());
@@ -297,18 +297,18 @@ TEST(Sweep, AFailedRunIsReportedWithItsLogAndTheExitCodeSaysSo) {
   const OneRunSweep sweep;
   const fs::path& run_dir = sweep.run_dir;
   bsg::RunConfig config =
-      bsg::resolve_grid_run(sweep.run, kSource / "configs", sweep.grid.string());
-  bsg::write_run_config(config, bsg::RunDirectory(run_dir).config());
-  std::ofstream(bsg::RunDirectory(run_dir).checkpoint()) << "not a checkpoint";
+      bsg::experiments::resolve_grid_run(sweep.run, kSource / "configs", sweep.grid.string());
+  bsg::write_run_config(config, bsg::algos::RunDirectory(run_dir).config());
+  std::ofstream(bsg::algos::RunDirectory(run_dir).checkpoint()) << "not a checkpoint";
 
   const auto result = run_bsg(sweep.command());
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_NE(result.output.find("FAILED SafetyBallCircle-v0/trpo/default/seed=7: exit code 1; log: " +
-                               (run_dir / bsg::kSweepRunLogName).string()),
+                               (run_dir / bsg::experiments::kSweepRunLogName).string()),
             std::string::npos)
       << result.output;
   EXPECT_NE(result.output.find("1 of 1 runs failed"), std::string::npos) << result.output;
-  EXPECT_NE(read_text_file(run_dir / bsg::kSweepRunLogName).find("checkpoint"), std::string::npos);
+  EXPECT_NE(read_text_file(run_dir / bsg::experiments::kSweepRunLogName).find("checkpoint"), std::string::npos);
 }
 
 TEST(Sweep, RunsWithoutEvaluationEpisodesFinishAndTheTableCountsThemMissing) {
@@ -325,10 +325,10 @@ TEST(Sweep, RunsWithoutEvaluationEpisodesFinishAndTheTableCountsThemMissing) {
   const auto first = run_bsg(sweep);
   ASSERT_EQ(first.exit_code, 0) << first.output;
   const fs::path run_dir = out / "SafetyBallCircle-v0" / "trpo" / "default" / "seed=7";
-  const std::string evaluation = read_text_file(bsg::RunDirectory(run_dir).evaluation());
+  const std::string evaluation = read_text_file(bsg::algos::RunDirectory(run_dir).evaluation());
   EXPECT_NE(evaluation.find("\"episodes\": 0"), std::string::npos) << evaluation;
   EXPECT_NE(evaluation.find("\"mean_return\": null"), std::string::npos) << evaluation;
-  EXPECT_EQ(bsg::logged_epochs(bsg::RunDirectory(run_dir)), 1);
+  EXPECT_EQ(bsg::experiments::logged_epochs(bsg::algos::RunDirectory(run_dir)), 1);
 
   const auto again = run_bsg(sweep);
   EXPECT_EQ(again.exit_code, 0) << again.output;
@@ -344,9 +344,9 @@ TEST(Sweep, RunsWithoutEvaluationEpisodesFinishAndTheTableCountsThemMissing) {
 TEST(Sweep, ARunDirectoryOfAnotherConfigurationIsNotTouched) {
   const OneRunSweep sweep;
   bsg::RunConfig config =
-      bsg::resolve_grid_run(sweep.run, kSource / "configs", sweep.grid.string());
+      bsg::experiments::resolve_grid_run(sweep.run, kSource / "configs", sweep.grid.string());
   config.epochs = 2;
-  bsg::write_run_config(config, bsg::RunDirectory(sweep.run_dir).config());
+  bsg::write_run_config(config, bsg::algos::RunDirectory(sweep.run_dir).config());
 
   const auto result = run_bsg(sweep.command());
   EXPECT_EQ(result.exit_code, 1) << result.output;
@@ -376,14 +376,14 @@ TEST(Sweep, ARunLockedByAnotherProcessIsWaitedForNotStartedTwice) {
                                      holder + ") still runs it"),
             std::string::npos)
       << read_text_file(log);
-  EXPECT_FALSE(fs::exists(bsg::RunDirectory(run_dir).progress())) << "not started while the lock is held";
+  EXPECT_FALSE(fs::exists(bsg::algos::RunDirectory(run_dir).progress())) << "not started while the lock is held";
   close(fd);  // that process has ended, unfinished: the sweep starts the run
   int status = 0;
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << read_text_file(log);
   const auto events = events_from(sweep.out, 0);
   const std::string name = sweep.run.relative_dir().generic_string();
-  ASSERT_EQ(events.size(), 4u) << read_text_file(sweep.out / bsg::kSweepEventsName);
+  ASSERT_EQ(events.size(), 4u) << read_text_file(sweep.out / bsg::experiments::kSweepEventsName);
   EXPECT_EQ(events[0], std::make_pair(std::string("waiting"), name));
   EXPECT_EQ(events[1], std::make_pair(std::string("interrupted"), name));
   EXPECT_EQ(events[2], std::make_pair(std::string("start"), name));

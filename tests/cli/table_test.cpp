@@ -37,13 +37,13 @@ const char* const kGrid =
 
 // Writes a finished run of `runs` below `sweep_dir`: config.yaml,
 // evaluation.json, returns.csv.
-void finish_run(const fs::path& sweep_dir, const std::vector<bsg::GridRun>& runs, const std::string& relative_dir,
+void finish_run(const fs::path& sweep_dir, const std::vector<bsg::experiments::GridRun>& runs, const std::string& relative_dir,
                 std::vector<double> returns, double mean_cost) {
-    for (const bsg::GridRun& run : runs) {
+    for (const bsg::experiments::GridRun& run : runs) {
       if (run.relative_dir().generic_string() != relative_dir) continue;
-      const bsg::RunDirectory directory(sweep_dir / run.relative_dir());
+      const bsg::algos::RunDirectory directory(sweep_dir / run.relative_dir());
       fs::create_directories(directory.root);
-      bsg::write_run_config(bsg::resolve_grid_run(run, kConfigs, "hand-made grid"), directory.config());
+      bsg::write_run_config(bsg::experiments::resolve_grid_run(run, kConfigs, "hand-made grid"), directory.config());
       double sum = 0;
       std::string lines;
       for (const double value : returns) {
@@ -62,8 +62,8 @@ void finish_run(const fs::path& sweep_dir, const std::vector<bsg::GridRun>& runs
 class HandMadeSweep : public ::testing::Test {
  protected:
   void SetUp() override {
-    runs_ = bsg::expand_grid(bsg::parse_grid(kGrid, "hand-made grid"));
-    bsg::write_sweep_manifest(dir_.path(), runs_);
+    runs_ = bsg::experiments::expand_grid(bsg::experiments::parse_grid(kGrid, "hand-made grid"));
+    bsg::experiments::write_sweep_manifest(dir_.path(), runs_);
   }
 
   void finish(const std::string& relative_dir, std::vector<double> returns, double mean_cost) {
@@ -71,7 +71,7 @@ class HandMadeSweep : public ::testing::Test {
   }
 
   TemporaryDirectory dir_;
-  std::vector<bsg::GridRun> runs_;
+  std::vector<bsg::experiments::GridRun> runs_;
 };
 
 TEST_F(HandMadeSweep, SelectsFeasibleBestFallsBackToLowestViolationAndShowsMissingRuns) {
@@ -146,8 +146,8 @@ TEST_F(HandMadeSweep, MeanMinusStdPrefersTheSteadierConfiguration) {
 TEST_F(HandMadeSweep, RunDirectoriesWithoutAManifestAreFoundByTheirFiles) {
   finish("SafetyBallCircle-v0/trpo/target_kl=0.01/seed=0", {100}, 10);
   finish("SafetyBallCircle-v0/cpo/lam_c=0.9/seed=1", {50}, 10);
-  fs::remove(dir_.path() / bsg::kSweepManifestName);
-  const std::vector<bsg::ConfigurationResults> results = bsg::load_sweep_results(dir_.path(), false);
+  fs::remove(dir_.path() / bsg::experiments::kSweepManifestName);
+  const std::vector<bsg::experiments::ConfigurationResults> results = bsg::experiments::load_sweep_results(dir_.path(), false);
   ASSERT_EQ(results.size(), 2u);
   EXPECT_EQ(results[0].config_name, "lam_c=0.9");
   EXPECT_EQ(results[0].alg, bsg::Algorithm::cpo);
@@ -174,9 +174,9 @@ TEST(Table, PidRunsFormTheirOwnColumnEvenBeforeAnyHasStarted) {
   const std::string grid =
       "envs: [SafetyBallCircle-v0]\nseeds: [0]\nalgorithms:\n"
       "  lag-trpo: {fixed: {lambda_optimizer: PID}, axes: {pid_kp: [0.1, 0.5]}}\n";
-  const std::vector<bsg::GridRun> runs = bsg::expand_grid(bsg::parse_grid(grid, "pid grid"));
-  bsg::write_sweep_manifest(sweep.path(), runs);
-  bsg::testing::write_text_file(sweep.path() / bsg::kSweepGridCopyName, grid);
+  const std::vector<bsg::experiments::GridRun> runs = bsg::experiments::expand_grid(bsg::experiments::parse_grid(grid, "pid grid"));
+  bsg::experiments::write_sweep_manifest(sweep.path(), runs);
+  bsg::testing::write_text_file(sweep.path() / bsg::experiments::kSweepGridCopyName, grid);
 
   auto result = run_bsg("table " + sweep.path().string());  // nothing has run yet
   ASSERT_EQ(result.exit_code, 0) << result.output;
@@ -196,15 +196,15 @@ TEST(Table, SeveralSweepsMakeOneTableWrittenToOutput) {
   const TemporaryDirectory root;
   const fs::path report = root.path() / "report";
   const fs::path pid = root.path() / "pid";
-  const std::vector<bsg::GridRun> report_runs = bsg::expand_grid(bsg::parse_grid(
+  const std::vector<bsg::experiments::GridRun> report_runs = bsg::experiments::expand_grid(bsg::experiments::parse_grid(
       "envs: [SafetyBallCircle-v0]\nseeds: [0]\nalgorithms:\n  trpo:\n  lag-trpo:\n", "report grid"));
-  const std::vector<bsg::GridRun> pid_runs = bsg::expand_grid(bsg::parse_grid(
+  const std::vector<bsg::experiments::GridRun> pid_runs = bsg::experiments::expand_grid(bsg::experiments::parse_grid(
       "envs: [SafetyBallCircle-v0]\nseeds: [0]\nalgorithms:\n  lag-trpo: {fixed: {lambda_optimizer: PID}}\n",
       "pid grid"));
   fs::create_directories(report);
   fs::create_directories(pid);
-  bsg::write_sweep_manifest(report, report_runs);
-  bsg::write_sweep_manifest(pid, pid_runs);
+  bsg::experiments::write_sweep_manifest(report, report_runs);
+  bsg::experiments::write_sweep_manifest(pid, pid_runs);
   finish_run(report, report_runs, "SafetyBallCircle-v0/trpo/default/seed=0", {100}, 50);
   finish_run(report, report_runs, "SafetyBallCircle-v0/lag-trpo/default/seed=0", {60}, 30);
   finish_run(pid, pid_runs, "SafetyBallCircle-v0/lag-trpo/default/seed=0", {70}, 24);
@@ -236,13 +236,13 @@ TEST(Table, CorrectedLearnerSweepsGiveColumnsBesideTheFaithfulOnes) {
   const fs::path corrected = root.path() / "corrected";
   const std::string algorithms = "envs: [SafetyBallRun-v0]\nseeds: [0]\nalgorithms:\n  trpo:\n  lag-trpo:\n";
   const std::string corrected_grid = algorithms + "fixed: {learner: corrected}\n";
-  const std::vector<bsg::GridRun> faithful_runs = bsg::expand_grid(bsg::parse_grid(algorithms, "faithful grid"));
-  const std::vector<bsg::GridRun> corrected_runs = bsg::expand_grid(bsg::parse_grid(corrected_grid, "corrected grid"));
+  const std::vector<bsg::experiments::GridRun> faithful_runs = bsg::experiments::expand_grid(bsg::experiments::parse_grid(algorithms, "faithful grid"));
+  const std::vector<bsg::experiments::GridRun> corrected_runs = bsg::experiments::expand_grid(bsg::experiments::parse_grid(corrected_grid, "corrected grid"));
   fs::create_directories(faithful);
   fs::create_directories(corrected);
-  bsg::write_sweep_manifest(faithful, faithful_runs);
-  bsg::write_sweep_manifest(corrected, corrected_runs);
-  bsg::testing::write_text_file(corrected / bsg::kSweepGridCopyName, corrected_grid);
+  bsg::experiments::write_sweep_manifest(faithful, faithful_runs);
+  bsg::experiments::write_sweep_manifest(corrected, corrected_runs);
+  bsg::testing::write_text_file(corrected / bsg::experiments::kSweepGridCopyName, corrected_grid);
   finish_run(faithful, faithful_runs, "SafetyBallRun-v0/trpo/default/seed=0", {400}, 230);
   finish_run(faithful, faithful_runs, "SafetyBallRun-v0/lag-trpo/default/seed=0", {100}, 60);
   finish_run(corrected, corrected_runs, "SafetyBallRun-v0/trpo/default/seed=0", {2000}, 230);

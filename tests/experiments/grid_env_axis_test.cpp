@@ -9,7 +9,7 @@
 
 #include "experiments/grid_expansion.h"
 
-namespace bsg {
+namespace bsg::experiments {
 namespace {
 
 const std::filesystem::path kConfigs = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
@@ -30,4 +30,4 @@ TEST(GridEnvAxis, EachValueIsOneRunWithThatEnvironmentParameter) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::experiments

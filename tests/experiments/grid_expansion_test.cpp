@@ -12,7 +12,7 @@
 
 #include "common/config_error.h"
 
-namespace bsg {
+namespace bsg::experiments {
 namespace {
 
 const std::filesystem::path kConfigs = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
@@ -184,4 +184,4 @@ TEST(GridExpansion, TheQuickGridIsTwoConfigurationsTimesTwoSeeds) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::experiments

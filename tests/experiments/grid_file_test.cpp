@@ -12,7 +12,7 @@
 #include "../test_support.h"
 #include "common/config_error.h"
 
-namespace bsg {
+namespace bsg::experiments {
 namespace {
 
 using testing::contains;
@@ -184,4 +184,4 @@ TEST(GridFile, LoadsAFile) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::experiments

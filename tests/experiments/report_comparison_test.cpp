@@ -15,10 +15,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kReport = fs::path(BSG_SOURCE_DIR) / "configs" / bsg::kReportTable1File;
+const fs::path kReport = fs::path(BSG_SOURCE_DIR) / "configs" / bsg::experiments::kReportTable1File;
 
-bsg::Table1Cell cell(bsg::Algorithm alg, double mean_return, double mean_cost) {
-  bsg::Table1Cell c;
+bsg::experiments::Table1Cell cell(bsg::Algorithm alg, double mean_return, double mean_cost) {
+  bsg::experiments::Table1Cell c;
   c.alg = alg;
   c.selected = true;
   c.score.mean_return = mean_return;
@@ -29,7 +29,7 @@ bsg::Table1Cell cell(bsg::Algorithm alg, double mean_return, double mean_cost) {
 }  // namespace
 
 TEST(ReportTable1, TheShippedTranscriptionHasEveryCellAndTheReportsValues) {
-  const bsg::ReportTable1 report = bsg::load_report_table1(kReport);
+  const bsg::experiments::ReportTable1 report = bsg::experiments::load_report_table1(kReport);
   EXPECT_EQ(report.size(), 80u);  // 16 environments x 5 algorithms
   EXPECT_DOUBLE_EQ(report.at({"SafetyAntRun-v0", "trpo"}).h_ratio, 38.9);
   EXPECT_DOUBLE_EQ(report.at({"SafetyCarReach-v0", "pcpo"}).j_ratio, 0.00);
@@ -41,20 +41,20 @@ TEST(ReportTable1, TheShippedTranscriptionHasEveryCellAndTheReportsValues) {
 }
 
 TEST(ReportTable1, EachCellBesideTheReportsAndTheDifference) {
-  bsg::Table1 table;
+  bsg::experiments::Table1 table;
   table.columns = {{bsg::Algorithm::trpo, false}, {bsg::Algorithm::lag_trpo, false}};
-  bsg::Table1Row row;
+  bsg::experiments::Table1Row row;
   row.env_id = "SafetyBallCircle-v0";
   row.cost_limit = 25.0;
   row.cells = {cell(bsg::Algorithm::trpo, 100.0, 50.0), cell(bsg::Algorithm::lag_trpo, 48.0, 20.0)};
   table.rows.push_back(row);
-  const bsg::ReportTable1 report = bsg::load_report_table1(kReport);
+  const bsg::experiments::ReportTable1 report = bsg::experiments::load_report_table1(kReport);
   // TRPO: J 1 vs 1.00, H 50/25 = 2 vs 3.19; TRPO-L: 0.48 vs 0.96, 0.8 vs 0.97.
-  EXPECT_EQ(bsg::comparison_csv(table, report),
+  EXPECT_EQ(bsg::experiments::comparison_csv(table, report),
             "env_id,alg,ours_j_ratio,report_j_ratio,j_ratio_diff,ours_h_ratio,report_h_ratio,h_ratio_diff\n"
             "SafetyBallCircle-v0,trpo,1,1,0,2,3.19,-1.19\n"
             "SafetyBallCircle-v0,lag-trpo,0.48,0.96,-0.48,0.8,0.97,-0.17\n");
-  const std::string markdown = bsg::comparison_markdown(table, report);
+  const std::string markdown = bsg::experiments::comparison_markdown(table, report);
   EXPECT_NE(markdown.find("| BallCircle | J/J_TRPO | 1.00 / 1.00 (+0.00) | 0.48 / 0.96 (-0.48) |"), std::string::npos)
       << markdown;
   EXPECT_NE(markdown.find("|  | H/d | 2.00 / 3.19 (-1.19) | 0.80 / 0.97 (-0.17) |"), std::string::npos) << markdown;
@@ -65,7 +65,7 @@ TEST(ReportTable1, AMalformedFileIsNamedWithItsLine) {
   const fs::path path = temp.path() / "t.csv";
   std::ofstream(path) << "# comment\nenv_id,alg,j_ratio,h_ratio\nSafetyBallCircle-v0,trpo,1.00,x\n";
   try {
-    bsg::load_report_table1(path);
+    bsg::experiments::load_report_table1(path);
     FAIL() << "no error";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace bsg {
+namespace bsg::experiments {
 namespace {
 
 SeedResult seed(std::int64_t s, double j, double h, std::vector<double> returns = {}) {
@@ -125,4 +125,4 @@ TEST(Selection, ScoreNamesParse) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -13,7 +13,7 @@
 #include "experiments/table1.h"
 #include "experiments/table1_render.h"
 
-namespace bsg {
+namespace bsg::experiments {
 namespace {
 
 ConfigurationResults two_constraint_configuration(std::vector<std::vector<double>> seed_costs) {
@@ -62,7 +62,7 @@ TEST(SeveralConstraintsSelection, EvaluationJsonConstraintsAreRead) {
       "  \"cumulative_cost\": 30,\n  \"cost_rate\": 0.25,\n  \"constraints\": [\n"
       "    {\"terms\": [\"a\"], \"limit\": 20, \"mean_cost\": 3.5, \"holds\": true},\n"
       "    {\"terms\": \"all\", \"limit\": 5, \"mean_cost\": null, \"holds\": null}\n  ]\n}\n");
-  const std::optional<RecordedEvaluation> evaluation = read_run_evaluation(RunDirectory(dir.path()));
+  const std::optional<RecordedEvaluation> evaluation = read_run_evaluation(algos::RunDirectory(dir.path()));
   ASSERT_TRUE(evaluation.has_value());
   EXPECT_EQ(evaluation->cost_rate, 0.25);
   ASSERT_EQ(evaluation->constraint_costs.size(), 2u);
@@ -86,4 +86,4 @@ TEST(SeveralConstraintsSelection, TheCostRateMetricShowsTheTrainingCostRateBesid
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::experiments

@@ -16,8 +16,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bsg::SlurmScriptInput example_input() {
-  bsg::SlurmScriptInput input;
+bsg::experiments::SlurmScriptInput example_input() {
+  bsg::experiments::SlurmScriptInput input;
   input.job_name = "bsg-quick";
   input.sweep_dir = "/data/sweeps/quick";
   input.bsg_program = "/opt/bsg/bin/bsg";
@@ -36,17 +36,17 @@ bool has_line(const std::string& text, const std::string& line) {
 }  // namespace
 
 TEST(SlurmArraySpec, RangesOfConsecutiveTasksThenTheThrottle) {
-  EXPECT_EQ(bsg::slurm_array_spec({0, 1, 2, 5, 7, 8}, 4), "0-2,5,7-8%4");
-  EXPECT_EQ(bsg::slurm_array_spec({3}, 0), "3");
-  EXPECT_EQ(bsg::slurm_array_spec({0, 2, 4}, 1), "0,2,4%1");
+  EXPECT_EQ(bsg::experiments::slurm_array_spec({0, 1, 2, 5, 7, 8}, 4), "0-2,5,7-8%4");
+  EXPECT_EQ(bsg::experiments::slurm_array_spec({3}, 0), "3");
+  EXPECT_EQ(bsg::experiments::slurm_array_spec({0, 2, 4}, 1), "0,2,4%1");
 }
 
 TEST(SlurmScript, HasTheDirectivesSbatchReadsBeforeTheFirstCommand) {
-  bsg::SlurmScriptInput input = example_input();
+  bsg::experiments::SlurmScriptInput input = example_input();
   input.job.partition = "short";
   input.job.time_limit = "02:00:00";
   input.job.sbatch_args = {"--account=abc", "--mem-per-cpu=2G"};
-  const std::string script = bsg::slurm_array_script(input);
+  const std::string script = bsg::experiments::slurm_array_script(input);
   EXPECT_EQ(script.rfind("#!/bin/bash\n", 0), 0u);
   for (const std::string line :
        {"#SBATCH --job-name=bsg-quick", "#SBATCH --array=0,2%8", "#SBATCH --ntasks=1", "#SBATCH --partition=short",
@@ -67,16 +67,16 @@ TEST(SlurmScript, HasTheDirectivesSbatchReadsBeforeTheFirstCommand) {
 }
 
 TEST(SlurmScript, WithoutPartitionOrTimeTheClusterDefaultsApply) {
-  const std::string script = bsg::slurm_array_script(example_input());
+  const std::string script = bsg::experiments::slurm_array_script(example_input());
   EXPECT_EQ(script.find("--partition"), std::string::npos);
   EXPECT_EQ(script.find("--time"), std::string::npos);
 }
 
 TEST(SlurmScript, KRanksPerRunAskForKTasksAndRunMpirunInsideTheAllocation) {
-  bsg::SlurmScriptInput input = example_input();
+  bsg::experiments::SlurmScriptInput input = example_input();
   input.job.ranks_per_run = 4;
   input.allow_mpi_as_root = true;
-  const std::string script = bsg::slurm_array_script(input);
+  const std::string script = bsg::experiments::slurm_array_script(input);
   EXPECT_TRUE(has_line(script, "#SBATCH --ntasks=4"));
   EXPECT_TRUE(has_line(script, "set -- mpirun -np \"$SLURM_NTASKS\" \"$@\""));
   EXPECT_NE(script.find("OMPI_ALLOW_RUN_AS_ROOT=1"), std::string::npos);
@@ -84,46 +84,46 @@ TEST(SlurmScript, KRanksPerRunAskForKTasksAndRunMpirunInsideTheAllocation) {
 }
 
 TEST(SlurmScript, PathsWithSpacesAreQuotedForBash) {
-  bsg::SlurmScriptInput input = example_input();
+  bsg::experiments::SlurmScriptInput input = example_input();
   input.sweep_dir = "/data/my sweeps/quick";
-  const std::string script = bsg::slurm_array_script(input);
+  const std::string script = bsg::experiments::slurm_array_script(input);
   EXPECT_TRUE(has_line(script, "sweep='/data/my sweeps/quick'")) << script;
 }
 
 TEST(SlurmScript, NoTaskIsAnError) {
-  bsg::SlurmScriptInput input = example_input();
+  bsg::experiments::SlurmScriptInput input = example_input();
   input.array_tasks.clear();
-  EXPECT_THROW(bsg::slurm_array_script(input), std::invalid_argument);
+  EXPECT_THROW(bsg::experiments::slurm_array_script(input), std::invalid_argument);
 }
 
 TEST(Squeue, ArrayTasksAreQueuedOrRunningAndEndedStatesAreLeftOut) {
-  const auto tasks = bsg::parse_squeue_tasks(
+  const auto tasks = bsg::experiments::parse_squeue_tasks(
       "17_0|RUNNING\n17_1|PENDING\n17_2|COMPLETING\n18_0|REQUEUED\n18_1|CANCELLED\n19|RUNNING\ngarbage\n");
   ASSERT_EQ(tasks.size(), 5u);
-  EXPECT_EQ(tasks.at("17_0"), bsg::SlurmTaskState::running);
-  EXPECT_EQ(tasks.at("17_1"), bsg::SlurmTaskState::queued);
-  EXPECT_EQ(tasks.at("17_2"), bsg::SlurmTaskState::running);
-  EXPECT_EQ(tasks.at("18_0"), bsg::SlurmTaskState::queued);
+  EXPECT_EQ(tasks.at("17_0"), bsg::experiments::SlurmTaskState::running);
+  EXPECT_EQ(tasks.at("17_1"), bsg::experiments::SlurmTaskState::queued);
+  EXPECT_EQ(tasks.at("17_2"), bsg::experiments::SlurmTaskState::running);
+  EXPECT_EQ(tasks.at("18_0"), bsg::experiments::SlurmTaskState::queued);
   EXPECT_EQ(tasks.count("18_1"), 0u);
 }
 
 TEST(SlurmRecords, AppendedRecordsReadBackAndTheLatestPerRunWins) {
   bsg::testing::TemporaryDirectory temp;
-  bsg::append_slurm_records(temp.path(), {{"17", 0, "A/trpo/x=1,y=2/seed=0"}, {"17", 1, "A/trpo/x=1,y=2/seed=1"}});
-  bsg::append_slurm_records(temp.path(), {{"21", 1, "A/trpo/x=1,y=2/seed=1"}});
-  const auto records = bsg::read_slurm_records(temp.path());
+  bsg::experiments::append_slurm_records(temp.path(), {{"17", 0, "A/trpo/x=1,y=2/seed=0"}, {"17", 1, "A/trpo/x=1,y=2/seed=1"}});
+  bsg::experiments::append_slurm_records(temp.path(), {{"21", 1, "A/trpo/x=1,y=2/seed=1"}});
+  const auto records = bsg::experiments::read_slurm_records(temp.path());
   ASSERT_EQ(records.size(), 3u);
   EXPECT_EQ(records[0].run_dir, fs::path("A/trpo/x=1,y=2/seed=0"));
-  const auto latest = bsg::latest_record_per_run(records);
+  const auto latest = bsg::experiments::latest_record_per_run(records);
   EXPECT_EQ(latest.at("A/trpo/x=1,y=2/seed=1").task_id(), "21_1");
   EXPECT_EQ(latest.at("A/trpo/x=1,y=2/seed=0").task_id(), "17_0");
 }
 
 TEST(SlurmRecords, AMalformedLineIsNamed) {
   bsg::testing::TemporaryDirectory temp;
-  std::ofstream(temp.path() / bsg::kSlurmJobsName) << "job_id,task,run_dir\n17,x,A\n";
+  std::ofstream(temp.path() / bsg::experiments::kSlurmJobsName) << "job_id,task,run_dir\n17,x,A\n";
   try {
-    bsg::read_slurm_records(temp.path());
+    bsg::experiments::read_slurm_records(temp.path());
     FAIL() << "no error";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();

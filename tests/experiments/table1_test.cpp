@@ -12,7 +12,7 @@
 #include "common/csv_text.h"
 #include "experiments/table1_render.h"
 
-namespace bsg {
+namespace bsg::experiments {
 namespace {
 
 using testing::contains;
@@ -241,4 +241,4 @@ TEST(Table1, FirstOrderColumnsCppoPidAndPpoAsAnUnconstrainedColumn) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::experiments

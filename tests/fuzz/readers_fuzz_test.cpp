@@ -75,7 +75,7 @@ bsg::RunConfig small_config() {
 std::string progress_log(int epochs, double elapsed, long long steps_per_epoch) {
   const bsg::RunConfig config = small_config();
   const std::vector<std::string> columns =
-      bsg::epoch_log_columns(bsg::epoch_log_layout(config, *bsg::make_algorithm(config)));
+      bsg::algos::epoch_log_columns(bsg::algos::epoch_log_layout(config, *bsg::algos::make_algorithm(config)));
   std::string text;
   for (std::size_t i = 0; i < columns.size(); ++i) text += (i > 0 ? "," : "") + columns[i];
   text += "\n";
@@ -84,9 +84,9 @@ std::string progress_log(int epochs, double elapsed, long long steps_per_epoch) 
       const std::string& column = columns[i];
       const std::string value = column == "epoch"             ? std::to_string(k)
                                 : column == "total_env_steps" ? std::to_string((k + 1) * steps_per_epoch)
-                                : column == "time_s"  ? bsg::format_csv_number(k == epochs - 1 ? elapsed : 0.5 * (k + 1))
+                                : column == "time_s"  ? bsg::algos::format_csv_number(k == epochs - 1 ? elapsed : 0.5 * (k + 1))
                                 : column == "fps"     ? std::string("nan")
-                                                      : bsg::format_csv_number(-3.25 + k * 1.5 + 0.0071 * static_cast<double>(i));
+                                                      : bsg::algos::format_csv_number(-3.25 + k * 1.5 + 0.0071 * static_cast<double>(i));
       text += (i > 0 ? "," : "") + value;
     }
     text += "\n";
@@ -107,10 +107,10 @@ TEST(ReadersFuzz, AMutatedProgressLogIsAnErrorOrRestoredToTheCheckpointsRecord) 
     write_text_file(path, mutated);
     // Odd inputs: a format-1 checkpoint without a record (only the checks of the log itself).
     const bool recorded = i % 2 == 0;
-    const bsg::ProgressResume resume{6, recorded ? std::optional<std::string>(original) : std::nullopt, 400, nullptr};
+    const bsg::algos::ProgressResume resume{6, recorded ? std::optional<std::string>(original) : std::nullopt, 400, nullptr};
     try {
-      bsg::ProgressCsv::resume(path, resume);
-    } catch (const std::runtime_error& e) {  // ProgressLogError or rows missing
+      bsg::algos::ProgressCsv::resume(path, resume);
+    } catch (const std::runtime_error& e) {  // algos::ProgressLogError or rows missing
       ++counts.clean_errors;
       EXPECT_TRUE(printable(e.what()));
       EXPECT_EQ(read_text_file(path), mutated) << "a refused log is left as it was";
@@ -122,7 +122,7 @@ TEST(ReadersFuzz, AMutatedProgressLogIsAnErrorOrRestoredToTheCheckpointsRecord) 
     } else {
       // Without a record only a mutation of a value into another number (or
       // of the torn tail) can pass; every kept row is well formed.
-      const bsg::ProgressLogText kept = bsg::read_progress_log(read_text_file(path), "kept", 400);
+      const bsg::algos::ProgressLogText kept = bsg::algos::read_progress_log(read_text_file(path), "kept", 400);
       EXPECT_EQ(kept.rows.size(), 6u);
       EXPECT_TRUE(kept.torn_tail.empty());
     }
@@ -133,14 +133,14 @@ TEST(ReadersFuzz, AMutatedProgressLogIsAnErrorOrRestoredToTheCheckpointsRecord) 
 
 // The header, the row count and each row's epoch, total_env_steps and time_s.
 void expect_same_log_shape(const std::string& got, const std::string& original) {
-  const bsg::ProgressLogText got_log = bsg::read_progress_log(got, "got", 0);
-  const bsg::ProgressLogText original_log = bsg::read_progress_log(original, "original", 0);
+  const bsg::algos::ProgressLogText got_log = bsg::algos::read_progress_log(got, "got", 0);
+  const bsg::algos::ProgressLogText original_log = bsg::algos::read_progress_log(original, "original", 0);
   ASSERT_EQ(got_log.header, original_log.header);
   ASSERT_EQ(got_log.rows.size(), original_log.rows.size());
-  const std::vector<std::string> columns = bsg::split_csv_line(original_log.header);
+  const std::vector<std::string> columns = bsg::algos::split_csv_line(original_log.header);
   for (std::size_t row = 0; row < got_log.rows.size(); ++row) {
-    const std::vector<std::string> got_fields = bsg::split_csv_line(got_log.rows[row]);
-    const std::vector<std::string> original_fields = bsg::split_csv_line(original_log.rows[row]);
+    const std::vector<std::string> got_fields = bsg::algos::split_csv_line(got_log.rows[row]);
+    const std::vector<std::string> original_fields = bsg::algos::split_csv_line(original_log.rows[row]);
     for (std::size_t i = 0; i < columns.size(); ++i) {
       if (columns[i] == "epoch" || columns[i] == "total_env_steps" || columns[i] == "time_s") {
         EXPECT_EQ(got_fields[i], original_fields[i]) << columns[i] << " of row " << row;
@@ -152,10 +152,10 @@ void expect_same_log_shape(const std::string& got, const std::string& original) 
 TEST(ReadersFuzz, AMutatedCheckpointIsAnErrorOrHoldsTheOriginalFields) {
   const bsg::RunConfig config = small_config();
   bsg::Rng rng_init(5);
-  bsg::ActorCritic saved(7, 2, config, rng_init);
-  auto algorithm = bsg::make_algorithm(config);
-  const bsg::TrainingProgress progress{6, 4.75, 2, progress_log(6, 4.75, config.steps_per_epoch)};
-  const std::string payload = bsg::encode_training_checkpoint(config, progress, saved, *algorithm);
+  bsg::algos::ActorCritic saved(7, 2, config, rng_init);
+  auto algorithm = bsg::algos::make_algorithm(config);
+  const bsg::algos::TrainingProgress progress{6, 4.75, 2, progress_log(6, 4.75, config.steps_per_epoch)};
+  const std::string payload = bsg::algos::encode_training_checkpoint(config, progress, saved, *algorithm);
   const std::string file = bsg::encode_checkpoint_file(payload);
   // The seed of the libFuzzer checkpoint target (tests/fuzz/libfuzzer/run_libfuzzer.sh).
   if (const char* corpus = std::getenv("BSG_FUZZ_CHECKPOINT_SEED")) write_text_file(corpus, payload);
@@ -165,8 +165,8 @@ TEST(ReadersFuzz, AMutatedCheckpointIsAnErrorOrHoldsTheOriginalFields) {
   Counts payload_counts;
   for (int i = 0; i < 6000; ++i) {
     bsg::Rng rng_load(9);
-    bsg::ActorCritic loaded(7, 2, config, rng_load);
-    auto loaded_algorithm = bsg::make_algorithm(config);
+    bsg::algos::ActorCritic loaded(7, 2, config, rng_load);
+    auto loaded_algorithm = bsg::algos::make_algorithm(config);
     // Even inputs: the file's bytes (the checksum must catch every change).
     // Odd inputs: the payload, checksummed again, so that the field checks
     // behind the checksum are reached.
@@ -178,7 +178,7 @@ TEST(ReadersFuzz, AMutatedCheckpointIsAnErrorOrHoldsTheOriginalFields) {
     try {
       const bsg::CheckpointContents contents =
           bsg::decode_checkpoint_contents(whole_file ? mutated : bsg::encode_checkpoint_file(mutated), "fuzz.bin");
-      const bsg::TrainingProgress got = bsg::decode_training_checkpoint(contents.payload, "fuzz.bin", config, loaded,
+      const bsg::algos::TrainingProgress got = bsg::algos::decode_training_checkpoint(contents.payload, "fuzz.bin", config, loaded,
                                                                         *loaded_algorithm, contents.format_version);
       ++counts.accepted;
       EXPECT_FALSE(whole_file) << "the checksum let a changed file through";
@@ -191,7 +191,7 @@ TEST(ReadersFuzz, AMutatedCheckpointIsAnErrorOrHoldsTheOriginalFields) {
       // time columns are the original's.
       expect_same_log_shape(got.progress_log.value_or(""), *progress.progress_log);
       EXPECT_GE(got.num_ranks, 1);
-      EXPECT_LE(got.num_ranks, bsg::kMaxCheckpointRanks);
+      EXPECT_LE(got.num_ranks, bsg::algos::kMaxCheckpointRanks);
     } catch (const bsg::CheckpointError& e) {
       ++counts.clean_errors;
       EXPECT_NE(std::string(e.what()).find("fuzz.bin"), std::string::npos) << e.what();

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 TEST(AdvantageNormalization, CenteringSubtractsEachMeanAndKeepsTheScale) {
@@ -42,4 +42,4 @@ TEST(AdvantageNormalization, StandardizingDividesTheRewardsByTheirStdAndOnlyCent
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 // The original's test path (docs/algorithms.md#test-oracles): rewards = values = linspace(0, 1, 15), gamma 0.95, lambda 0.97.
@@ -125,4 +125,4 @@ TEST(Buffer, BadInputGivesExceptions) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

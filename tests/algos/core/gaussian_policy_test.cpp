@@ -7,7 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 TEST(GaussianPolicy, AnnealedStdFollowsTheOriginalSchedule) {
@@ -146,4 +146,4 @@ TEST(GaussianPolicy, WrongSizesGiveExceptions) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -23,7 +23,7 @@
 #include "algos/training/trainer.h"
 #include "../scripted_env.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::SyntheticBatch;
@@ -306,4 +306,4 @@ TEST(LearnedLogStd, ResumingContinuesWithTheSameNumbers) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -11,7 +11,7 @@
 
 #include "tests/heap_counter.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::allocations_of;
@@ -60,4 +60,4 @@ INSTANTIATE_TEST_SUITE_P(PolicySizes, NoAllocation,
                          ::testing::Values(std::pair<int, int>{8, 2}, std::pair<int, int>{83, 8}));
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -8,7 +8,7 @@
 
 #include "../../common/finite_differences.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::finite_difference_gradient;
@@ -102,4 +102,4 @@ TEST(PolicySurrogate, BadInputGivesExceptions) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

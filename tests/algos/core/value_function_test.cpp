@@ -8,7 +8,7 @@
 
 #include "../../common/finite_differences.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 Eigen::MatrixXd random_observations(Eigen::Index n, int d, Rng& rng) {
@@ -157,4 +157,4 @@ TEST(ValueFunction, AFloat32FitFollowsTheFloat64FitClosely) {
   EXPECT_NEAR(stats32.mean_minibatch_loss, stats64.mean_minibatch_loss, 1e-4 * stats64.mean_minibatch_loss);
 }
 
-}  // namespace bsg
+}  // namespace bsg::algos

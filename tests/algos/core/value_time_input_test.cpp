@@ -15,7 +15,7 @@
 #include "common/run_config.h"
 #include "../scripted_env.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::ScriptedEnv;
@@ -157,4 +157,4 @@ TEST(ValueTimeInput, ATrainerFitsSavesAndResumesTheNetsWithTheTimeInput) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

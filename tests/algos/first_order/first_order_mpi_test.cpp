@@ -14,7 +14,7 @@
 #include "algos/training/make_algorithm.h"
 #include "common/mpi_context.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::SyntheticBatch;
@@ -93,4 +93,4 @@ TEST(FirstOrderMpi, RanksWithDifferentDataStayInLockstepOverManyMinibatches) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

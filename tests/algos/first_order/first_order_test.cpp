@@ -18,7 +18,7 @@
 #include "algos/first_order/focops.h"
 #include "algos/first_order/ppo.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::SyntheticBatch;
@@ -440,4 +440,4 @@ TEST(PolicyAdam, StateRoundTripsAndRestoredStepsMatch) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

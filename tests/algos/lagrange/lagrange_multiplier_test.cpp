@@ -9,7 +9,7 @@
 
 #include "common/random.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 TEST(LagrangeMultiplier, SgdOracleOfSection7_2) {
@@ -86,4 +86,4 @@ TEST(LagrangeMultiplier, RestoreRejectsMismatchedState) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

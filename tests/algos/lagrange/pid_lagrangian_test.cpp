@@ -15,7 +15,7 @@
 #include "algos/lagrange/multiplier.h"
 #include "common/random.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 constexpr double kLimit = 25.0;  // d
@@ -257,4 +257,4 @@ TEST(PidLagrangian, BadOptionsAreRejectedNamingTheKey) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

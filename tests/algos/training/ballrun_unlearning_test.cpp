@@ -21,7 +21,7 @@
 #include "common/mpi_context.h"
 #include "common/run_config_resolve.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 constexpr int kEpochs = 12;
@@ -65,4 +65,4 @@ TEST(BallRunUnlearning, TheFaithfulLearnerLosesItsPeakAndTheCorrectedOneKeepsIt)
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -49,44 +49,44 @@ class ActionRecordingEnv : public ScriptedEnv {
 
 TEST(ExplorationStd, TheFloorHoldsSigmaOnceTheScheduleFallsBelowIt) {
   const bsg::RunConfig c = config_of(100, 0.1);
-  EXPECT_NEAR(bsg::exploration_std(c, 0), 0.509, 1e-15);
-  EXPECT_NEAR(bsg::exploration_std(c, 50), 0.2595, 1e-15);
-  EXPECT_NEAR(bsg::exploration_std(c, 80), 0.1098, 1e-15);  // 0.499 * 0.2 + 0.01, above the floor
-  EXPECT_EQ(bsg::exploration_std(c, 90), 0.1);              // 0.0599 < 0.1
-  EXPECT_EQ(bsg::exploration_std(c, 99), 0.1);
-  EXPECT_THROW(bsg::exploration_std(c, 100), std::invalid_argument);
-  EXPECT_THROW(bsg::exploration_std(c, -1), std::invalid_argument);
+  EXPECT_NEAR(bsg::algos::exploration_std(c, 0), 0.509, 1e-15);
+  EXPECT_NEAR(bsg::algos::exploration_std(c, 50), 0.2595, 1e-15);
+  EXPECT_NEAR(bsg::algos::exploration_std(c, 80), 0.1098, 1e-15);  // 0.499 * 0.2 + 0.01, above the floor
+  EXPECT_EQ(bsg::algos::exploration_std(c, 90), 0.1);              // 0.0599 < 0.1
+  EXPECT_EQ(bsg::algos::exploration_std(c, 99), 0.1);
+  EXPECT_THROW(bsg::algos::exploration_std(c, 100), std::invalid_argument);
+  EXPECT_THROW(bsg::algos::exploration_std(c, -1), std::invalid_argument);
 }
 
 TEST(ExplorationStd, WithoutAFloorItIsTheScheduleBitForBit) {
   bsg::RunConfig c = config_of(100, 0.0);
-  for (int k = 0; k < 100; ++k) EXPECT_EQ(bsg::exploration_std(c, k), bsg::GaussianPolicy::annealed_std(k, 100)) << k;
+  for (int k = 0; k < 100; ++k) EXPECT_EQ(bsg::algos::exploration_std(c, k), bsg::algos::GaussianPolicy::annealed_std(k, 100)) << k;
   c.exploration_anneal_epochs = 80;
   for (int k = 0; k < 100; ++k) {
-    EXPECT_EQ(bsg::exploration_std(c, k), bsg::GaussianPolicy::annealed_std(k, 100, 80)) << k;
+    EXPECT_EQ(bsg::algos::exploration_std(c, k), bsg::algos::GaussianPolicy::annealed_std(k, 100, 80)) << k;
   }
   c.use_exploration_noise_anneal = false;
   c.exploration_anneal_epochs = 0;
-  EXPECT_EQ(bsg::exploration_std(c, 37), 0.5);
+  EXPECT_EQ(bsg::algos::exploration_std(c, 37), 0.5);
 }
 
 TEST(ExplorationStd, AFloorAfterAnEarlyEndOfTheAnnealingHoldsTheFloor) {
   bsg::RunConfig c = config_of(100, 0.05);
   c.exploration_anneal_epochs = 80;
-  EXPECT_NEAR(bsg::exploration_std(c, 40), 0.2595, 1e-15);
-  EXPECT_EQ(bsg::exploration_std(c, 80), 0.05);  // the schedule alone would hold 0.01
-  EXPECT_EQ(bsg::exploration_std(c, 99), 0.05);
+  EXPECT_NEAR(bsg::algos::exploration_std(c, 40), 0.2595, 1e-15);
+  EXPECT_EQ(bsg::algos::exploration_std(c, 80), 0.05);  // the schedule alone would hold 0.01
+  EXPECT_EQ(bsg::algos::exploration_std(c, 99), 0.05);
 }
 
 TEST(ExplorationStd, TheLastEpochsSigmaIsSetForTheSampledEvaluation) {
   const bsg::RunConfig c = config_of(100, 0.0);
   bsg::Rng rng(1);
-  bsg::GaussianPolicy policy(3, 2, {4}, rng);
-  bsg::set_last_epoch_std(c, 100, policy);
+  bsg::algos::GaussianPolicy policy(3, 2, {4}, rng);
+  bsg::algos::set_last_epoch_std(c, 100, policy);
   EXPECT_NEAR(policy.std(), 0.499 * 0.01 + 0.01, 1e-15);  // epoch 99 of 100
-  bsg::set_last_epoch_std(c, 0, policy);
+  bsg::algos::set_last_epoch_std(c, 0, policy);
   EXPECT_NEAR(policy.std(), 0.509, 1e-15);
-  bsg::set_last_epoch_std(config_of(100, 0.2), 100, policy);
+  bsg::algos::set_last_epoch_std(config_of(100, 0.2), 100, policy);
   EXPECT_EQ(policy.std(), 0.2);
 }
 
@@ -104,23 +104,23 @@ TEST(Trainer, ASigmaFloorHoldsTheNoiseOfTheLastEpochs) {
 TEST(SampledEvaluation, ActionsAreSigmaTimesTheEvaluationStreamsNormalsAroundAZeroMean) {
   bsg::RunConfig config = scripted_config();
   bsg::Rng init(3);
-  bsg::ActorCritic ac(3, 2, config, init);
+  bsg::algos::ActorCritic ac(3, 2, config, init);
   ac.policy.mean_net().set_parameters(Eigen::VectorXd::Zero(ac.policy.mean_net().num_parameters()));  // mu = 0
   ac.policy.set_std(0.3);
   const std::int64_t seed = 11;
 
   ActionRecordingEnv mean_env(100);
-  const bsg::EvaluationSummary mean =
-      bsg::evaluate_policy(mean_env, ac, 2, seed, 100, bsg::MpiContext::single_process());
+  const bsg::algos::EvaluationSummary mean =
+      bsg::algos::evaluate_policy(mean_env, ac, 2, seed, 100, bsg::MpiContext::single_process());
   ASSERT_EQ(mean_env.actions.size(), 400u);  // 2 episodes x 100 steps x 2 dimensions
   for (double a : mean_env.actions) ASSERT_EQ(a, 0.0);
   EXPECT_EQ(mean.action_std, 0.0);
-  EXPECT_EQ(bsg::evaluation_json(mean, false).find("action_std"), std::string::npos);
+  EXPECT_EQ(bsg::algos::evaluation_json(mean, false).find("action_std"), std::string::npos);
 
   ActionRecordingEnv sampled_env(100);
-  const bsg::EvaluationSummary sampled = bsg::evaluate_policy(sampled_env, ac, 2, seed, 100,
+  const bsg::algos::EvaluationSummary sampled = bsg::algos::evaluate_policy(sampled_env, ac, 2, seed, 100,
                                                               bsg::MpiContext::single_process(), {}, {},
-                                                              bsg::EvaluationActions::sampled);
+                                                              bsg::algos::EvaluationActions::sampled);
   ASSERT_EQ(sampled_env.actions.size(), 400u);
   bsg::Rng expected_noise(bsg::derive_seed(static_cast<std::uint64_t>(seed), bsg::SeedStream::evaluation_action_noise, 0));
   double sum_of_squares = 0.0;
@@ -131,8 +131,8 @@ TEST(SampledEvaluation, ActionsAreSigmaTimesTheEvaluationStreamsNormalsAroundAZe
   // 400 draws of N(0, 0.3^2): the sample RMS lies within 0.3 (1 +- 0.15) with overwhelming probability.
   EXPECT_NEAR(std::sqrt(sum_of_squares / 400.0), 0.3, 0.045);
   EXPECT_EQ(sampled.action_std, 0.3);
-  EXPECT_NE(bsg::evaluation_json(sampled, false).find("\"action_std\": 0.3"), std::string::npos)
-      << bsg::evaluation_json(sampled, false);
+  EXPECT_NE(bsg::algos::evaluation_json(sampled, false).find("\"action_std\": 0.3"), std::string::npos)
+      << bsg::algos::evaluation_json(sampled, false);
   // The scripted reward ignores actions, so J is the same either way; the environment stream too.
   EXPECT_EQ(sampled.mean_return, mean.mean_return);
   EXPECT_EQ(sampled_env.seeded_resets, mean_env.seeded_resets);
@@ -142,9 +142,9 @@ TEST(SampledEvaluation, TheTrainerSamplesAtTheLastEpochsSigma) {
   TemporaryDirectory dir;
   bsg::RunConfig config = scripted_config();
   config.sampled_evaluation = true;
-  bsg::OnPolicyTrainer trainer(config, bsg::RunDirectory(dir.path() / "run"), bsg::MpiContext::single_process(), {},
+  bsg::algos::OnPolicyTrainer trainer(config, bsg::algos::RunDirectory(dir.path() / "run"), bsg::MpiContext::single_process(), {},
                                std::make_unique<ScriptedEnv>(100));
-  const bsg::TrainingOutcome outcome = trainer.run();
+  const bsg::algos::TrainingOutcome outcome = trainer.run();
   ASSERT_TRUE(outcome.evaluation.has_value());
   EXPECT_NEAR(outcome.evaluation->action_std, 0.499 * 0.2 + 0.01, 1e-15);  // epoch 4 of 5
   const std::string json = read_text_file(dir.path() / "run" / "evaluation.json");

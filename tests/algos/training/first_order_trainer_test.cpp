@@ -49,19 +49,19 @@ TEST(FirstOrderTrainer, ResumingContinuesWithTheSameNumbers) {
     SCOPED_TRACE(std::string(bsg::to_string(alg)));
     TemporaryDirectory dir;
     const bsg::RunConfig config = scripted_config(alg);
-    bsg::OnPolicyTrainer whole(config, bsg::RunDirectory(dir.path() / "whole"), bsg::MpiContext::single_process(),
+    bsg::algos::OnPolicyTrainer whole(config, bsg::algos::RunDirectory(dir.path() / "whole"), bsg::MpiContext::single_process(),
                                {}, std::make_unique<ScriptedEnv>(100));
     whole.run();
-    bsg::TrainerOptions stop;
+    bsg::algos::TrainerOptions stop;
     stop.stop_after_epochs = 3;
     {
-      bsg::OnPolicyTrainer first(config, bsg::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
+      bsg::algos::OnPolicyTrainer first(config, bsg::algos::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
                                  stop, std::make_unique<ScriptedEnv>(100));
       EXPECT_EQ(first.run().epochs_completed, 3);
     }
-    bsg::TrainerOptions resume;
+    bsg::algos::TrainerOptions resume;
     resume.resume = true;
-    bsg::OnPolicyTrainer second(config, bsg::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
+    bsg::algos::OnPolicyTrainer second(config, bsg::algos::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
                                 resume, std::make_unique<ScriptedEnv>(100));
     ASSERT_EQ(second.epochs_completed(), 3);
     // The checkpoint brought back the policy's Adam moments, not a fresh optimiser.
@@ -102,7 +102,7 @@ TEST(FirstOrderLearning, EachAlgorithmLearnsBallCircleOnAShortBudget) {
     if (std::string(alg) == "ppo-lag") request.set_arguments.push_back("lambda_lr=0.2");
     const bsg::RunConfig config = bsg::resolve_run_config(request).config;
     const TemporaryDirectory directory;
-    bsg::OnPolicyTrainer trainer(config, bsg::RunDirectory(directory.path() / "run"),
+    bsg::algos::OnPolicyTrainer trainer(config, bsg::algos::RunDirectory(directory.path() / "run"),
                                  bsg::MpiContext::single_process(), {});
     ASSERT_TRUE(trainer.run().finished);
     auto progress = bsg::testing::read_csv_columns(directory.path() / "run" / "progress.csv");

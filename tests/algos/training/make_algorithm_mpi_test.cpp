@@ -9,7 +9,7 @@
 #include "../algorithm_test_support.h"
 #include "algos/training/make_algorithm.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::SyntheticBatch;
@@ -53,4 +53,4 @@ TEST(AlgorithmsUnderMpi, DifferentLocalBatchesGiveIdenticalParametersOnAllRanks)
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -10,7 +10,7 @@
 
 #include "../algorithm_test_support.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::SyntheticBatch;
@@ -111,4 +111,4 @@ TEST(PolicyUpdateResult, ValueNamesTheMissingColumn) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

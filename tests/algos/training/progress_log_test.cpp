@@ -21,18 +21,18 @@ using bsg::testing::TemporaryDirectory;
 
 namespace {
 
-std::vector<bsg::NamedScalar> row(double epoch, double value) { return {{"epoch", epoch}, {"x", value}}; }
+std::vector<bsg::algos::NamedScalar> row(double epoch, double value) { return {{"epoch", epoch}, {"x", value}}; }
 
-bsg::ProgressResume resume_after(long long epochs, long long steps_per_epoch = 0, std::ostream* notes = nullptr,
+bsg::algos::ProgressResume resume_after(long long epochs, long long steps_per_epoch = 0, std::ostream* notes = nullptr,
                                  std::optional<std::string> recorded = std::nullopt) {
-  return bsg::ProgressResume{epochs, std::move(recorded), steps_per_epoch, notes};
+  return bsg::algos::ProgressResume{epochs, std::move(recorded), steps_per_epoch, notes};
 }
 
 void write_text(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
-std::string resume_error(const fs::path& path, const bsg::ProgressResume& resume) {
+std::string resume_error(const fs::path& path, const bsg::algos::ProgressResume& resume) {
   try {
-    bsg::ProgressCsv::resume(path, resume);
+    bsg::algos::ProgressCsv::resume(path, resume);
   } catch (const std::runtime_error& e) {
     return e.what();
   }
@@ -44,7 +44,7 @@ std::string resume_error(const fs::path& path, const bsg::ProgressResume& resume
 TEST(PoolStatistics, SingleProcessGivesMeanPopulationStdMinMax) {
   Eigen::VectorXd values(4);
   values << 1.0, 2.0, 3.0, 6.0;
-  const bsg::PooledStatistics stats = bsg::pool_statistics(values, bsg::MpiContext::single_process());
+  const bsg::algos::PooledStatistics stats = bsg::algos::pool_statistics(values, bsg::MpiContext::single_process());
   EXPECT_EQ(stats.count, 4);
   EXPECT_DOUBLE_EQ(stats.mean, 3.0);
   EXPECT_DOUBLE_EQ(stats.std, std::sqrt((4.0 + 1.0 + 0.0 + 9.0) / 4.0));
@@ -53,7 +53,7 @@ TEST(PoolStatistics, SingleProcessGivesMeanPopulationStdMinMax) {
 }
 
 TEST(PoolStatistics, NoValuesGiveNan) {
-  const bsg::PooledStatistics stats = bsg::pool_statistics(Eigen::VectorXd(0), bsg::MpiContext::single_process());
+  const bsg::algos::PooledStatistics stats = bsg::algos::pool_statistics(Eigen::VectorXd(0), bsg::MpiContext::single_process());
   EXPECT_EQ(stats.count, 0);
   EXPECT_TRUE(std::isnan(stats.mean));
   EXPECT_TRUE(std::isnan(stats.max));
@@ -62,16 +62,16 @@ TEST(PoolStatistics, NoValuesGiveNan) {
 TEST(ProgressCsv, HeaderFromTheFirstRowThenValuesThatReadBackExactly) {
   TemporaryDirectory dir;
   const fs::path path = dir.path() / "progress.csv";
-  bsg::ProgressCsv csv = bsg::ProgressCsv::create(path);
+  bsg::algos::ProgressCsv csv = bsg::algos::ProgressCsv::create(path);
   csv.write_row(row(0, 0.1));
   csv.write_row(row(1, 1.0 / 3.0));
   EXPECT_EQ(read_text_file(path), "epoch,x\n0,0.1\n1,0.3333333333333333\n");
-  EXPECT_EQ(std::stod(bsg::format_csv_number(1.0 / 3.0)), 1.0 / 3.0);
+  EXPECT_EQ(std::stod(bsg::algos::format_csv_number(1.0 / 3.0)), 1.0 / 3.0);
 }
 
 TEST(ProgressCsv, ARowWithOtherColumnsIsAnError) {
   TemporaryDirectory dir;
-  bsg::ProgressCsv csv = bsg::ProgressCsv::create(dir.path() / "progress.csv");
+  bsg::algos::ProgressCsv csv = bsg::algos::ProgressCsv::create(dir.path() / "progress.csv");
   csv.write_row(row(0, 1));
   EXPECT_THROW(csv.write_row({{"epoch", 1}, {"y", 2}}), std::logic_error);
 }
@@ -80,10 +80,10 @@ TEST(ProgressCsv, ResumeDropsRowsAfterTheCheckpointAndAppends) {
   TemporaryDirectory dir;
   const fs::path path = dir.path() / "progress.csv";
   {
-    bsg::ProgressCsv csv = bsg::ProgressCsv::create(path);
+    bsg::algos::ProgressCsv csv = bsg::algos::ProgressCsv::create(path);
     for (int epoch = 0; epoch < 5; ++epoch) csv.write_row(row(epoch, epoch * 10));
   }
-  bsg::ProgressCsv resumed = bsg::ProgressCsv::resume(path, resume_after(3));  // checkpoint after 3 epochs
+  bsg::algos::ProgressCsv resumed = bsg::algos::ProgressCsv::resume(path, resume_after(3));  // checkpoint after 3 epochs
   resumed.write_row(row(3, 99));
   EXPECT_EQ(read_text_file(path), "epoch,x\n0,0\n1,10\n2,20\n3,99\n");
   EXPECT_THROW(resumed.write_row({{"epoch", 4}}), std::logic_error);
@@ -93,7 +93,7 @@ TEST(ProgressCsv, ResumeWithFewerRowsThanTheCheckpointAndNoRecordOfThemIsAnError
   TemporaryDirectory dir;
   const fs::path path = dir.path() / "progress.csv";
   {
-    bsg::ProgressCsv csv = bsg::ProgressCsv::create(path);
+    bsg::algos::ProgressCsv csv = bsg::algos::ProgressCsv::create(path);
     csv.write_row(row(0, 1));
   }
   const std::string message = resume_error(path, resume_after(4));
@@ -107,7 +107,7 @@ TEST(ProgressCsv, ATornLastRowIsTrimmedOnResumeNeverKept) {
   const fs::path path = dir.path() / "progress.csv";
   write_text(path, "epoch,total_env_steps,x\n0,100,1.5\n1,200,2.5\n2,300,3.");
   std::ostringstream notes;
-  bsg::ProgressCsv resumed = bsg::ProgressCsv::resume(path, resume_after(2, 100, &notes));
+  bsg::algos::ProgressCsv resumed = bsg::algos::ProgressCsv::resume(path, resume_after(2, 100, &notes));
   resumed.write_row({{"epoch", 2}, {"total_env_steps", 300}, {"x", 3.5}});
   EXPECT_EQ(read_text_file(path), "epoch,total_env_steps,x\n0,100,1.5\n1,200,2.5\n2,300,3.5\n");
   EXPECT_NE(notes.str().find(path.string() + ":4 is cut off (8 bytes without a line end"), std::string::npos)
@@ -120,7 +120,7 @@ TEST(ProgressCsv, ATornRowWithinTheCheckpointedEpochsIsRestoredFromTheCheckpoint
   const std::string recorded = "epoch,total_env_steps,x\n0,100,1.5\n1,200,2.5\n2,300,3.5\n";
   write_text(path, recorded.substr(0, recorded.size() - 5));  // "epoch 1 whole, epoch 2 torn"
   std::ostringstream notes;
-  bsg::ProgressCsv::resume(path, resume_after(3, 100, &notes, recorded));
+  bsg::algos::ProgressCsv::resume(path, resume_after(3, 100, &notes, recorded));
   EXPECT_EQ(read_text_file(path), recorded);
   EXPECT_NE(notes.str().find("held 2 of the 3 checkpointed epochs' rows; rows of epochs 2 to 2 restored"),
             std::string::npos)
@@ -131,7 +131,7 @@ TEST(ProgressCsv, AMissingLogIsRestoredFromTheCheckpoint) {
   TemporaryDirectory dir;
   const fs::path path = dir.path() / "progress.csv";
   const std::string recorded = "epoch,total_env_steps,x\n0,100,1.5\n";
-  bsg::ProgressCsv::resume(path, resume_after(1, 100, nullptr, recorded));
+  bsg::algos::ProgressCsv::resume(path, resume_after(1, 100, nullptr, recorded));
   EXPECT_EQ(read_text_file(path), recorded);
 }
 
@@ -200,18 +200,18 @@ TEST(ProgressCsv, ALogThatIsADirectoryIsCalledWhatItIs) {
 }
 
 TEST(EpochLog, DiagnosticNamesBecomeClearColumnNames) {
-  EXPECT_EQ(bsg::progress_column_name("Loss/Pi"), "policy_loss");
-  EXPECT_EQ(bsg::progress_column_name("KL"), "kl");
-  EXPECT_EQ(bsg::progress_column_name("LagrangeMultiplier"), "lagrange_multiplier");
-  EXPECT_EQ(bsg::progress_column_name("Misc/OptimCase"), "cpo_optim_case");
-  EXPECT_EQ(bsg::progress_column_name("Misc/Something_New"), "misc_something_new");
-  EXPECT_TRUE(bsg::is_timing_column("time_collect_s"));
-  EXPECT_TRUE(bsg::is_timing_column("fps"));
-  EXPECT_FALSE(bsg::is_timing_column("episode_return_mean"));
+  EXPECT_EQ(bsg::algos::progress_column_name("Loss/Pi"), "policy_loss");
+  EXPECT_EQ(bsg::algos::progress_column_name("KL"), "kl");
+  EXPECT_EQ(bsg::algos::progress_column_name("LagrangeMultiplier"), "lagrange_multiplier");
+  EXPECT_EQ(bsg::algos::progress_column_name("Misc/OptimCase"), "cpo_optim_case");
+  EXPECT_EQ(bsg::algos::progress_column_name("Misc/Something_New"), "misc_something_new");
+  EXPECT_TRUE(bsg::algos::is_timing_column("time_collect_s"));
+  EXPECT_TRUE(bsg::algos::is_timing_column("fps"));
+  EXPECT_FALSE(bsg::algos::is_timing_column("episode_return_mean"));
 }
 
 TEST(ProgressLine, ShowsEpochReturnCostLimitLambdaKlAndEta) {
-  bsg::ProgressLineInputs in;
+  bsg::algos::ProgressLineInputs in;
   in.epoch = 11;
   in.epochs = 500;
   in.mean_return = 31.5;
@@ -221,12 +221,12 @@ TEST(ProgressLine, ShowsEpochReturnCostLimitLambdaKlAndEta) {
   in.kl = 0.00812;
   in.epoch_seconds = 0.38;
   in.eta_seconds = 188;
-  const std::string line = bsg::format_progress_line(in);
+  const std::string line = bsg::algos::format_progress_line(in);
   for (const char* part : {"12/500", "31.50", "40.10", "limit 25", "lambda 0.0510", "KL 0.00812", "0.38 s", "3m08s"}) {
     EXPECT_NE(line.find(part), std::string::npos) << part << " in " << line;
   }
-  EXPECT_EQ(bsg::format_duration(45), "45s");
-  EXPECT_EQ(bsg::format_duration(7500), "2h05m");
-  EXPECT_EQ(bsg::format_duration(3 * 86400 + 4 * 3600 + 59), "3d04h");  // a sweep's ETA
-  EXPECT_EQ(bsg::format_duration(-1), "?");
+  EXPECT_EQ(bsg::algos::format_duration(45), "45s");
+  EXPECT_EQ(bsg::algos::format_duration(7500), "2h05m");
+  EXPECT_EQ(bsg::algos::format_duration(3 * 86400 + 4 * 3600 + 59), "3d04h");  // a sweep's ETA
+  EXPECT_EQ(bsg::algos::format_duration(-1), "?");
 }

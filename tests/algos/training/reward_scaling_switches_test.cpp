@@ -16,7 +16,7 @@
 #include "common/run_config.h"
 #include "../scripted_env.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::ScriptedEnv;
@@ -141,4 +141,4 @@ TEST(RewardScalingSwitches, TheStatisticIsFrozenAfterItsWarmUpEpochs) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

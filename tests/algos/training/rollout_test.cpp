@@ -19,7 +19,7 @@ struct Fixture {
   explicit Fixture(int local_steps, int max_ep_len = 250)
       : actor_critic(3, 2, small_config(), init_rng),
         buffer(local_steps, 3, 2),
-        collector(3, 2, bsg::RolloutOptions{local_steps, max_ep_len, true}) {}
+        collector(3, 2, bsg::algos::RolloutOptions{local_steps, max_ep_len, true}) {}
 
   static bsg::RunConfig small_config() {
     bsg::RunConfig config;
@@ -28,9 +28,9 @@ struct Fixture {
   }
 
   bsg::Rng init_rng{1};
-  bsg::ActorCritic actor_critic;
-  bsg::Buffer buffer;
-  bsg::RolloutCollector collector;
+  bsg::algos::ActorCritic actor_critic;
+  bsg::algos::Buffer buffer;
+  bsg::algos::RolloutCollector collector;
   bsg::Rng noise{2};
 };
 
@@ -42,7 +42,7 @@ TEST(Rollout, EpisodesPerEpochAreNOverMaxEpLenWithoutEarlyTerminations) {
   f.collector.collect(env, 7, f.actor_critic, f.noise, f.buffer);
   ASSERT_EQ(f.buffer.episodes().size(), 4u);  // N / max_ep_len
   const double expected_return = 250 * 1.0 + 0.01 * 250 * 251 / 2;  // sum of 1 + 0.01 t
-  for (const bsg::EpisodeStats& e : f.buffer.episodes()) {
+  for (const bsg::algos::EpisodeStats& e : f.buffer.episodes()) {
     EXPECT_EQ(e.episode_length, 250);
     EXPECT_NEAR(e.episode_return, expected_return, 1e-9);
     EXPECT_EQ(e.episode_cost, 25.0);  // every 10th step
@@ -55,7 +55,7 @@ TEST(Rollout, ConfiguredMaxEpLenCutsEpisodesBeforeTheEnvironmentDoes) {
   ScriptedEnv env(250);
   f.collector.collect(env, 7, f.actor_critic, f.noise, f.buffer);
   ASSERT_EQ(f.buffer.episodes().size(), 10u);
-  for (const bsg::EpisodeStats& e : f.buffer.episodes()) EXPECT_EQ(e.episode_length, 100);
+  for (const bsg::algos::EpisodeStats& e : f.buffer.episodes()) EXPECT_EQ(e.episode_length, 100);
 }
 
 TEST(Rollout, AnEpisodeCutAtTheEpochEndContributesDataButNoStatistics) {
@@ -76,7 +76,7 @@ TEST(Rollout, EarlyTerminationsGiveShorterEpisodesAndNoBootstrap) {
   f.collector.collect(env, 7, f.actor_critic, f.noise, f.buffer);
   ASSERT_EQ(f.buffer.episodes().size(), 10u);
   // True terminal at t = 99 (not the epoch's last step): A_t = r~_t - V_t, no bootstrap.
-  const double reward_scale = f.actor_critic.return_normalizer.std()[0] + bsg::Buffer::kStdEpsilon;
+  const double reward_scale = f.actor_critic.return_normalizer.std()[0] + bsg::algos::Buffer::kStdEpsilon;
   const double scaled_reward = f.buffer.rewards()[99] / reward_scale;
   EXPECT_NEAR(f.buffer.advantages()[99], scaled_reward - f.buffer.values()[99], 1e-12);
   EXPECT_NEAR(f.buffer.cost_advantages()[99], f.buffer.costs()[99] - f.buffer.cost_values()[99], 1e-12);
@@ -94,7 +94,7 @@ TEST(Rollout, TimeOutsBootstrapWithTheValueOfTheNextObservation) {
   f.actor_critic.normalize_observation(next, normalized);
   bsg::MlpSampleWorkspace workspace;
   const double v_next = f.actor_critic.value.predict(normalized, workspace);
-  const double reward_scale = f.actor_critic.return_normalizer.std()[0] + bsg::Buffer::kStdEpsilon;
+  const double reward_scale = f.actor_critic.return_normalizer.std()[0] + bsg::algos::Buffer::kStdEpsilon;
   const double gamma = f.buffer.options().gamma;
   EXPECT_NEAR(f.buffer.advantages()[249],
               f.buffer.rewards()[249] / reward_scale + gamma * v_next - f.buffer.values()[249], 1e-12);
@@ -144,8 +144,8 @@ TEST(EpisodeStatistics, PooledOverOneRankAreTheBufferEpisodes) {
   Fixture f(1000);
   ScriptedEnv env(250, 100);
   f.collector.collect(env, 7, f.actor_critic, f.noise, f.buffer);
-  const bsg::EpisodeStatistics stats =
-      bsg::pool_episode_statistics(f.buffer, bsg::MpiContext::single_process());
+  const bsg::algos::EpisodeStatistics stats =
+      bsg::algos::pool_episode_statistics(f.buffer, bsg::MpiContext::single_process());
   EXPECT_EQ(stats.episode_length.count, 10);
   EXPECT_EQ(stats.episode_length.mean, 100.0);
   EXPECT_EQ(stats.episode_cost.mean, 10.0);

@@ -25,7 +25,7 @@ bool same_on_all_ranks(const Eigen::VectorXd& local, const bsg::MpiContext& mpi)
   return mpi.max(differs) == 0.0;
 }
 
-Eigen::VectorXd everything(const bsg::ActorCritic& ac, const bsg::OnPolicyAlgorithm& algorithm) {
+Eigen::VectorXd everything(const bsg::algos::ActorCritic& ac, const bsg::algos::OnPolicyAlgorithm& algorithm) {
   std::vector<double> values;
   const auto append = [&](const Eigen::VectorXd& v) { values.insert(values.end(), v.data(), v.data() + v.size()); };
   append(ac.policy.mean_net().parameters());
@@ -36,7 +36,7 @@ Eigen::VectorXd everything(const bsg::ActorCritic& ac, const bsg::OnPolicyAlgori
   append(ac.observation_normalizer.mean());
   append(ac.observation_normalizer.std());
   append(ac.return_normalizer.std());
-  for (const bsg::NamedScalar& s : algorithm.state()) values.push_back(s.value);
+  for (const bsg::algos::NamedScalar& s : algorithm.state()) values.push_back(s.value);
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
 
@@ -56,8 +56,8 @@ TEST(TrainerMpi, RanksEndWithIdenticalParametersAndRankZeroWritesTheRun) {
     char pattern[] = "/tmp/bsg_trainer_mpi_test_XXXXXX";
     directory = mkdtemp(pattern);
   }
-  bsg::OnPolicyTrainer trainer(config, bsg::RunDirectory(fs::path(directory) / "run"), mpi, {});
-  const bsg::TrainingOutcome outcome = trainer.run();
+  bsg::algos::OnPolicyTrainer trainer(config, bsg::algos::RunDirectory(fs::path(directory) / "run"), mpi, {});
+  const bsg::algos::TrainingOutcome outcome = trainer.run();
   EXPECT_TRUE(outcome.finished);
   EXPECT_TRUE(same_on_all_ranks(everything(trainer.actor_critic(), trainer.algorithm()), mpi));
 
@@ -69,8 +69,8 @@ TEST(TrainerMpi, RanksEndWithIdenticalParametersAndRankZeroWritesTheRun) {
     std::string row;
     std::getline(csv, header);
     std::getline(csv, row);
-    const auto names = bsg::split_csv_line(header);
-    const auto values = bsg::split_csv_line(row);
+    const auto names = bsg::algos::split_csv_line(header);
+    const auto values = bsg::algos::split_csv_line(row);
     const auto column = static_cast<std::size_t>(std::find(names.begin(), names.end(), "episodes") - names.begin());
     ASSERT_LT(column, values.size());
     EXPECT_EQ(values[column], "4");  // 500 steps per rank, 2 episodes of 250 on each of 2 ranks

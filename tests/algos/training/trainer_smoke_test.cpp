@@ -51,9 +51,9 @@ SmokeRun train(const std::string& alg, const std::vector<std::string>& overrides
   SmokeRun run;
   run.config = bsg::resolve_run_config(request).config;
   const TemporaryDirectory directory;
-  bsg::OnPolicyTrainer trainer(run.config, bsg::RunDirectory(directory.path() / "run"),
+  bsg::algos::OnPolicyTrainer trainer(run.config, bsg::algos::RunDirectory(directory.path() / "run"),
                                bsg::MpiContext::single_process(), {});
-  const bsg::TrainingOutcome outcome = trainer.run();
+  const bsg::algos::TrainingOutcome outcome = trainer.run();
   EXPECT_TRUE(outcome.finished);
   run.progress = bsg::testing::read_csv_columns(directory.path() / "run" / "progress.csv");
   return run;

@@ -27,9 +27,9 @@ using bsg::testing::sigma_of_each_epoch;
 
 TEST(Trainer, RunsEveryEpochThenEvaluates) {
   TemporaryDirectory dir;
-  bsg::OnPolicyTrainer trainer(scripted_config(), bsg::RunDirectory(dir.path() / "run"),
+  bsg::algos::OnPolicyTrainer trainer(scripted_config(), bsg::algos::RunDirectory(dir.path() / "run"),
                                bsg::MpiContext::single_process(), {}, std::make_unique<ScriptedEnv>(100));
-  const bsg::TrainingOutcome outcome = trainer.run();
+  const bsg::algos::TrainingOutcome outcome = trainer.run();
   EXPECT_TRUE(outcome.finished);
   EXPECT_EQ(outcome.epochs_completed, 5);
   ASSERT_TRUE(outcome.evaluation.has_value());
@@ -47,12 +47,12 @@ TEST(Trainer, ANonFiniteRewardStopsTheRunAndKeepsTheLastCheckpoint) {
   const bsg::RunConfig config = scripted_config();
   auto env = std::make_unique<ScriptedEnv>(100);
   env->nan_reward_after_steps = 2 * 400 + 50;  // in epoch 2
-  bsg::OnPolicyTrainer trainer(config, bsg::RunDirectory(dir.path() / "run"), bsg::MpiContext::single_process(), {},
+  bsg::algos::OnPolicyTrainer trainer(config, bsg::algos::RunDirectory(dir.path() / "run"), bsg::MpiContext::single_process(), {},
                                std::move(env));
   try {
     trainer.run();
     FAIL() << "expected a NonFiniteError";
-  } catch (const bsg::NonFiniteError& e) {
+  } catch (const bsg::algos::NonFiniteError& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find("reward"), std::string::npos) << message;
     EXPECT_NE(message.find("epoch 2"), std::string::npos) << message;
@@ -60,10 +60,10 @@ TEST(Trainer, ANonFiniteRewardStopsTheRunAndKeepsTheLastCheckpoint) {
   }
   // The checkpoint still holds the state after epoch 1 (2 epochs completed) and loads.
   bsg::Rng rng(5);
-  bsg::ActorCritic loaded(3, 2, config, rng);
-  auto algorithm = bsg::make_algorithm(config);
-  const bsg::TrainingProgress progress =
-      bsg::load_training_checkpoint(dir.path() / "run" / "checkpoint.bin", config, loaded, *algorithm);
+  bsg::algos::ActorCritic loaded(3, 2, config, rng);
+  auto algorithm = bsg::algos::make_algorithm(config);
+  const bsg::algos::TrainingProgress progress =
+      bsg::algos::load_training_checkpoint(dir.path() / "run" / "checkpoint.bin", config, loaded, *algorithm);
   EXPECT_EQ(progress.epochs_completed, 2);
   EXPECT_TRUE(loaded.policy.mean_net().parameters().allFinite());
 }
@@ -75,22 +75,22 @@ TEST(Trainer, ResumingInProcessContinuesWithTheSameNumbersInBothDtypes) {
     bsg::RunConfig config = scripted_config();
     config.dtype = dtype;
     config.save_freq = 10;  // only the stop and the end save
-    bsg::OnPolicyTrainer whole(config, bsg::RunDirectory(dir.path() / "whole"), bsg::MpiContext::single_process(),
+    bsg::algos::OnPolicyTrainer whole(config, bsg::algos::RunDirectory(dir.path() / "whole"), bsg::MpiContext::single_process(),
                                {}, std::make_unique<ScriptedEnv>(100));
     whole.run();
 
-    bsg::TrainerOptions stop;
+    bsg::algos::TrainerOptions stop;
     stop.stop_after_epochs = 3;
     {
-      bsg::OnPolicyTrainer first(config, bsg::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
+      bsg::algos::OnPolicyTrainer first(config, bsg::algos::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
                                  stop, std::make_unique<ScriptedEnv>(100));
-      const bsg::TrainingOutcome outcome = first.run();
+      const bsg::algos::TrainingOutcome outcome = first.run();
       EXPECT_FALSE(outcome.finished);
       EXPECT_EQ(outcome.epochs_completed, 3);
     }
-    bsg::TrainerOptions resume;
+    bsg::algos::TrainerOptions resume;
     resume.resume = true;
-    bsg::OnPolicyTrainer second(config, bsg::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
+    bsg::algos::OnPolicyTrainer second(config, bsg::algos::RunDirectory(dir.path() / "split"), bsg::MpiContext::single_process(),
                                 resume, std::make_unique<ScriptedEnv>(100));
     EXPECT_EQ(second.epochs_completed(), 3);
     second.run();
@@ -105,19 +105,19 @@ TEST(Trainer, ResumingInProcessContinuesWithTheSameNumbersInBothDtypes) {
 TEST(Trainer, ARunRecordsItsBuildAndAResumeByAnotherBuildSaysSo) {
   TemporaryDirectory dir;
   bsg::RunConfig config = scripted_config();
-  const bsg::RunDirectory run(dir.path() / "run");
-  bsg::TrainerOptions stop;
+  const bsg::algos::RunDirectory run(dir.path() / "run");
+  bsg::algos::TrainerOptions stop;
   stop.stop_after_epochs = 2;
-  bsg::OnPolicyTrainer(config, run, bsg::MpiContext::single_process(), stop, std::make_unique<ScriptedEnv>(100)).run();
+  bsg::algos::OnPolicyTrainer(config, run, bsg::MpiContext::single_process(), stop, std::make_unique<ScriptedEnv>(100)).run();
   EXPECT_EQ(read_text_file(run.build()), bsg::to_text(bsg::this_build()));
 
   const auto resume_log = [&] {
     std::ostringstream log;
-    bsg::TrainerOptions resume;
+    bsg::algos::TrainerOptions resume;
     resume.resume = true;
     resume.stop_after_epochs = 3;
     resume.log = &log;
-    bsg::OnPolicyTrainer(config, run, bsg::MpiContext::single_process(), resume, std::make_unique<ScriptedEnv>(100))
+    bsg::algos::OnPolicyTrainer(config, run, bsg::MpiContext::single_process(), resume, std::make_unique<ScriptedEnv>(100))
         .run();
     return log.str();
   };
@@ -145,13 +145,13 @@ TEST(Trainer, AFloat32EpochMovesTheParametersAsTheFloat64EpochDoes) {
   config.epochs = 1;
   config.eval_episodes = 0;
   config.dtype = bsg::Dtype::float64;
-  const bsg::OnPolicyTrainer initial(config, bsg::RunDirectory(dir.path() / "initial"),
+  const bsg::algos::OnPolicyTrainer initial(config, bsg::algos::RunDirectory(dir.path() / "initial"),
                                      bsg::MpiContext::single_process(), {}, std::make_unique<ScriptedEnv>(100));
-  bsg::OnPolicyTrainer reference(config, bsg::RunDirectory(dir.path() / "f64"), bsg::MpiContext::single_process(), {},
+  bsg::algos::OnPolicyTrainer reference(config, bsg::algos::RunDirectory(dir.path() / "f64"), bsg::MpiContext::single_process(), {},
                                  std::make_unique<ScriptedEnv>(100));
   reference.run();
   config.dtype = bsg::Dtype::float32;
-  bsg::OnPolicyTrainer single(config, bsg::RunDirectory(dir.path() / "f32"), bsg::MpiContext::single_process(), {},
+  bsg::algos::OnPolicyTrainer single(config, bsg::algos::RunDirectory(dir.path() / "f32"), bsg::MpiContext::single_process(), {},
                               std::make_unique<ScriptedEnv>(100));
   single.run();
   // The policy step (gradient, CG on Fisher products, line search) agrees to

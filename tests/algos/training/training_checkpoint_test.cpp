@@ -32,28 +32,28 @@ bsg::RunConfig lag_trpo_config() {
 }
 
 // Moves every part of the state away from its initial value.
-void advance(bsg::ActorCritic& ac, bsg::OnPolicyAlgorithm& algorithm, bsg::Rng& rng) {
+void advance(bsg::algos::ActorCritic& ac, bsg::algos::OnPolicyAlgorithm& algorithm, bsg::Rng& rng) {
   const bsg::MpiContext mpi = bsg::MpiContext::single_process();
   Eigen::MatrixXd observations(64, ac.observation_size());
   for (Eigen::Index i = 0; i < observations.size(); ++i) observations.data()[i] = bsg::standard_normal(rng);
   Eigen::VectorXd targets = observations.col(0) * 2.0;
-  bsg::ValueFitOptions options{1, 4, 16};
+  bsg::algos::ValueFitOptions options{1, 4, 16};
   ac.value.fit(observations, targets, rng, mpi, options);
   ac.cost_value.fit(observations, -targets, rng, mpi, options);
   ac.observation_normalizer.update(observations, mpi);
   ac.return_normalizer.update(targets, mpi);
   ac.policy.mean_net().set_parameters(ac.policy.mean_net().parameters() * 1.5);
-  std::vector<bsg::NamedScalar> state = algorithm.state();
-  for (bsg::NamedScalar& entry : state) entry.value += 0.25;
+  std::vector<bsg::algos::NamedScalar> state = algorithm.state();
+  for (bsg::algos::NamedScalar& entry : state) entry.value += 0.25;
   algorithm.restore_state(state);
 }
 
-void expect_same(const bsg::ActorCritic& a, const bsg::ActorCritic& b) {
+void expect_same(const bsg::algos::ActorCritic& a, const bsg::algos::ActorCritic& b) {
   EXPECT_EQ(a.policy.mean_net().parameters(), b.policy.mean_net().parameters());
   EXPECT_EQ(a.value.net().parameters(), b.value.net().parameters());
   EXPECT_EQ(a.cost_value.net().parameters(), b.cost_value.net().parameters());
   for (const auto* pair : {&a.value, &a.cost_value}) {
-    const bsg::ValueFunction& other = pair == &a.value ? b.value : b.cost_value;
+    const bsg::algos::ValueFunction& other = pair == &a.value ? b.value : b.cost_value;
     EXPECT_EQ(pair->optimizer().first_moment(), other.optimizer().first_moment());
     EXPECT_EQ(pair->optimizer().second_moment(), other.optimizer().second_moment());
     EXPECT_EQ(pair->optimizer().step_count(), other.optimizer().step_count());
@@ -71,7 +71,7 @@ void expect_same(const bsg::ActorCritic& a, const bsg::ActorCritic& b) {
 std::string progress_log(int epochs, double elapsed, const bsg::RunConfig& config) {
   if (epochs == 0) return "";
   const std::vector<std::string> columns =
-      bsg::epoch_log_columns(bsg::epoch_log_layout(config, *bsg::make_algorithm(config)));
+      bsg::algos::epoch_log_columns(bsg::algos::epoch_log_layout(config, *bsg::algos::make_algorithm(config)));
   std::string text;
   for (std::size_t i = 0; i < columns.size(); ++i) text += (i > 0 ? "," : "") + columns[i];
   text += "\n";
@@ -81,7 +81,7 @@ std::string progress_log(int epochs, double elapsed, const bsg::RunConfig& confi
       const std::string value =
           columns[i] == "epoch"             ? std::to_string(k)
           : columns[i] == "total_env_steps" ? std::to_string(static_cast<long long>(k + 1) * config.steps_per_epoch)
-          : columns[i] == "time_s"          ? bsg::format_csv_number(time)
+          : columns[i] == "time_s"          ? bsg::algos::format_csv_number(time)
                                             : std::string("0.5");
       text += (i > 0 ? "," : "") + value;
     }
@@ -90,8 +90,8 @@ std::string progress_log(int epochs, double elapsed, const bsg::RunConfig& confi
   return text;
 }
 
-bsg::TrainingProgress progress_of(int epochs, double elapsed, int ranks, const bsg::RunConfig& config) {
-  return bsg::TrainingProgress{epochs, elapsed, ranks, progress_log(epochs, elapsed, config)};
+bsg::algos::TrainingProgress progress_of(int epochs, double elapsed, int ranks, const bsg::RunConfig& config) {
+  return bsg::algos::TrainingProgress{epochs, elapsed, ranks, progress_log(epochs, elapsed, config)};
 }
 
 std::string error_of(const std::function<void()>& action) {
@@ -125,19 +125,19 @@ TEST_P(TrainingCheckpointOfEveryMultiplier, SaveThenLoadRestoresEverythingExactl
   TemporaryDirectory dir;
   const bsg::RunConfig config = GetParam();
   bsg::Rng rng_a(1);
-  bsg::ActorCritic saved(5, 2, config, rng_a);
-  auto algorithm = bsg::make_algorithm(config);
+  bsg::algos::ActorCritic saved(5, 2, config, rng_a);
+  auto algorithm = bsg::algos::make_algorithm(config);
   ASSERT_FALSE(algorithm->state().empty()) << "TRPO-L has lambda to save";
   advance(saved, *algorithm, rng_a);
-  const bsg::TrainingProgress progress = progress_of(7, 12.5, 2, config);
+  const bsg::algos::TrainingProgress progress = progress_of(7, 12.5, 2, config);
   const fs::path path = dir.path() / "checkpoint.bin";
-  bsg::save_training_checkpoint(path, config, progress, saved, *algorithm);
+  bsg::algos::save_training_checkpoint(path, config, progress, saved, *algorithm);
 
   bsg::Rng rng_b(99);  // a different initialisation, overwritten by the load
-  bsg::ActorCritic loaded(5, 2, config, rng_b);
-  auto loaded_algorithm = bsg::make_algorithm(config);
-  const bsg::TrainingProgress loaded_progress =
-      bsg::load_training_checkpoint(path, config, loaded, *loaded_algorithm);
+  bsg::algos::ActorCritic loaded(5, 2, config, rng_b);
+  auto loaded_algorithm = bsg::algos::make_algorithm(config);
+  const bsg::algos::TrainingProgress loaded_progress =
+      bsg::algos::load_training_checkpoint(path, config, loaded, *loaded_algorithm);
   EXPECT_EQ(loaded_progress.epochs_completed, 7);
   EXPECT_EQ(loaded_progress.elapsed_seconds, 12.5);
   EXPECT_EQ(loaded_progress.num_ranks, 2);
@@ -146,24 +146,24 @@ TEST_P(TrainingCheckpointOfEveryMultiplier, SaveThenLoadRestoresEverythingExactl
   EXPECT_EQ(algorithm->state(), loaded_algorithm->state());
   EXPECT_EQ(algorithm->state().size(), config.lambda_optimizer == bsg::LambdaOptimizer::pid ? 1u + 3u + 3u : 1u);
   // Saving the loaded state reproduces the file byte for byte.
-  EXPECT_EQ(bsg::encode_training_checkpoint(config, progress, saved, *algorithm),
-            bsg::encode_training_checkpoint(config, loaded_progress, loaded, *loaded_algorithm));
+  EXPECT_EQ(bsg::algos::encode_training_checkpoint(config, progress, saved, *algorithm),
+            bsg::algos::encode_training_checkpoint(config, loaded_progress, loaded, *loaded_algorithm));
 }
 
 TEST(TrainingCheckpoint, ACheckpointOfAnotherConfigurationIsRejected) {
   TemporaryDirectory dir;
   const bsg::RunConfig config = lag_trpo_config();
   bsg::Rng rng(1);
-  bsg::ActorCritic ac(5, 2, config, rng);
-  auto algorithm = bsg::make_algorithm(config);
+  bsg::algos::ActorCritic ac(5, 2, config, rng);
+  auto algorithm = bsg::algos::make_algorithm(config);
   const fs::path path = dir.path() / "checkpoint.bin";
-  bsg::save_training_checkpoint(path, config, {}, ac, *algorithm);
+  bsg::algos::save_training_checkpoint(path, config, {}, ac, *algorithm);
 
   bsg::RunConfig other = config;
   other.target_kl = 0.02;
-  auto other_algorithm = bsg::make_algorithm(other);
+  auto other_algorithm = bsg::algos::make_algorithm(other);
   const std::string message =
-      error_of([&] { bsg::load_training_checkpoint(path, other, ac, *other_algorithm); });
+      error_of([&] { bsg::algos::load_training_checkpoint(path, other, ac, *other_algorithm); });
   EXPECT_NE(message.find(path.string()), std::string::npos) << message;
   EXPECT_NE(message.find("different configuration"), std::string::npos) << message;
 }
@@ -171,13 +171,13 @@ TEST(TrainingCheckpoint, ACheckpointOfAnotherConfigurationIsRejected) {
 TEST(TrainingCheckpoint, TruncatedPayloadsAreErrorsNamingTheFile) {
   const bsg::RunConfig config = lag_trpo_config();
   bsg::Rng rng(1);
-  bsg::ActorCritic ac(5, 2, config, rng);
-  auto algorithm = bsg::make_algorithm(config);
-  const std::string payload = bsg::encode_training_checkpoint(config, {}, ac, *algorithm);
+  bsg::algos::ActorCritic ac(5, 2, config, rng);
+  auto algorithm = bsg::algos::make_algorithm(config);
+  const std::string payload = bsg::algos::encode_training_checkpoint(config, {}, ac, *algorithm);
   // Payloads cut anywhere (as if the container's checks were bypassed) never load.
   for (std::size_t length = 0; length < payload.size(); length += 97) {
     const std::string message = error_of([&] {
-      bsg::decode_training_checkpoint(std::string_view(payload).substr(0, length), "run/checkpoint.bin", config, ac,
+      bsg::algos::decode_training_checkpoint(std::string_view(payload).substr(0, length), "run/checkpoint.bin", config, ac,
                                       *algorithm);
     });
     EXPECT_NE(message.find("run/checkpoint.bin"), std::string::npos) << "length " << length << ": " << message;
@@ -188,38 +188,38 @@ TEST(TrainingCheckpoint, NetworksOfAnotherShapeAreRejected) {
   TemporaryDirectory dir;
   const bsg::RunConfig config = lag_trpo_config();
   bsg::Rng rng(1);
-  bsg::ActorCritic ac(5, 2, config, rng);
-  auto algorithm = bsg::make_algorithm(config);
-  const std::string payload = bsg::encode_training_checkpoint(config, {}, ac, *algorithm);
-  bsg::ActorCritic wider(6, 2, config, rng);  // another observation size, same config text
+  bsg::algos::ActorCritic ac(5, 2, config, rng);
+  auto algorithm = bsg::algos::make_algorithm(config);
+  const std::string payload = bsg::algos::encode_training_checkpoint(config, {}, ac, *algorithm);
+  bsg::algos::ActorCritic wider(6, 2, config, rng);  // another observation size, same config text
   const std::string message =
-      error_of([&] { bsg::decode_training_checkpoint(payload, "ckpt", config, wider, *algorithm); });
+      error_of([&] { bsg::algos::decode_training_checkpoint(payload, "ckpt", config, wider, *algorithm); });
   EXPECT_NE(message.find("policy parameters"), std::string::npos) << message;
 }
 
 // The error of saving then loading `progress` with a TRPO-L actor-critic ("" if none).
-std::string round_trip_error(const bsg::TrainingProgress& progress) {
+std::string round_trip_error(const bsg::algos::TrainingProgress& progress) {
   const bsg::RunConfig config = lag_trpo_config();
   bsg::Rng rng(1);
-  bsg::ActorCritic ac(5, 2, config, rng);
-  auto algorithm = bsg::make_algorithm(config);
+  bsg::algos::ActorCritic ac(5, 2, config, rng);
+  auto algorithm = bsg::algos::make_algorithm(config);
   return error_of([&] {
-    bsg::decode_training_checkpoint(bsg::encode_training_checkpoint(config, progress, ac, *algorithm), "ckpt", config,
+    bsg::algos::decode_training_checkpoint(bsg::algos::encode_training_checkpoint(config, progress, ac, *algorithm), "ckpt", config,
                                     ac, *algorithm);
   });
 }
 
 // Issue 25, reproduction 2: fields out of range were accepted.
-class CheckpointFieldOutOfRange : public ::testing::TestWithParam<std::pair<bsg::TrainingProgress, std::string>> {};
+class CheckpointFieldOutOfRange : public ::testing::TestWithParam<std::pair<bsg::algos::TrainingProgress, std::string>> {};
 
-bsg::TrainingProgress with_ranks(int ranks) { return progress_of(2, 3.0, ranks, lag_trpo_config()); }
-bsg::TrainingProgress with_elapsed(double elapsed) {
-  bsg::TrainingProgress progress = progress_of(2, 3.0, 1, lag_trpo_config());
+bsg::algos::TrainingProgress with_ranks(int ranks) { return progress_of(2, 3.0, ranks, lag_trpo_config()); }
+bsg::algos::TrainingProgress with_elapsed(double elapsed) {
+  bsg::algos::TrainingProgress progress = progress_of(2, 3.0, 1, lag_trpo_config());
   progress.elapsed_seconds = elapsed;
   return progress;
 }
-bsg::TrainingProgress with_log_rows(int epochs, int rows) {
-  bsg::TrainingProgress progress = progress_of(epochs, 3.0, 1, lag_trpo_config());
+bsg::algos::TrainingProgress with_log_rows(int epochs, int rows) {
+  bsg::algos::TrainingProgress progress = progress_of(epochs, 3.0, 1, lag_trpo_config());
   progress.progress_log = progress_log(rows, 3.0, lag_trpo_config());
   return progress;
 }
@@ -243,7 +243,7 @@ TEST_P(CheckpointFieldOutOfRange, IsAnErrorNamingTheFieldAndTheFile) {
 }
 
 TEST(TrainingCheckpoint, ALogWhoseLastTimeIsNotTheElapsedTimeIsRejected) {
-  bsg::TrainingProgress progress = progress_of(2, 3.0, 1, lag_trpo_config());
+  bsg::algos::TrainingProgress progress = progress_of(2, 3.0, 1, lag_trpo_config());
   progress.elapsed_seconds = 4.0;
   const std::string message = round_trip_error(progress);
   EXPECT_NE(message.find("last time_s 3 differs from its elapsed seconds 4"), std::string::npos) << message;
@@ -252,7 +252,7 @@ TEST(TrainingCheckpoint, ALogWhoseLastTimeIsNotTheElapsedTimeIsRejected) {
 TEST(TrainingCheckpoint, ALogWithStepCountsOfAnotherBatchIsRejected) {
   bsg::RunConfig other = lag_trpo_config();
   other.steps_per_epoch /= 2;
-  bsg::TrainingProgress progress = progress_of(2, 3.0, 1, lag_trpo_config());
+  bsg::algos::TrainingProgress progress = progress_of(2, 3.0, 1, lag_trpo_config());
   progress.progress_log = progress_log(2, 3.0, other);
   const std::string message = round_trip_error(progress);
   EXPECT_NE(message.find("its progress log:2: total_env_steps"), std::string::npos) << message;
@@ -262,15 +262,15 @@ TEST(TrainingCheckpoint, ALogWithStepCountsOfAnotherBatchIsRejected) {
 TEST(TrainingCheckpoint, AFormatOnePayloadWithoutAProgressLogStillLoads) {
   const bsg::RunConfig config = lag_trpo_config();
   bsg::Rng rng(1);
-  bsg::ActorCritic ac(5, 2, config, rng);
-  auto algorithm = bsg::make_algorithm(config);
-  std::string payload = bsg::encode_training_checkpoint(config, bsg::TrainingProgress{4, 2.5, 1, ""}, ac, *algorithm);
+  bsg::algos::ActorCritic ac(5, 2, config, rng);
+  auto algorithm = bsg::algos::make_algorithm(config);
+  std::string payload = bsg::algos::encode_training_checkpoint(config, bsg::algos::TrainingProgress{4, 2.5, 1, ""}, ac, *algorithm);
   // Format 1 is format 2 without the log's string: its 8-byte length (0) after epochs and seconds.
   const std::size_t log_length_at = payload.find("progress") + std::string("progress").size() + 16;
   ASSERT_EQ(payload.substr(log_length_at, 8), std::string(8, '\0'));
   payload.erase(log_length_at, 8);
-  const bsg::TrainingProgress loaded =
-      bsg::decode_training_checkpoint(payload, "ckpt", config, ac, *algorithm, /*format_version=*/1);
+  const bsg::algos::TrainingProgress loaded =
+      bsg::algos::decode_training_checkpoint(payload, "ckpt", config, ac, *algorithm, /*format_version=*/1);
   EXPECT_EQ(loaded.epochs_completed, 4);
   EXPECT_EQ(loaded.elapsed_seconds, 2.5);
   EXPECT_FALSE(loaded.progress_log.has_value());
@@ -280,17 +280,17 @@ TEST(TrainingCheckpoint, ACheckpointThatIsADirectoryOrAFifoIsCalledWhatItIs) {
   TemporaryDirectory dir;
   const bsg::RunConfig config = lag_trpo_config();
   bsg::Rng rng(1);
-  bsg::ActorCritic ac(5, 2, config, rng);
-  auto algorithm = bsg::make_algorithm(config);
+  bsg::algos::ActorCritic ac(5, 2, config, rng);
+  auto algorithm = bsg::algos::make_algorithm(config);
   const fs::path directory = dir.path() / "as_directory";
   fs::create_directory(directory);
   const fs::path fifo = dir.path() / "as_fifo";
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
-  const std::string as_directory = error_of([&] { bsg::load_training_checkpoint(directory, config, ac, *algorithm); });
+  const std::string as_directory = error_of([&] { bsg::algos::load_training_checkpoint(directory, config, ac, *algorithm); });
   EXPECT_NE(as_directory.find(directory.string() + " is a directory, not a file"), std::string::npos) << as_directory;
-  const std::string as_fifo = error_of([&] { bsg::load_training_checkpoint(fifo, config, ac, *algorithm); });
+  const std::string as_fifo = error_of([&] { bsg::algos::load_training_checkpoint(fifo, config, ac, *algorithm); });
   EXPECT_NE(as_fifo.find(fifo.string() + " is a FIFO, not a file"), std::string::npos) << as_fifo;
   const std::string missing =
-      error_of([&] { bsg::load_training_checkpoint(dir.path() / "none", config, ac, *algorithm); });
+      error_of([&] { bsg::algos::load_training_checkpoint(dir.path() / "none", config, ac, *algorithm); });
   EXPECT_NE(missing.find("none is missing"), std::string::npos) << missing;
 }

@@ -9,7 +9,7 @@
 
 #include "common/random.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 LinearOperator matrix_operator(const Eigen::MatrixXd& matrix, int* calls = nullptr) {
@@ -132,4 +132,4 @@ TEST(ConjugateGradient, BadInputGivesExceptions) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

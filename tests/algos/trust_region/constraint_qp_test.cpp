@@ -15,7 +15,7 @@
 #include "../algorithm_test_support.h"
 #include "algos/trust_region/cpo.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 // Dynamic-size vectors only: GCC 12 warns (-Warray-bounds) on Eigen's fixed-size temporaries here.
@@ -332,4 +332,4 @@ TEST(PcpoProjection, DependentGradientsStillProject) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -10,7 +10,7 @@
 #include "../algorithm_test_support.h"
 #include "algos/trust_region/natural_gradient.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::SyntheticBatch;
@@ -162,4 +162,4 @@ TEST(Cpo, RejectedLineSearchLeavesParametersBitIdentical) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -8,7 +8,7 @@
 
 #include "../../common/finite_differences.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::finite_difference_gradient;
@@ -135,4 +135,4 @@ TEST(FisherVectorProduct, BadInputGivesExceptions) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

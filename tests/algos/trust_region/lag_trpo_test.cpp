@@ -10,7 +10,7 @@
 #include "../algorithm_test_support.h"
 #include "algos/trust_region/trpo.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::SyntheticBatch;
@@ -97,4 +97,4 @@ TEST(LagTrpo, PidMultiplierSteersThePolicyStepAndLogsItsTerms) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -8,7 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 const MpiContext kSingle = MpiContext::single_process();
@@ -131,4 +131,4 @@ TEST(LineSearch, BadOptionsGiveExceptions) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -8,7 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 TEST(NaturalGradientStep, StepHasSquaredFisherNormTwoDelta) {
@@ -48,4 +48,4 @@ TEST(NaturalGradientStep, StepSizeFormulaAndBadInput) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

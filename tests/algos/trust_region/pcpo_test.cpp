@@ -10,7 +10,7 @@
 #include "../algorithm_test_support.h"
 #include "algos/trust_region/natural_gradient.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::SyntheticBatch;
@@ -159,4 +159,4 @@ TEST(Pcpo, RejectedLineSearchLeavesParametersBitIdentical) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -11,7 +11,7 @@
 #include "../algorithm_test_support.h"
 #include "algos/trust_region/trpo.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::SyntheticBatch;
@@ -122,4 +122,4 @@ TEST(Pdo, PidMultiplierSteersThePolicyStepAndLogsItsTerms) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -14,7 +14,7 @@
 #include "algos/training/trainer.h"
 #include "common/mpi_context.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 namespace fs = std::filesystem;
@@ -100,4 +100,4 @@ TEST(SeveralConstraintsMpi, ATwoConstraintRunKeepsTheRanksIdentical) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -22,7 +22,7 @@
 #include "algos/training/trainer.h"
 #include "common/config_error.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 namespace fs = std::filesystem;
@@ -304,4 +304,4 @@ TEST(SeveralConstraintsTraining, AnUnknownTermStopsTheRunBeforeItsDirectoryIsWri
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -11,7 +11,7 @@
 #include "../algorithm_test_support.h"
 #include "algos/trust_region/fisher_vector_product.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 using testing::SyntheticBatch;
@@ -113,4 +113,4 @@ TEST(Trpo, HasNoStateAndIgnoresTheCostStatistics) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

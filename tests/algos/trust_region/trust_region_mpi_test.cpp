@@ -10,7 +10,7 @@
 #include "algos/core/value_function.h"
 #include "common/mpi_context.h"
 
-namespace bsg {
+namespace bsg::algos {
 namespace {
 
 Eigen::MatrixXd rank_observations(int rank, Eigen::Index rows, int columns) {
@@ -130,4 +130,4 @@ TEST(TrustRegionMpi, LineSearchDecidesOnRankAveragesIdenticallyOnAllRanks) {
 }
 
 }  // namespace
-}  // namespace bsg
+}  // namespace bsg::algos

@@ -19,13 +19,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   config.hidden_sizes = {4};
   config.steps_per_epoch = 400;
   bsg::Rng rng(1);
-  bsg::ActorCritic actor_critic(3, 2, config, rng);
-  auto algorithm = bsg::make_algorithm(config);
+  bsg::algos::ActorCritic actor_critic(3, 2, config, rng);
+  auto algorithm = bsg::algos::make_algorithm(config);
   const std::string payload(reinterpret_cast<const char*>(data), size);
   try {
     const bsg::CheckpointContents contents =
         bsg::decode_checkpoint_contents(bsg::encode_checkpoint_file(payload), "fuzz.bin");
-    const bsg::TrainingProgress progress = bsg::decode_training_checkpoint(
+    const bsg::algos::TrainingProgress progress = bsg::algos::decode_training_checkpoint(
         contents.payload, "fuzz.bin", config, actor_critic, *algorithm, contents.format_version);
     const bool in_range = progress.num_ranks >= 1 && progress.epochs_completed >= 0 &&
                           progress.epochs_completed <= config.epochs && std::isfinite(progress.elapsed_seconds) &&
