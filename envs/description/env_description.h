@@ -42,6 +42,7 @@
 //   zone_type                 puddle; pillar (Drone)   Reach
 //   zone_radius               1 m; 0.45 m (pillar)     Reach
 //   zone_layout               random                   Reach: random or barrier (fork CarReach)
+//   obstacle_clearance_from   spawn                    Reach: spawn, or stale (the fork)
 //   box                       true                     Reach: the moving Box
 //   box_circle_radius         0.7 m                    Reach
 //   lidar_rays, lidar_range   24, 5 m                  Reach
@@ -117,6 +118,10 @@ struct EnvDescription {
   std::string zone_type = "puddle";     // puddle or pillar
   // random, or barrier: the fork's CarReach map (17 fixed puddles, spawn at (−6, 6))
   std::string zone_layout = "random";
+  // spawn: obstacles keep reach_spacing from this episode's spawn and drawn
+  // goal; stale: from where agent and goal stood before the reset moved them
+  // (the fork: its Reach samples obstacles first; docs/environments.md#the-fork-variant)
+  std::string obstacle_clearance_from = "spawn";
   double zone_radius = 1;               // [m]
   bool box = true;
   double box_circle_radius = 0.7;       // [m] radius of the Box's pivot circle

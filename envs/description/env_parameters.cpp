@@ -121,6 +121,9 @@ const std::vector<Row>& rows() {
       choice("zone_layout", &D::zone_layout, kReach, {"random", "barrier"},
              "random: zones drawn at every reset; barrier: the fork's CarReach map of 17 fixed "
              "puddles with the spawn at (-6, 6) (needs zones: 17)"),
+      choice("obstacle_clearance_from", &D::obstacle_clearance_from, kReach, {"spawn", "stale"},
+             "spawn: Box and zones keep reach_spacing from this episode's spawn and drawn goal; "
+             "stale: from the agent's and goal's poses before the reset moved them (the fork)"),
       real("zone_radius", &D::zone_radius, kReach, "m", N::above(0),
            "a zone costs when the agent's disc overlaps it"),
       boolean("box", &D::box, kReach, "the moving Box (a collision obstacle)"),

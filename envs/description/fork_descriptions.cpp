@@ -32,7 +32,12 @@ EnvDescription fork_description(const EnvDescription& standard) {
     d.reach_reward_scale = 3;
     d.goal_bonus = 30;
     d.goal_scheme = "corners";
-    if (d.agent == "Car") {
+    if (d.agent != "Car") {
+      // The fork samples the Box and the zones before its reset moves agent
+      // and goal, so they may lie on the new spawn or the goal corner.
+      // (CarReach's fixed map overwrites the sample; it keeps the default.)
+      d.obstacle_clearance_from = "stale";
+    } else {
       // No Box: no obstacle with a collision shape, so no LIDAR either.
       d.box = false;
       d.lidar_rays = 0;

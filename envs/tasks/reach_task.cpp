@@ -33,6 +33,9 @@ ReachTask::ReachTask(World& world, Agent& agent, const EnvDescription& descripti
     pseudo_lidar_.emplace(description.reach_sensor_bins, description.reach_sensor_range);
   }
   if (description.box) box_.emplace(world, description.box_circle_radius);
+  // Before the first reset the agent stands where it was built and the goal
+  // zone at the origin.
+  stale_agent_ = agent.traits().initial_position;
 }
 
 btVector3 ReachTask::next_corner() {
@@ -66,8 +69,12 @@ void ReachTask::sample_layout(Rng& rng, Layout& layout) {
   const double yaw = std::atan2(goal.y() - agent.y(), goal.x() - agent.x()) + traits.initial_yaw +
                      uniform(rng, -kPi, kPi);
   const int box_count = box_ ? 1 : 0;
-  const std::vector<btVector3> obstacles = sample_obstacle_positions(
-      rng, box_count + description_.zones, agent, goal, spacing, spacing, half_width);
+  // The fork samples the obstacles before it moves agent and goal: their
+  // clearances hold from the stale positions, not from this spawn and goal.
+  const bool stale = description_.obstacle_clearance_from == "stale";
+  const std::vector<btVector3> obstacles =
+      sample_obstacle_positions(rng, box_count + description_.zones, stale ? stale_agent_ : agent,
+                                stale ? stale_goal_ : goal, spacing, spacing, half_width);
 
   layout.agent_position = to_vec3(agent);
   layout.agent_orientation = to_quat(quaternion_from_euler(0, 0, yaw));
@@ -122,6 +129,14 @@ void ReachTask::place(const Layout& layout, double clock_seconds) {
   }
   // d_prev is stored before the reset's engine step (golden README).
   d_prev_ = layout.d_prev.value_or(planar_distance(goal_, agent));
+
+  // What the fork's next reset finds when it samples the obstacles: it first
+  // restores the snapshot of its first reset (that reset's spawn and goal);
+  // then the Ball's own reset moves the Ball back to its stored initial
+  // position, which every Reach reset overwrites with the new spawn.
+  if (!placed_once_ || description_.agent == "Ball") stale_agent_ = agent;
+  if (!placed_once_) stale_goal_ = goal_;
+  placed_once_ = true;
 }
 
 void ReachTask::respawn_goal(Rng& rng) {

@@ -10,6 +10,9 @@
 //                         two corners (−6, 6), (6, 6) in turn (corners)
 //   placement clearances  2.5 m (reach_spacing: agent–goal, agent–obstacle,
 //                         obstacle–obstacle/goal) in [−7, 7]² (placement_half_width)
+//                         measured from this episode's spawn and drawn goal, or
+//                         (obstacle_clearance_from stale, the fork) from where agent
+//                         and goal stood before the reset moved them
 //   obstacles             the Box (box; pivot circle box_circle_radius 0.7 m) and
 //                         8 zones (zones, zone_type, zone_radius)
 //   reward                1·(d_prev − d) (reach_reward_scale) + 0.01·s_agent
@@ -73,6 +76,11 @@ class ReachTask final : public Task {
   btVector3 goal_{0, 0, 0};
   double d_prev_ = 0;
   bool corner_flag_ = false;
+  // obstacle_clearance_from stale: the agent's and the goal's positions when
+  // the fork's reset samples the obstacles (docs/environments.md#the-fork-variant).
+  btVector3 stale_agent_{0, 0, 0};
+  btVector3 stale_goal_{0, 0, 0};
+  bool placed_once_ = false;
   // Drawn once, at the first sampled reset: the Box's spawn yaw (the original
   // draws it at construction) and, with the simulated clock, its phase φ.
   bool box_constants_drawn_ = false;

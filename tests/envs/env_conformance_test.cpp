@@ -97,6 +97,10 @@ TEST_P(Conformance, SpecNamesTheCostTermsAStepReports) {
 TEST_P(Conformance, RandomEpisodeKeepsInvariantsAndTruncatesAtTheEpisodeLength) {
   const auto env = make(GetParam());
   const EnvSpec& spec = env->spec();
+  // The original's bound of 5 holds where spawns keep their clearance; the fork's Reach may
+  // spawn the agent inside the Box (docs/environments.md#the-fork-variant), which throws it out
+  // at tens of m/s.
+  const bool bounded = describe(GetParam()).obstacle_clearance_from != "stale";
   Rng rng(123);
   for (const uint64_t seed : {11u, 12u}) {
     const std::span<const double> first = env->reset(seed);
@@ -111,7 +115,9 @@ TEST_P(Conformance, RandomEpisodeKeepsInvariantsAndTruncatesAtTheEpisodeLength) 
       for (size_t i = 0; i < result.observation.size(); ++i) {
         const double value = result.observation[i];
         ASSERT_TRUE(std::isfinite(value)) << "obs[" << i << "] at step " << steps;
-        ASSERT_LT(std::abs(value), 5.0) << "obs[" << i << "] at step " << steps;
+        if (bounded) {
+          ASSERT_LT(std::abs(value), 5.0) << "obs[" << i << "] at step " << steps;
+        }
       }
       ASSERT_TRUE(std::isfinite(result.reward)) << "step " << steps;
       ASSERT_TRUE(result.cost == 0.0 || result.cost == 1.0) << result.cost;

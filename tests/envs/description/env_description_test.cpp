@@ -222,6 +222,12 @@ TEST(ForkVariant, HoldsTheForksValues) {
   EXPECT_EQ(reach.goal_bonus, 30);
   EXPECT_EQ(reach.reach_reward_scale, 3);
   EXPECT_EQ(reach.frame_skip, 4);
+  // The fork samples the Reach obstacles against stale poses; its CarReach map is fixed.
+  EXPECT_EQ(reach.obstacle_clearance_from, "stale");
+  EXPECT_EQ(describe("SafetyAntReach-fork").obstacle_clearance_from, "stale");
+  EXPECT_EQ(describe("SafetyDroneReach-fork").obstacle_clearance_from, "stale");
+  EXPECT_EQ(describe("SafetyCarReach-fork").obstacle_clearance_from, "spawn");
+  EXPECT_EQ(describe("SafetyBallReach-v0").obstacle_clearance_from, "spawn");
 }
 
 TEST(ForkVariant, CarReachIsTheFixedBarrierMapWithoutBoxOrLidar) {

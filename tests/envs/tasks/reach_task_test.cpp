@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "envs/env.h"
@@ -55,6 +56,52 @@ TEST(ReachTask, ResetKeepsClearancesAndStartsWithoutCost) {
     const StepResult first = env->step(kZero);
     EXPECT_EQ(first.cost, 0);
   }
+}
+
+// The obstacles of layout `layout` and whether each keeps the sampler's clearances (2.5 planar
+// from `agent`, more than 2.5 from `goal`).
+bool obstacles_clear_of(const Layout& layout, const Vec3& agent, const Vec3& goal) {
+  std::vector<Vec3> obstacles = {layout.box->position};
+  obstacles.insert(obstacles.end(), layout.zones.begin(), layout.zones.end());
+  bool clear = true;
+  for (const Vec3& obstacle : obstacles) {
+    clear = clear && planar(obstacle, agent) >= 2.5 && planar(obstacle, goal) > 2.5;
+  }
+  return clear;
+}
+
+// obstacle_clearance_from stale (the fork, docs/environments.md#the-fork-variant): the clearances
+// hold from where agent and goal stood before the reset moved them. First reset: the agent's
+// construction position (0, 0) and the goal zone's (0, 0). Later: the first reset's goal (−6, 6)
+// and, for the Ball, the previous spawn; for the other agents the first reset's spawn.
+void expect_stale_clearances(const std::string& id, bool follows_previous_spawn) {
+  const auto env = make(id);
+  env->reset(11);
+  EXPECT_TRUE(obstacles_clear_of(env->layout(), {0, 0, 0}, {0, 0, 0}));
+  const Vec3 first_spawn = env->layout().agent_position;
+  Vec3 previous_spawn = first_spawn;
+  int clear_of_own_spawn = 0;
+  constexpr int kResets = 100;
+  for (int k = 0; k < kResets; ++k) {
+    env->reset();
+    const Layout& layout = env->layout();
+    const Vec3 reference = follows_previous_spawn ? previous_spawn : first_spawn;
+    EXPECT_TRUE(obstacles_clear_of(layout, reference, {-6, 6, 0})) << id << " reset " << k + 2;
+    if (obstacles_clear_of(layout, layout.agent_position, *layout.goal)) ++clear_of_own_spawn;
+    previous_spawn = layout.agent_position;
+  }
+  // Nothing keeps them clear of this episode's own spawn and goal. Oracle by area: each of the
+  // 9 obstacles lands within 2.5 m of a uniform spawn in the 14 m square with probability about
+  // π·2.5²/14² = 0.1, so about 0.9⁹ ≈ 0.39 of the resets (fewer with the goal) are clear.
+  EXPECT_LT(clear_of_own_spawn, kResets / 2) << id;
+}
+
+TEST(ReachTask, ForkSamplesObstaclesAgainstTheBallsPreviousSpawn) {
+  expect_stale_clearances("SafetyBallReach-fork", true);
+}
+
+TEST(ReachTask, ForkSamplesObstaclesAgainstTheOtherAgentsFirstSpawn) {
+  expect_stale_clearances("SafetyAntReach-fork", false);
 }
 
 TEST(ReachTask, AgentInsideAPuddleCosts) {
