@@ -98,7 +98,7 @@ TEST(Video, RolloutWritesOneFramePerResetAndStep) {
 TEST(Video, BadInputFailsWithOneLine) {
   for (const auto& [arguments, message] :
        {std::pair{std::string("--video /nonexistent-folder/v.mp4"), std::string("cannot write video '/nonexistent-folder/v.mp4'")},
-        {"--video " + temp_path("x.mp4") + " --camera side", "unknown camera 'side' (valid: default, track, top)"},
+        {"--video " + temp_path("x.mp4") + " --camera side", "unknown camera 'side' (valid: default, arena, track, top)"},
         {"--video " + temp_path("x.mp4") + " --width 0", "width must be in [1, 8192], got 0"},
         {"--video " + temp_path("x.mp4") + " --height 100000", "height must be in [1, 8192], got 100000"},
         {"--trajectories /nonexistent-folder/t.png", "cannot write PNG '/nonexistent-folder/t.png'"}}) {
