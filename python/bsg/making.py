@@ -20,7 +20,7 @@ def make(env_id=None, *, api="safety", max_episode_steps=None, autoreset=False,
     accepted for gymnasium's and Safety-Gymnasium's callers and changes nothing
     (bsg.make adds no checker). ``render_mode="rgb_array"`` (or
     ``"depth_array"``), ``width=480``, ``height=360``, ``camera="default"`` (or
-    ``"track"``, ``"top"``) make ``render()`` return frames. Other keyword
+    ``"arena"``, ``"track"``, ``"top"``) make ``render()`` return frames. Other keyword
     arguments change the description: ``make(id, bombs=12)``,
     ``make(agent="Drone", task="Reach")`` (no id: that agent on that task).
     Unknown ids raise ValueError listing the valid ones.

@@ -68,7 +68,7 @@ def test_rgb_array_frame_and_metadata():
 
 
 def test_size_and_camera_options():
-    for camera in ("default", "track", "top"):
+    for camera in ("default", "arena", "track", "top"):
         with bsg.make("SafetyCarGather-v0", render_mode="rgb_array", width=64, height=48,
                       camera=camera) as env:
             env.reset(seed=1)

@@ -14,6 +14,7 @@
 #include "../cli/run_bsg.h"
 #include "../test_support.h"
 #include "envs/env.h"
+#include "render/camera.h"
 #include "render/video_file.h"
 #include "render_test_support.h"
 
@@ -93,6 +94,36 @@ TEST(Video, RolloutWritesOneFramePerResetAndStep) {
   EXPECT_EQ(decoded.at(0).width, 96);
   EXPECT_EQ(decoded.at(0).height, 64);
   EXPECT_TRUE(testing::contains(result.output, "(502 frames, 96x64, camera track)"));
+}
+
+// A video exists to show the agent: without --camera it is the arena camera
+// (render/camera.h), which keeps the whole arena in view; the first frame's
+// agent pixels are there (the blue of the agent, render_test_support.h).
+TEST(Video, DefaultCameraIsTheArenaAndShowsTheAgent) {
+  BSG_RENDERER_OR_SKIP(probe, (RenderOptions{64, 48, "default"}));
+  const std::string path = temp_path("arena.mp4");
+  const testing::ProgramResult result = testing::run_bsg(
+      "rollout --env SafetyBallGather-v0 --episodes 1 --seed 1 --video " + path);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(testing::contains(result.output, "camera arena)")) << result.output;
+  const std::vector<Image> decoded = testing::decode_video(path);
+  std::filesystem::remove(path);
+  ASSERT_FALSE(decoded.empty());
+  for (const size_t i : {size_t{0}, decoded.size() / 2, decoded.size() - 1}) {
+    EXPECT_GT(testing::count_pixels(decoded[i], testing::is_agent_blue), 0) << "frame " << i;
+  }
+}
+
+// `--help` of both recording commands says what every camera shows.
+TEST(Video, HelpDescribesEveryCamera) {
+  for (const std::string command : {"eval", "rollout"}) {
+    const testing::ProgramResult result = testing::run_bsg(command + " --help");
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    for (const std::string& camera : camera_names()) {
+      EXPECT_TRUE(testing::contains(result.output, "  " + camera + "  ")) << command << ": " << camera;
+    }
+    EXPECT_TRUE(testing::contains(result.output, "the original suite's camera")) << command;
+  }
 }
 
 TEST(Video, BadInputFailsWithOneLine) {
