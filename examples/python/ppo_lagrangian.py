@@ -50,6 +50,9 @@ def parse_args(argv=None):
                    help="default: the environment's (bsg_spec.cost_limit)")
     p.add_argument("--lagrangian-lr", type=float, default=0.05)
     p.add_argument("--csv", default=None, help="write global_step,return,cost,lambda per episode")
+    p.add_argument("--plot", default=None,
+                   help="draw return and cost per episode (and their means over 20) as a PNG "
+                        "(needs matplotlib: Debian's python3-matplotlib)")
     args = p.parse_args(argv)
     if args.num_steps % args.num_minibatches:
         p.error("--num-steps must be a multiple of --num-minibatches")
@@ -184,6 +187,31 @@ def ppo_update(agent, optimizers, batch, args, multiplier, rng):
                 optimizers[name].step(critic.backward(((value - target[idx]) / len(idx))[:, None]))
 
 
+def plot(path, rows, env_id, cost_limit):
+    """Return and cost of every episode against the global step, with running means."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    steps, returns, costs = (np.array([row[i] for row in rows]) for i in range(3))
+    window = min(20, len(rows))
+    smooth = lambda y: np.convolve(y, np.ones(window) / window, mode="valid")  # noqa: E731
+    fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    for ax, values, name in ((axes[0], returns, "episodic return"), (axes[1], costs, "episodic cost")):
+        ax.plot(steps, values, ".", ms=2, alpha=0.35, color="tab:blue" if ax is axes[0] else "tab:red")
+        ax.plot(steps[window - 1:], smooth(values), color="black", lw=1.5,
+                label=f"mean of {window} episodes")
+        ax.set_ylabel(name)
+        ax.grid(alpha=0.3)
+    axes[1].axhline(cost_limit, color="tab:green", ls="--", label=f"cost limit {cost_limit:g}")
+    axes[0].legend(loc="lower right")
+    axes[1].legend(loc="upper right")
+    axes[1].set_xlabel("environment steps")
+    axes[0].set_title(f"ppo_lagrangian.py on {env_id}", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def main(argv=None):
     args = parse_args(argv)
     rng = np.random.default_rng(args.seed)
@@ -198,7 +226,7 @@ def main(argv=None):
                   "cost_critic": Adam(agent.cost_critic.params, args.learning_rate,
                                       args.max_grad_norm)}
     multiplier = 0.0
-    writer = None
+    writer, rows = None, []
     if args.csv:
         csv_file = open(args.csv, "w", newline="")
         writer = csv.writer(csv_file)
@@ -229,8 +257,9 @@ def main(argv=None):
             if terminated or truncated:
                 print(f"global_step={global_step}, episodic_return={episode_return:.1f}, "
                       f"episodic_cost={episode_cost:.0f}, lambda={multiplier:.3f}", flush=True)
+                rows.append((global_step, episode_return, episode_cost, multiplier))
                 if writer:
-                    writer.writerow([global_step, episode_return, episode_cost, multiplier])
+                    writer.writerow(rows[-1])
                 episode_costs.append(episode_cost)
                 episode_return = episode_cost = 0.0
                 obs, _ = env.reset()
@@ -248,6 +277,9 @@ def main(argv=None):
     if writer:
         csv_file.close()
     print(f"{global_step} steps in {time.time() - started:.0f} s")
+    if args.plot and rows:
+        plot(args.plot, rows, args.env_id, cost_limit)
+        print(f"plot {args.plot}")
     env.close()
 
 

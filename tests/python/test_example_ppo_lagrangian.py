@@ -2,7 +2,7 @@
 gymnasium_import.py): its hand-written gradients equal finite differences of its
 losses (the networks' backward pass and PPO's clipped surrogate, clipped and not),
 GAE equals the sum it abbreviates, and a short run over gymnasium.make("bsg/...")
-logs every episode's return and cost, to stdout and to --csv."""
+logs every episode's return and cost, to stdout, to --csv and as a --plot PNG."""
 
 import csv
 import importlib.util
@@ -92,7 +92,7 @@ def test_a_short_run_logs_return_and_cost_of_every_episode(tmp_path):
     out = subprocess.run(
         [sys.executable, str(EXAMPLE), "--env-id", "bsg/SafetyBallCircle-v0",
          "--total-timesteps", "1024", "--num-steps", "512", "--update-epochs", "2",
-         "--csv", str(tmp_path / "progress.csv")],
+         "--csv", str(tmp_path / "progress.csv"), "--plot", str(tmp_path / "curve.png")],
         check=True, capture_output=True, text=True,
         env={**os.environ, "PYTHONPATH": path}).stdout
     lines = [line for line in out.splitlines() if line.startswith("global_step=")]
@@ -102,3 +102,4 @@ def test_a_short_run_logs_return_and_cost_of_every_episode(tmp_path):
     rows = list(csv.DictReader(open(tmp_path / "progress.csv")))
     assert [int(r["global_step"]) for r in rows] == [250, 500, 750, 1000]
     assert all(float(r["episodic_cost"]) >= 0 for r in rows)
+    assert (tmp_path / "curve.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
