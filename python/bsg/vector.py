@@ -43,7 +43,7 @@ class VectorEnv(_core.VectorEnv):
     """``num_envs`` environments of one id stepped on a C++ thread pool.
 
     ``VectorEnv(id, num_envs, num_threads=0, seed=0, api="safety",
-    autoreset_mode="NextStep", max_episode_steps=None, **options)``.
+    autoreset_mode=None, max_episode_steps=None, **options)``.
     ``num_threads=0`` uses every hardware thread (at most ``num_envs``); the
     GIL is released while the environments step, and results are identical
     whatever ``num_threads`` is.
@@ -58,8 +58,8 @@ class VectorEnv(_core.VectorEnv):
     ``step(actions[num_envs, act_dim])`` returns ``(obs, reward, cost,
     terminated, truncated, info)`` (``api="safety"``) or ``(obs, reward,
     terminated, truncated, info)`` with ``info["cost"]`` (``api="gymnasium"``).
-    Ended episodes are reset as Gymnasium 1.x defines it: ``"NextStep"`` (the
-    default) by the next step, which returns the new episode's first
+    Ended episodes are reset as Gymnasium 1.x defines it: ``"NextStep"`` by
+    the next step, which returns the new episode's first
     observation with reward 0 and both flags false; ``"SameStep"`` in the
     step itself, whose observation row is then the new episode's while
     ``info["final_obs"]`` and ``info["final_info"]`` hold the ended episode's
