@@ -31,7 +31,18 @@ void add_recording_options(CLI::App& command, RecordingArguments& args) {
                      "write the episodes as an H.264 MP4 (one frame per step, captioned)");
   command.add_option("--trajectories", args.trajectories,
                      "write a PNG of each episode's path seen from above (red where it cost)");
-  command.add_option("--camera", args.render.camera, "--video camera: default, track or top")
+  // A video exists to show the agent: its default camera keeps the whole arena
+  // in view, while rgb_array (Python) and --picture keep the original's camera.
+  args.render.camera = kVideoCamera;
+  command
+      .add_option("--camera", args.render.camera,
+                  "--video camera:\n"
+                  "  arena    the whole arena at the original's angle, the agent in view all the\n"
+                  "           episode (Run: 16 m of lane around the agent)\n"
+                  "  default  the original suite's camera of the task (Circle, Gather, Reach: fixed\n"
+                  "           on the near half, the agent can leave the frame; Run: behind the agent)\n"
+                  "  track    4 m from the agent, following it\n"
+                  "  top      straight down over the arena (Run: 16 m x 8 m of lane)")
       ->capture_default_str();
   command.add_option("--width", args.render.width, "--video frame width")->capture_default_str();
   command.add_option("--height", args.render.height, "--video frame height")->capture_default_str();

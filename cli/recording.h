@@ -17,6 +17,9 @@ class App;
 
 namespace bsg::cli {
 
+// The camera of --video unless --camera says otherwise (render/camera.h).
+inline constexpr const char* kVideoCamera = "arena";
+
 struct RecordingArguments {
   std::string video;         // MP4 path; empty: no video
   std::string trajectories;  // PNG path; empty: no plot

@@ -41,7 +41,7 @@ double arena_half_extent(const envs::SceneView& scene) {
 
 }  // namespace
 
-std::vector<std::string> camera_names() { return {"default", "track", "top"}; }
+std::vector<std::string> camera_names() { return {"default", "arena", "track", "top"}; }
 
 Camera camera_for(const envs::SceneView& scene, std::string_view name, double aspect) {
   Camera camera;
@@ -59,6 +59,15 @@ Camera camera_for(const envs::SceneView& scene, std::string_view name, double as
       camera.pitch_deg = -60;
     }
     return camera;
+  }
+  if (name == "arena") {
+    if (scene.task == "Run") {
+      // The stretch of lane around the agent, widened where it left the lane.
+      const double y0 = std::min(-3.0, agent[1] - 1.5), y1 = std::max(3.0, agent[1] + 1.5);
+      return oblique_camera_over({agent[0] - 6, y0, 0}, {agent[0] + 10, y1, 2}, 0, -50, aspect);
+    }
+    const double h = arena_half_extent(scene);
+    return oblique_camera_over({-h, -h, 0}, {h, h, 2}, 0, -60, aspect);
   }
   if (name == "track") {
     camera.target = agent;
@@ -93,6 +102,36 @@ Camera top_camera_over(double x0, double x1, double y0, double y1, double aspect
   camera.distance_m = half_height / std::tan(camera.vertical_fov_deg * kDegree / 2);
   camera.far_m = camera.distance_m + 10;
   return camera;
+}
+
+Camera oblique_camera_over(const Vec3& low, const Vec3& high, double yaw_deg, double pitch_deg,
+                          double aspect) {
+  Camera camera;
+  camera.target = {(low[0] + high[0]) / 2, (low[1] + high[1]) / 2, low[2]};
+  camera.yaw_deg = yaw_deg;
+  camera.pitch_deg = pitch_deg;
+  const double diagonal = std::sqrt(dot(sub(high, low), sub(high, low)));
+  // Steps of 1/200 of the diagonal out from half of it: the first distance at
+  // which every corner is inside the frame, 4% in from its edges.
+  for (int step = 100; step <= 2000; ++step) {
+    camera.distance_m = diagonal * step / 200.0;
+    camera.far_m = camera.distance_m + 2 * diagonal;
+    const Mat4 clip = multiply(projection_matrix(camera, aspect), view_matrix(camera));
+    bool inside = true;
+    for (int corner = 0; corner < 8 && inside; ++corner) {
+      const Vec3 p{(corner & 1) ? high[0] : low[0], (corner & 2) ? high[1] : low[1],
+                   (corner & 4) ? high[2] : low[2]};
+      double x = clip[12], y = clip[13], w = clip[15];
+      for (int k = 0; k < 3; ++k) {
+        x += clip[static_cast<size_t>(k * 4)] * p[static_cast<size_t>(k)];
+        y += clip[static_cast<size_t>(k * 4 + 1)] * p[static_cast<size_t>(k)];
+        w += clip[static_cast<size_t>(k * 4 + 3)] * p[static_cast<size_t>(k)];
+      }
+      inside = w > camera.near_m && std::abs(x) <= 0.92 * w && std::abs(y) <= 0.92 * w;
+    }
+    if (inside) return camera;
+  }
+  return camera;  // 10 diagonals away: everything a box can hold is in view long before
 }
 
 Vec3 eye_position(const Camera& camera) {

@@ -7,6 +7,12 @@
 //   default  the original's per task: Circle, Gather, Reach target (0, −3, 0),
 //            distance 1.2·env_dim, yaw 0, pitch −60; Run target
 //            (x_agent + 3, 0, 2), distance 2.5, yaw 90, pitch −50
+//   arena    the whole arena at the original's angle, so the agent is in view
+//            wherever it goes: Circle, Gather, Reach the walled square up to 2 m
+//            high, yaw 0, pitch −60; Run 16 m of lane around the agent
+//            (x_agent − 6 to x_agent + 10, y from −3 to 3, widened to keep the
+//            agent 1.5 m inside), yaw 0, pitch −50; the distance is the
+//            nearest at which the box's corners are 4% inside the frame
 //   track    follows the agent: target its base, distance 4, yaw 0, pitch −35
 //   top      straight down over the whole arena (Run: over the agent's stretch of lane)
 #pragma once
@@ -46,6 +52,12 @@ Camera camera_for(const envs::SceneView& scene, std::string_view name, double as
 // A camera looking straight down at the rectangle [x0, x1] × [y0, y1] so that it fills the
 // image of the given aspect (width / height) with a small margin.
 Camera top_camera_over(double x0, double x1, double y0, double y1, double aspect);
+
+// A camera at this yaw and pitch aimed at the centre of the box's floor, at the
+// nearest distance (in steps of 1/200 of the box's diagonal) from which all
+// eight corners of the box low–high are 4% or more inside the image's edges.
+Camera oblique_camera_over(const envs::Vec3& low, const envs::Vec3& high, double yaw_deg, double pitch_deg,
+                          double aspect);
 
 // Where the camera's eye is, as PyBullet places it.
 envs::Vec3 eye_position(const Camera& camera);

@@ -5,7 +5,7 @@
 //
 // Parameters (RenderOptions):
 //   width, height  480 × 360 (the original's rgb_array size), each in [1, 8192]
-//   camera         "default" (the task's own camera), "track" or "top"
+//   camera         "default" (the task's own camera), "arena", "track" or "top"
 #pragma once
 
 #include <string>

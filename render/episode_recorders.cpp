@@ -14,10 +14,19 @@
 namespace bsg::render {
 namespace {
 
-std::string figures(const char* format, int episode, double episode_return, double cost) {
-  char text[96];
-  std::snprintf(text, sizeof text, format, episode, episode_return, cost);
+std::string formatted(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
   return text;
+}
+
+// The caption's fields: "episode 3", "step 180" (when step >= 0), "return 257.0", "cost 12".
+std::vector<std::string> caption_fields(int episode, int step, double episode_return, double cost) {
+  std::vector<std::string> fields{"episode " + std::to_string(episode)};
+  if (step >= 0) fields.push_back("step " + std::to_string(step));
+  fields.push_back(formatted("return %.1f", episode_return));
+  fields.push_back(formatted("cost %.0f", cost));
+  return fields;
 }
 
 }  // namespace
@@ -42,12 +51,7 @@ void VideoRecorder::after_step(const envs::Env& env, const envs::StepResult& res
 
 void VideoRecorder::add_frame(const envs::Env& env) {
   renderer_.render(env, frame_);
-  if (caption_) {
-    char text[128];
-    std::snprintf(text, sizeof text, "episode %d  step %d  return %.1f  cost %.0f", episode_, step_,
-                  return_, cost_);
-    draw_caption(frame_, text);
-  }
+  if (caption_) draw_caption(frame_, caption_fields(episode_, step_, return_, cost_));
   video_.add_frame(frame_);
 }
 
@@ -105,8 +109,7 @@ void TrajectoryRecorder::finish_episode(const envs::Env& env) {
   Image& panel = panels_.emplace_back();
   const std::vector<PathPoint>* paths = &path_points_;
   renderer_.draw(scene, camera, panel, nullptr, {paths, 1});
-  draw_caption(panel, figures("episode %d  return %.1f  cost %.0f", static_cast<int>(panels_.size()),
-                              episode_return_, episode_cost_));
+  draw_caption(panel, caption_fields(static_cast<int>(panels_.size()), -1, episode_return_, episode_cost_));
 }
 
 void TrajectoryRecorder::before_destroy(const envs::Env& env) noexcept {

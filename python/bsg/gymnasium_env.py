@@ -13,10 +13,11 @@ the bsg environment inside it (docs/python.md#pickle-and-copy).
 import warnings
 
 from . import rendering as _rendering
-from . import spaces as _spaces
+from .gymnasium_support import gymnasium as _gymnasium
+from .specs import gymnasium_spec
 
-_gymnasium = _spaces._gymnasium
 _Base = _gymnasium.Env if _gymnasium is not None else object
+
 
 class GymnasiumEnv(_Base):
     """A bsg ``Env`` behind gymnasium's API; the cost is in ``info["cost"]``.
@@ -73,9 +74,6 @@ class GymnasiumEnv(_Base):
 
 def _registered_spec(env):
     """gymnasium's EnvSpec of the env's id with its options, or bsg's spec without gymnasium."""
-    if _gymnasium is None:
-        return env.spec
-    from . import registration
-    return registration.gymnasium_spec(getattr(env, "_env_id", env.spec.id),
-                                       getattr(env, "_options", {}),
-                                       getattr(env, "_max_episode_steps", None) or None)
+    spec = gymnasium_spec(getattr(env, "_env_id", env.spec.id), getattr(env, "_options", {}),
+                          getattr(env, "_max_episode_steps", None) or None)
+    return env.spec if spec is None else spec

@@ -1,29 +1,33 @@
 """Registers every bsg environment with gymnasium as ``bsg/<id>``.
 
-``import bsg`` calls ``register_all()`` when gymnasium is importable, so that
+``import bsg`` calls ``register_all()`` when Gymnasium 0.28, 0.29 or 1.x is
+importable, so that
 
     gymnasium.make("bsg/SafetyBallCircle-v0")
-    gymnasium.make_vec("bsg/SafetyBallCircle-v0", num_envs=8)   # bsg.VectorEnv
+    gymnasium.make_vec("bsg/SafetyBallCircle-v0", num_envs=8)   # 1.x: a bsg.VectorEnv
 
 work with gymnasium's own options: ``max_episode_steps`` (gymnasium's
 TimeLimit truncates, ``-1``: never), ``render_mode``, ``disable_env_checker``,
-and make_vec's ``vectorization_mode`` ("vector_entry_point", the default, is
-``bsg.VectorEnv``; "sync" and "async" are gymnasium's own over single bsg
-environments). Every other keyword goes to ``bsg.make`` / ``bsg.VectorEnv``
-unchanged. The entry points are module-level functions, so the specs pickle.
+and make_vec's ``vectorization_mode`` (1.x: "vector_entry_point", the default,
+is ``bsg.VectorEnv``; 0.x: "custom"; "sync" and "async" are gymnasium's own
+over single bsg environments). Every other keyword goes to ``bsg.make`` /
+``bsg.VectorEnv`` unchanged. The entry points are module-level functions
+(under 0.x a ``VectorEntryPoint`` that names the id, since 0.x's make_vec
+passes the environment's keywords to no vector entry point), so the specs
+pickle and compare equal after a round trip.
+
+The top of the package's Python files: it imports the others, none imports it.
 """
 
 import dataclasses
 
-from . import spaces as _spaces
-
-_gymnasium = _spaces._gymnasium
-NAMESPACE = "bsg"
-
-
-def registered_id(env_id):
-    """``"bsg/<env_id>"``, the id under which gymnasium knows ``env_id``."""
-    return f"{NAMESPACE}/{env_id}"
+from .env import describe, env_ids
+from .gymnasium_env import GymnasiumEnv
+from .gymnasium_support import IS_1X
+from .gymnasium_support import gymnasium as _gymnasium
+from .making import make
+from .specs import ENTRY_POINT, VECTOR_ENTRY_POINT, registered_id
+from .vector import VectorEnv
 
 
 def make_registered_env(env_id, **overrides):
@@ -32,8 +36,6 @@ def make_registered_env(env_id, **overrides):
     The environment does not truncate by itself: gymnasium.make wraps it in a
     TimeLimit of the registered length (or of its ``max_episode_steps``).
     """
-    from . import make
-    from .gymnasium_env import GymnasiumEnv
     for option in ("api", "autoreset"):
         if option in overrides:
             raise TypeError(f"gymnasium.make does not take bsg.make's option {option!r} (wrap "
@@ -43,10 +45,12 @@ def make_registered_env(env_id, **overrides):
     return GymnasiumEnv(env)
 
 
-def make_registered_vector_env(env_id, num_envs=1, max_episode_steps=None, render_mode=None,
+make_registered_env.metadata = GymnasiumEnv.metadata  # what gymnasium.make checks
+
+
+def make_registered_vector_env(env_id=None, num_envs=1, max_episode_steps=None, render_mode=None,
                                **options):
     """gymnasium.make_vec's vector entry point: a ``bsg.VectorEnv`` with gymnasium's 5-tuple."""
-    from .vector import VectorEnv
     if render_mode is not None:
         options["render_mode"] = render_mode
     if max_episode_steps == -1:
@@ -56,39 +60,28 @@ def make_registered_vector_env(env_id, num_envs=1, max_episode_steps=None, rende
                      **options)
 
 
+@dataclasses.dataclass(frozen=True)
+class VectorEntryPoint:
+    """Gymnasium 0.x's vector entry point of one id: make_vec(id, vectorization_mode="custom")
+    calls it with ``num_envs`` and ``max_episode_steps`` (and its ``vector_kwargs``) only."""
+
+    env_id: str
+
+    def __call__(self, **kwargs):
+        return make_registered_vector_env(self.env_id, **kwargs)
+
+
 def register_all():
     """Registers ``bsg/<id>`` for every id (a no-op for ids already registered)."""
-    from . import describe, env_ids
-    from .gymnasium_env import GymnasiumEnv
-    make_registered_env.metadata = GymnasiumEnv.metadata  # what gymnasium.make checks
     for env_id in env_ids():
         name = registered_id(env_id)
         if name in _gymnasium.envs.registry:
             continue
         _gymnasium.register(
             id=name,
-            entry_point=f"{__name__}:make_registered_env",
-            vector_entry_point=f"{__name__}:make_registered_vector_env",
+            entry_point=ENTRY_POINT,
+            vector_entry_point=(VECTOR_ENTRY_POINT if IS_1X else
+                                VectorEntryPoint(env_id)),
             max_episode_steps=int(describe(env_id)["max_episode_steps"]),
             kwargs={"env_id": env_id},
         )
-
-
-def gymnasium_spec(env_id, options, max_episode_steps=None):
-    """gymnasium's EnvSpec of ``env_id`` made with ``options`` (and another
-    episode length if ``max_episode_steps`` is given). ``env_id`` None (an
-    agent on a task, ``bsg.make(agent=..., task=...)``) gives an unregistered
-    spec whose entry point remakes the same environment."""
-    if env_id is None:
-        from . import _split_options, describe
-        described = describe(**_split_options(options)[1])
-        spec = _gymnasium.envs.registration.EnvSpec(
-            id=registered_id(described["name"]), entry_point=f"{__name__}:make_registered_env",
-            vector_entry_point=f"{__name__}:make_registered_vector_env",
-            max_episode_steps=int(described["max_episode_steps"]), kwargs={"env_id": None})
-    else:
-        spec = _gymnasium.spec(registered_id(env_id))
-    changes = {"kwargs": {**spec.kwargs, **options}}
-    if max_episode_steps is not None:
-        changes["max_episode_steps"] = max_episode_steps
-    return dataclasses.replace(spec, **changes)

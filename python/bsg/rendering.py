@@ -4,8 +4,9 @@
 then ``env.render()`` returns the frame as an ``[height, width, 3]`` uint8
 array; ``render_mode="depth_array"`` returns ``[height, width]`` float32
 distances along the view axis in metres. Cameras: ``"default"`` (the task's
-own, as the original suite sets it), ``"track"`` (follows the agent) and
-``"top"`` (the arena from above). The graphics context is created at the first
+own, as the original suite sets it), ``"arena"`` (the whole arena, so the agent
+is always in view; ``bsg eval --video``'s default), ``"track"`` (follows the
+agent) and ``"top"`` (the arena from above). The graphics context is created at the first
 ``render()``: an environment that never renders creates none.
 """
 

@@ -16,10 +16,7 @@ entries raise ValueError.
 
 import numpy as np
 
-try:
-    import gymnasium as _gymnasium
-except ImportError:  # gymnasium is optional
-    _gymnasium = None
+from .gymnasium_support import gymnasium as _gymnasium
 
 
 class Box:

@@ -1,40 +1,49 @@
 """``bsg.VectorEnv``: N environments of one id stepped on a C++ thread pool.
 
-When gymnasium is importable it is a ``gymnasium.vector.VectorEnv``, so that
-gymnasium's vector wrappers accept it (with ``api="gymnasium"``, whose step is
-gymnasium's 5-tuple). docs/python.md#vector-environments describes the API.
+An object says what it is: ``bsg.VectorEnv(id, n)`` (bsg's API, the 6-tuple
+step) is no ``gymnasium.vector.VectorEnv``, while ``bsg.VectorEnv(id, n,
+api="gymnasium")`` is a ``GymnasiumVectorEnv``, a subclass that is one and keeps
+the contract of the importable Gymnasium: 1.x's (5-tuple, ``autoreset_mode``
+next-step or same-step with ``final_obs``) or 0.28/0.29's (5-tuple, same-step
+autoreset with ``final_observation`` and ``final_info``, ``step_async`` and
+``step_wait``). docs/python.md#vector-environments describes the API.
 """
 
 import numpy as np
 
 from . import _core
 from . import rendering as _rendering
-from .spaces import _gymnasium, box
+from .env import check_max_episode_steps, split_options
+from .gymnasium_support import IS_1X
+from .gymnasium_support import gymnasium as _gymnasium
+from .spaces import box
+from .specs import gymnasium_spec
 
-if _gymnasium is not None and hasattr(_gymnasium.vector, "AutoresetMode"):  # gymnasium 1.x
-    from gymnasium.vector import AutoresetMode as _AutoresetMode
-    _VectorBase = _gymnasium.vector.VectorEnv
-else:
-    _AutoresetMode = None
-    _VectorBase = object
-
+_AutoresetMode = _gymnasium.vector.AutoresetMode if IS_1X else None
 _MODES = {"NextStep": True, "SameStep": False}  # name -> next-step?
 
 
-def _next_step(autoreset_mode):
-    """True for next-step autoreset; accepts gymnasium's AutoresetMode or its value."""
+def _next_step(autoreset_mode, api):
+    """True for next-step autoreset; accepts gymnasium's AutoresetMode or its value.
+    None is the default of the API: Gymnasium 0.x's vector API resets in the same step."""
+    if autoreset_mode is None:
+        return not (api == "gymnasium" and _gymnasium is not None and not IS_1X)
     value = getattr(autoreset_mode, "value", autoreset_mode)
     if value not in _MODES:
         raise ValueError(f"autoreset_mode must be 'NextStep' or 'SameStep' (or gymnasium's "
                          f"AutoresetMode of them), got {autoreset_mode!r}")
+    if api == "gymnasium" and _gymnasium is not None and not IS_1X and value == "NextStep":
+        raise ValueError(f"Gymnasium {_gymnasium.__version__}'s vector environments reset in the "
+                         f"same step; autoreset_mode='NextStep' with api='gymnasium' needs "
+                         f"Gymnasium 1.x (api='safety' resets in the next step under any version)")
     return _MODES[value]
 
 
-class VectorEnv(_core.VectorEnv, _VectorBase):
+class VectorEnv(_core.VectorEnv):
     """``num_envs`` environments of one id stepped on a C++ thread pool.
 
     ``VectorEnv(id, num_envs, num_threads=0, seed=0, api="safety",
-    autoreset_mode="NextStep", max_episode_steps=None, **options)``.
+    autoreset_mode=None, max_episode_steps=None, **options)``.
     ``num_threads=0`` uses every hardware thread (at most ``num_envs``); the
     GIL is released while the environments step, and results are identical
     whatever ``num_threads`` is.
@@ -49,22 +58,33 @@ class VectorEnv(_core.VectorEnv, _VectorBase):
     ``step(actions[num_envs, act_dim])`` returns ``(obs, reward, cost,
     terminated, truncated, info)`` (``api="safety"``) or ``(obs, reward,
     terminated, truncated, info)`` with ``info["cost"]`` (``api="gymnasium"``).
-    Ended episodes are reset as Gymnasium 1.x defines it: ``"NextStep"`` (the
-    default) by the next step, which returns the new episode's first
+    Ended episodes are reset as Gymnasium 1.x defines it: ``"NextStep"`` by
+    the next step, which returns the new episode's first
     observation with reward 0 and both flags false; ``"SameStep"`` in the
     step itself, whose observation row is then the new episode's while
     ``info["final_obs"]`` and ``info["final_info"]`` hold the ended episode's
     last observation and info. ``info`` holds one ``[N]`` array per cost term
     with its ``"_<key>"`` mask of the environments that reported it.
+
+    With gymnasium importable, ``api="gymnasium"`` makes a
+    ``GymnasiumVectorEnv`` (a subclass that is a ``gymnasium.vector.VectorEnv``);
+    ``autoreset_mode=None`` is ``"NextStep"`` except there under Gymnasium 0.x,
+    whose vector API resets in the same step.
     """
 
+    def __new__(cls, *args, api="safety", **kwargs):
+        if cls is VectorEnv and api == "gymnasium" and GymnasiumVectorEnv is not None:
+            cls = GymnasiumVectorEnv
+        return _core.VectorEnv.__new__(cls)
+
     def __init__(self, env_id=None, num_envs=1, num_threads=0, seed=0, *, api="safety",
-                 autoreset_mode="NextStep", max_episode_steps=None, render_mode=None,
+                 autoreset_mode=None, max_episode_steps=None, render_mode=None,
                  width=480, height=360, camera="default", **kwargs):
         if api not in ("safety", "gymnasium"):
             raise ValueError(f"api must be 'safety' or 'gymnasium', got {api!r}")
-        next_step = _next_step(autoreset_mode)
-        options, parameters = _check_arguments(kwargs, max_episode_steps)
+        next_step = _next_step(autoreset_mode, api)
+        check_max_episode_steps(max_episode_steps)
+        options, parameters = split_options(kwargs)
         self._renderer = _rendering.make_renderer(render_mode, width, height, camera)
         super().__init__(env_id, num_envs, num_threads, seed, parameters=parameters, **options)
         self._configure(api == "gymnasium", next_step, max_episode_steps or 0)
@@ -81,7 +101,7 @@ class VectorEnv(_core.VectorEnv, _VectorBase):
         self.autoreset_mode = _AutoresetMode(mode) if _AutoresetMode is not None else mode
         self.metadata = {**_rendering.METADATA, "autoreset_mode": self.autoreset_mode}
         self.render_mode = render_mode
-        self._spec = _gymnasium_spec(env_id, kwargs, api) or spec
+        self._spec = (gymnasium_spec(env_id, kwargs) if api == "gymnasium" else None) or spec
 
     @property
     def bsg_spec(self):
@@ -96,12 +116,6 @@ class VectorEnv(_core.VectorEnv, _VectorBase):
     @spec.setter
     def spec(self, value):  # gymnasium.make_vec sets it
         self._spec = value
-
-    def reset(self, *, seed=None, options=None):
-        if _VectorBase is not object and isinstance(seed, (int, np.integer)) \
-                and not isinstance(seed, bool):
-            _VectorBase.reset(self, seed=int(seed))  # seeds self.np_random
-        return _core.VectorEnv.reset(self, seed=seed, options=options)
 
     def render(self):
         """Every environment's frame, rendered on the pool's threads:
@@ -166,15 +180,85 @@ class VectorEnv(_core.VectorEnv, _VectorBase):
                 f"thread(s){' (closed)' if self.closed else ''}>")
 
 
-def _check_arguments(kwargs, max_episode_steps):
-    """(options, description parameters) of ``kwargs``, checked as ``Env`` checks them."""
-    from . import _check_max_episode_steps, _split_options  # one check for Env and VectorEnv
-    _check_max_episode_steps(max_episode_steps)
-    return _split_options(kwargs)
+def _seed_np_random(env, seed):
+    """Seeds ``env.np_random`` as gymnasium's VectorEnv.reset does for an int seed."""
+    if isinstance(seed, (int, np.integer)) and not isinstance(seed, bool):
+        env._np_random, env._np_random_seed = _gymnasium.utils.seeding.np_random(int(seed))
 
 
-def _gymnasium_spec(env_id, options, api):
-    if _gymnasium is None or api != "gymnasium":
-        return None
-    from . import registration
-    return registration.gymnasium_spec(env_id, options)
+def _legacy_final_keys(info, num_envs):
+    """Gymnasium 0.x's same-step keys from 1.x's: ``final_observation`` and
+    ``final_info`` (an object array of each ended environment's info dict,
+    None for the others), each with its mask, as 0.x's SyncVectorEnv gives them."""
+    if "final_obs" not in info:
+        return info
+    ended = info.pop("_final_obs")
+    final_obs = info.pop("final_obs")
+    columns = info.pop("final_info")
+    info.pop("_final_info")
+    final_info = np.full(num_envs, None, dtype=object)
+    for i in np.flatnonzero(ended):
+        final_info[i] = {key: values[i].item() for key, values in columns.items()
+                         if not key.startswith("_") and columns[f"_{key}"][i]}
+    info["final_observation"], info["_final_observation"] = final_obs, ended
+    info["final_info"], info["_final_info"] = final_info, ended.copy()
+    return info
+
+
+if _gymnasium is None:
+    GymnasiumVectorEnv = None
+elif IS_1X:
+    class GymnasiumVectorEnv(VectorEnv, _gymnasium.vector.VectorEnv):
+        """``bsg.VectorEnv(..., api="gymnasium")`` under Gymnasium 1.x: a
+        ``gymnasium.vector.VectorEnv`` whose ``step`` is the 5-tuple and whose
+        ``metadata["autoreset_mode"]`` is the mode it resets in."""
+
+        def __init__(self, env_id=None, num_envs=1, num_threads=0, seed=0, *, api="gymnasium",
+                     **kwargs):
+            if api != "gymnasium":
+                raise ValueError(f"GymnasiumVectorEnv has gymnasium's API, got api={api!r}")
+            super().__init__(env_id, num_envs, num_threads, seed, api=api, **kwargs)
+
+        def reset(self, *, seed=None, options=None):
+            _seed_np_random(self, seed)
+            return _core.VectorEnv.reset(self, seed=seed, options=options)
+else:
+    class GymnasiumVectorEnv(VectorEnv, _gymnasium.vector.VectorEnv):
+        """``bsg.VectorEnv(..., api="gymnasium")`` under Gymnasium 0.28 or 0.29:
+        a ``gymnasium.vector.VectorEnv`` of that version, which resets an ended
+        episode in the same step and reports its last observation and info as
+        ``info["final_observation"]`` and ``info["final_info"]``."""
+
+        is_vector_env = True
+
+        def __init__(self, env_id=None, num_envs=1, num_threads=0, seed=0, *, api="gymnasium",
+                     **kwargs):
+            if api != "gymnasium":
+                raise ValueError(f"GymnasiumVectorEnv has gymnasium's API, got api={api!r}")
+            super().__init__(env_id, num_envs, num_threads, seed, api=api, **kwargs)
+            self._pending_actions = self._pending_reset = None
+
+        def reset(self, *, seed=None, options=None):
+            _seed_np_random(self, seed)
+            return _core.VectorEnv.reset(self, seed=seed, options=options)
+
+        def step(self, actions):
+            obs, reward, terminated, truncated, info = _core.VectorEnv.step(self, actions)
+            return obs, reward, terminated, truncated, _legacy_final_keys(info, self.num_envs)
+
+        # Gymnasium 0.x's VectorEnv and its wrappers step and reset in two halves.
+        def step_async(self, actions):
+            self._pending_actions = actions
+
+        def step_wait(self, **kwargs):
+            if self._pending_actions is None:
+                raise RuntimeError("step_wait() without a step_async(actions) before it")
+            actions, self._pending_actions = self._pending_actions, None
+            return self.step(actions)
+
+        def reset_async(self, seed=None, options=None):
+            self._pending_reset = dict(seed=seed, options=options)
+
+        def reset_wait(self, seed=None, options=None, **kwargs):
+            pending, self._pending_reset = self._pending_reset, None
+            return self.reset(**(pending or dict(seed=seed, options=options)))

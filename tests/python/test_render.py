@@ -68,7 +68,7 @@ def test_rgb_array_frame_and_metadata():
 
 
 def test_size_and_camera_options():
-    for camera in ("default", "track", "top"):
+    for camera in ("default", "arena", "track", "top"):
         with bsg.make("SafetyCarGather-v0", render_mode="rgb_array", width=64, height=48,
                       camera=camera) as env:
             env.reset(seed=1)
@@ -123,7 +123,7 @@ def test_vector_render_equals_single_environments_on_any_thread_count():
     (dict(render_mode="rgb_array", width=0), ValueError, "width must be in [1, 8192], got 0"),
     (dict(render_mode="rgb_array", height=100000), ValueError, "height must be in [1, 8192], got 100000"),
     (dict(render_mode="rgb_array", width=64.5), ValueError, "width must be an int"),
-    (dict(render_mode="rgb_array", camera="side"), ValueError, "unknown camera 'side' (valid: default, track, top)"),
+    (dict(render_mode="rgb_array", camera="side"), ValueError, "unknown camera 'side' (valid: default, arena, track, top)"),
 ])
 def test_bad_arguments(arguments, error, message):
     with pytest.raises(error) as raised:

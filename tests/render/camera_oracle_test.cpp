@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "envs/env.h"
 #include "envs/assembly/scene.h"
@@ -120,6 +121,57 @@ TEST(CollectibleOracle, AppleAndBombCentresLandOnTheirColours) {
     }
     EXPECT_GT(apples, 0);
     EXPECT_GT(bombs, 0);
+  }
+}
+
+bool in_frame(const Pixel& p, int width, int height) {
+  return p.x >= 0 && p.x < width && p.y >= 0 && p.y < height;
+}
+
+// The arena camera (the --video default) sees every place the agent can be, at
+// every frame shape: inside the walls (docs/environments.md#worlds: SmallRoom's
+// inner faces at ±9.9, the Octagon's 11.9 m from the centre, walls 2 m high),
+// and on the Run plane wherever the agent went. The original's camera does not.
+TEST(ArenaCamera, KeepsEveryReachablePointInFrameWhereTheDefaultDoesNot) {
+  struct Room {
+    std::string task;
+    double inner;    // the walls' inner faces
+    bool octagon;
+  };
+  for (const Room& room : {Room{"Gather", 9.9, false}, Room{"Reach", 9.9, false}, Room{"Circle", 11.9, true}}) {
+    for (const auto& [width, height] : {std::pair{480, 360}, {240, 180}, {1920, 1080}, {360, 640}}) {
+      envs::SceneView scene;
+      scene.task = room.task;
+      scene.env_dim = 10;
+      int lost_by_default = 0, points = 0;
+      for (double x = -room.inner; x <= room.inner + 1e-9; x += room.inner / 10) {
+        for (double y = -room.inner; y <= room.inner + 1e-9; y += room.inner / 10) {
+          if (room.octagon && std::abs(x) + std::abs(y) > room.inner * std::sqrt(2.0)) continue;
+          for (const double z : {0.0, 2.0}) {
+            scene.agent_position = {x, y, z};
+            const double aspect = static_cast<double>(width) / height;
+            const Pixel p = project(camera_for(scene, "arena", aspect), {x, y, z}, width, height);
+            EXPECT_TRUE(in_frame(p, width, height))
+                << room.task << " " << width << "x" << height << " (" << x << ", " << y << ", " << z
+                << ") at pixel (" << p.x << ", " << p.y << ")";
+            lost_by_default += !in_frame(project(camera_for(scene, "default", aspect), {x, y, z}, width, height),
+                                         width, height);
+            ++points;
+          }
+        }
+      }
+      EXPECT_GT(lost_by_default, 0) << room.task << " " << width << "x" << height << " of " << points;
+    }
+  }
+  envs::SceneView run;
+  run.task = "Run";
+  run.env_dim = 250;
+  for (const double x : {0.0, 57.3, 240.0}) {
+    for (const double y : {-8.0, -2.0, 0.0, 2.0, 8.0}) {
+      run.agent_position = {x, y, 0.5};
+      const Pixel p = project(camera_for(run, "arena", 4.0 / 3), run.agent_position, 480, 360);
+      EXPECT_TRUE(in_frame(p, 480, 360)) << "Run (" << x << ", " << y << ") at (" << p.x << ", " << p.y << ")";
+    }
   }
 }
 

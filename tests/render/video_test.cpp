@@ -14,6 +14,7 @@
 #include "../cli/run_bsg.h"
 #include "../test_support.h"
 #include "envs/env.h"
+#include "render/camera.h"
 #include "render/video_file.h"
 #include "render_test_support.h"
 
@@ -95,10 +96,40 @@ TEST(Video, RolloutWritesOneFramePerResetAndStep) {
   EXPECT_TRUE(testing::contains(result.output, "(502 frames, 96x64, camera track)"));
 }
 
+// A video exists to show the agent: without --camera it is the arena camera
+// (render/camera.h), which keeps the whole arena in view; the first frame's
+// agent pixels are there (the blue of the agent, render_test_support.h).
+TEST(Video, DefaultCameraIsTheArenaAndShowsTheAgent) {
+  BSG_RENDERER_OR_SKIP(probe, (RenderOptions{64, 48, "default"}));
+  const std::string path = temp_path("arena.mp4");
+  const testing::ProgramResult result = testing::run_bsg(
+      "rollout --env SafetyBallGather-v0 --episodes 1 --seed 1 --video " + path);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(testing::contains(result.output, "camera arena)")) << result.output;
+  const std::vector<Image> decoded = testing::decode_video(path);
+  std::filesystem::remove(path);
+  ASSERT_FALSE(decoded.empty());
+  for (const size_t i : {size_t{0}, decoded.size() / 2, decoded.size() - 1}) {
+    EXPECT_GT(testing::count_pixels(decoded[i], testing::is_agent_blue), 0) << "frame " << i;
+  }
+}
+
+// `--help` of both recording commands says what every camera shows.
+TEST(Video, HelpDescribesEveryCamera) {
+  for (const std::string command : {"eval", "rollout"}) {
+    const testing::ProgramResult result = testing::run_bsg(command + " --help");
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    for (const std::string& camera : camera_names()) {
+      EXPECT_TRUE(testing::contains(result.output, "  " + camera + "  ")) << command << ": " << camera;
+    }
+    EXPECT_TRUE(testing::contains(result.output, "the original suite's camera")) << command;
+  }
+}
+
 TEST(Video, BadInputFailsWithOneLine) {
   for (const auto& [arguments, message] :
        {std::pair{std::string("--video /nonexistent-folder/v.mp4"), std::string("cannot write video '/nonexistent-folder/v.mp4'")},
-        {"--video " + temp_path("x.mp4") + " --camera side", "unknown camera 'side' (valid: default, track, top)"},
+        {"--video " + temp_path("x.mp4") + " --camera side", "unknown camera 'side' (valid: default, arena, track, top)"},
         {"--video " + temp_path("x.mp4") + " --width 0", "width must be in [1, 8192], got 0"},
         {"--video " + temp_path("x.mp4") + " --height 100000", "height must be in [1, 8192], got 100000"},
         {"--trajectories /nonexistent-folder/t.png", "cannot write PNG '/nonexistent-folder/t.png'"}}) {
