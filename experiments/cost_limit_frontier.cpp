@@ -61,11 +61,10 @@ CostLimitFrontier build_cost_limit_frontier(const std::vector<ConfigurationResul
   for (const ConfigurationResults& config : results) {
     const FamilyKey key{config.env_id, column_label_of(config), frontier_family(config.config_name)};
     all_limits.insert(limits_of(config));
-    if (config.seeds.size() < 2) {
-      frontier.notes.push_back(config_dir_of(config) + ": " + std::to_string(config.seeds.size()) +
-                               " finished seed(s); left out of the frontier (an interval needs 2)");
-      continue;
+    if (config.seeds.size() == 1) {
+      frontier.notes.push_back(config_dir_of(config) + ": 1 finished seed; left out of the frontier (an interval needs 2)");
     }
+    if (config.seeds.size() < 2) continue;
     if (!families.count(key)) order.push_back(key);
     families[key].push_back(&config);
   }

@@ -176,11 +176,15 @@ ResultIntervals build_result_intervals(const std::vector<ConfigurationResults>& 
   // Selected configurations by environment, for the differences.
   std::map<std::string, std::vector<const ConfigurationResults*>> selected_by_env;
 
+  std::size_t unfinished = 0;  // configurations without a finished seed: counted, not listed
   for (const ConfigurationResults& config : results) {
     most_seeds = std::max(most_seeds, config.seeds.size());
+    if (config.seeds.empty()) {
+      ++unfinished;
+      continue;
+    }
     if (config.seeds.size() < 2) {
-      out.notes.push_back(config_dir_of(config) + ": " + std::to_string(config.seeds.size()) +
-                          " finished seed(s); no interval (at least 2 are needed)");
+      out.notes.push_back(config_dir_of(config) + ": 1 finished seed(s); no interval (at least 2 are needed)");
       continue;
     }
     const std::optional<double> trpo = trpo_return_of(table, config);
@@ -214,6 +218,9 @@ ResultIntervals build_result_intervals(const std::vector<ConfigurationResults>& 
   if (most_seeds < 2) {
     throw std::invalid_argument("no configuration has two finished seeds (the most is " + std::to_string(most_seeds) +
                                 "): an interval across seeds needs at least 2; a sweep with one seed has none");
+  }
+  if (unfinished > 0) {
+    out.notes.push_back(std::to_string(unfinished) + " configuration(s) without a finished seed (missing, not zero)");
   }
   for (const std::string& env_id : unnormalised_envs) {
     out.notes.push_back(env_id + ": no TRPO run to normalise by; J / J_TRPO and its profile are left out");

@@ -47,7 +47,9 @@ const IntervalRow* find_row(const std::vector<IntervalRow>& rows, const std::str
 }
 
 std::string percent(double confidence) {
-  return short_number(100.0 * confidence) + " %";
+  char text[32];
+  std::snprintf(text, sizeof text, "%g %%", 100.0 * confidence);
+  return text;
 }
 
 }  // namespace

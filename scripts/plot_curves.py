@@ -499,7 +499,7 @@ def plot_ci_frontier(sweep_dir, out_dir):
     return written
 
 
-def plot_intervals(sweep_dir, out_dir):
+def plot_intervals(sweep_dir, out_dir, _window=None):
     written = plot_ci_curves(sweep_dir, out_dir)
     written += plot_ci_profiles(sweep_dir, out_dir)
     written += plot_ci_aggregates(sweep_dir, out_dir)

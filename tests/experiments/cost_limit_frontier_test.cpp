@@ -31,8 +31,8 @@ TEST(CostLimitFrontier, FamiliesAreConfigurationsWithoutTheirLimit) {
 
 TEST(CostLimitFrontier, OnePointPerLimitSortedByTheLimit) {
   const std::vector<ConfigurationResults> results = {
-      config(Algorithm::lag_trpo, "cost_limit=25", 25.0, {{0, 300, 20}, {1, 310, 30}}),
-      config(Algorithm::lag_trpo, "cost_limit=5", 5.0, {{0, 100, 4}, {1, 120, 8}}),
+      config(Algorithm::lag_trpo, "cost_limit=25", 25.0, {{0, 300, 20, {}}, {1, 310, 30, {}}}),
+      config(Algorithm::lag_trpo, "cost_limit=5", 5.0, {{0, 100, 4, {}}, {1, 120, 8, {}}}),
   };
   const CostLimitFrontier frontier = build_cost_limit_frontier(results, {});
   ASSERT_EQ(frontier.points.size(), 2u);
@@ -70,7 +70,7 @@ TEST(CostLimitFrontier, SeveralConstraintsGiveOnePanelEach) {
 
 TEST(CostLimitFrontier, OneLimitOrOneSeedIsRefusedNamingTheLimits) {
   const std::vector<ConfigurationResults> one_limit = {
-      config(Algorithm::lag_trpo, "default", 25.0, {{0, 300, 20}, {1, 310, 30}}),
+      config(Algorithm::lag_trpo, "default", 25.0, {{0, 300, 20, {}}, {1, 310, 30, {}}}),
   };
   try {
     build_cost_limit_frontier(one_limit, {});
@@ -79,8 +79,8 @@ TEST(CostLimitFrontier, OneLimitOrOneSeedIsRefusedNamingTheLimits) {
     EXPECT_NE(std::string(error.what()).find("the sweep's limits: 25"), std::string::npos) << error.what();
   }
   const std::vector<ConfigurationResults> one_seed = {
-      config(Algorithm::lag_trpo, "cost_limit=5", 5.0, {{0, 100, 4}}),
-      config(Algorithm::lag_trpo, "cost_limit=25", 25.0, {{0, 300, 20}}),
+      config(Algorithm::lag_trpo, "cost_limit=5", 5.0, {{0, 100, 4, {}}}),
+      config(Algorithm::lag_trpo, "cost_limit=25", 25.0, {{0, 300, 20, {}}}),
   };
   EXPECT_THROW(build_cost_limit_frontier(one_seed, {}), std::invalid_argument);
 }

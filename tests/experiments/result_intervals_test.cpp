@@ -39,11 +39,11 @@ std::vector<ConfigurationResults> results() {
   const std::string circle = "SafetyBallCircle-v0";
   const std::string run = "SafetyBallRun-v0";
   return {
-      config(circle, Algorithm::trpo, "default", {{0, 190, 70}, {1, 210, 90}}),
-      config(circle, Algorithm::lag_trpo, "default", {{0, 100, 20}, {1, 120, 24}, {2, 140, 30}}),
-      config(run, Algorithm::trpo, "default", {{0, 9, 50}, {1, 11, 50}}),
-      config(run, Algorithm::lag_trpo, "default", {{0, 5, 10}, {1, 6, 20}, {2, 7, 40}}),
-      config(run, Algorithm::cpo, "default", {{0, 4, 10}}),  // one seed: no interval
+      config(circle, Algorithm::trpo, "default", {{0, 190, 70, {}}, {1, 210, 90, {}}}),
+      config(circle, Algorithm::lag_trpo, "default", {{0, 100, 20, {}}, {1, 120, 24, {}}, {2, 140, 30, {}}}),
+      config(run, Algorithm::trpo, "default", {{0, 9, 50, {}}, {1, 11, 50, {}}}),
+      config(run, Algorithm::lag_trpo, "default", {{0, 5, 10, {}}, {1, 6, 20, {}}, {2, 7, 40, {}}}),
+      config(run, Algorithm::cpo, "default", {{0, 4, 10, {}}}),  // one seed: no interval
   };
 }
 
@@ -114,8 +114,8 @@ TEST(ResultIntervals, ProfilesStartAtOneAndEndAtZero) {
 
 TEST(ResultIntervals, ASweepWithOneSeedIsRefusedWithAClearMessage) {
   const std::vector<ConfigurationResults> one_seed = {
-      config("SafetyBallCircle-v0", Algorithm::trpo, "default", {{0, 190, 70}}),
-      config("SafetyBallCircle-v0", Algorithm::lag_trpo, "default", {{0, 100, 20}}),
+      config("SafetyBallCircle-v0", Algorithm::trpo, "default", {{0, 190, 70, {}}}),
+      config("SafetyBallCircle-v0", Algorithm::lag_trpo, "default", {{0, 100, 20, {}}}),
   };
   try {
     build_result_intervals(one_seed, build_table1(one_seed, SelectionScore::mean_return), {});

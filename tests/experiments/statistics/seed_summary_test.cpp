@@ -26,11 +26,11 @@ TEST(SeedSummary, WilsonIntervalOfThreeOutOfThreeIsNotAPoint) {
   const IntervalEstimate none = wilson_interval(0, 3, 0.95);
   EXPECT_DOUBLE_EQ(none.low, 0.0);
   EXPECT_NEAR(none.high, 1.0 - 0.438503, 1e-6);
-  // k = 1, n = 2: centre 0.5 + z^2/4 = 1.460365, spread z sqrt(1/8 + z^2/16) = 1.184265,
-  // scale 1 + z^2/2 = 2.920729: [0.094533, 0.905467].
+  // k = 1, n = 2, z^2 = 3.8414588: centre 0.5 + z^2/4 = 1.4603647, spread z sqrt(1/8 + z^2/16) =
+  // 1.9599640 x 0.6042278 = 1.1842646, scale 1 + z^2/2 = 2.9207294: [0.0945312, 0.9054688].
   const IntervalEstimate half = wilson_interval(1, 2, 0.95);
-  EXPECT_NEAR(half.low, 0.094533, 1e-6);
-  EXPECT_NEAR(half.high, 0.905467, 1e-6);
+  EXPECT_NEAR(half.low, 0.0945312, 1e-6);
+  EXPECT_NEAR(half.high, 0.9054688, 1e-6);
   EXPECT_THROW(wilson_interval(0, 0, 0.95), std::invalid_argument);
   EXPECT_THROW(wilson_interval(4, 3, 0.95), std::invalid_argument);
 }
