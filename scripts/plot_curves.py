@@ -358,9 +358,8 @@ def plot_ci_profiles(sweep_dir, out_dir):
         return []
     metrics = [m for m in PROFILE_TITLES if any(r["metric"] == m for r in rows)]
     columns = ordered_columns(rows)
-    figure, axes = plt.subplots(1, len(metrics), figsize=(6.5 * len(metrics), 4.2), squeeze=False)
-    figure.suptitle(f"Performance profiles: fraction of runs with a score above tau ({confidence_of(rows)} "
-                    "stratified bootstrap bands)")
+    figure, axes = plt.subplots(1, len(metrics), figsize=(max(8.0, 6.5 * len(metrics)), 4.4), squeeze=False)
+    figure.suptitle(f"Performance profiles ({confidence_of(rows)} stratified bootstrap bands)")
     for panel, metric in zip(axes[0], metrics):
         title, xlabel = PROFILE_TITLES[metric]
         panel.set_title(title)
@@ -421,6 +420,8 @@ def plot_ci_aggregates(sweep_dir, out_dir):
         panel.invert_yaxis()
         if metric == "H_over_d":
             panel.axvline(1.0, color="black", linestyle="--", linewidth=1.0)
+        if metric == "feasible":
+            panel.set_xlim(-0.02, 1.02)
     figure.tight_layout(rect=(0, 0, 1, 0.9))
     path = os.path.join(out_dir, "aggregates.png")
     figure.savefig(path, dpi=100)
@@ -590,8 +591,10 @@ def main(argv=None):
     if args.smooth is not None and args.smooth < 1:
         parser.error("--smooth must be at least 1")
     is_run = os.path.exists(os.path.join(args.directory, "progress.csv"))
-    if is_run and (args.all_configs or args.ci):
-        parser.error("--all-configs and --ci apply to a sweep directory, not to a run directory")
+    if is_run and args.all_configs:
+        parser.error("--all-configs applies to a sweep directory, not to a run directory")
+    if is_run and args.ci:
+        parser.error("--ci applies to a sweep directory, not to a run directory")
     if args.ci and (args.all_configs or args.smooth is not None):
         parser.error("--ci draws the bands bsg table computed: no --all-configs or --smooth with it")
     window = args.smooth if args.smooth is not None else (9 if is_run else 1)
