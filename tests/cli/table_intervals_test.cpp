@@ -93,7 +93,7 @@ std::vector<std::map<std::string, std::string>> csv_rows(const fs::path& path) {
 TEST_F(TableIntervals, TheFrontierHasOnePointPerLimitWithTheSeedsMeanReturn) {
   const auto table = run_bsg("table " + sweep_.string() + " --frontier");
   ASSERT_EQ(table.exit_code, 0) << table.output;
-  for (const std::string& file : {"intervals.csv", "aggregates.csv", "distinguishable.csv", "profiles.csv",
+  for (const char* file : {"intervals.csv", "aggregates.csv", "distinguishable.csv", "profiles.csv",
                                   "training_safety.csv", "curves.csv", "table1_ci.md", "frontier.csv"}) {
     EXPECT_TRUE(fs::is_regular_file(sweep_ / file)) << file;
   }
@@ -102,7 +102,7 @@ TEST_F(TableIntervals, TheFrontierHasOnePointPerLimitWithTheSeedsMeanReturn) {
   const std::string limits[] = {"5", "25"};
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_EQ(points[i].at("column"), "TRPO-L");
-    EXPECT_EQ(points[i].at("cost_limit"), limits[i]);
+    EXPECT_EQ(std::stod(points[i].at("cost_limit")), std::stod(limits[i]));
     EXPECT_EQ(points[i].at("seeds"), "2");
     const fs::path config = sweep_ / "SafetyBallCircle-v0" / "lag-trpo" / ("cost_limit=" + limits[i]);
     const double expected = (evaluation_return(config / "seed=0") + evaluation_return(config / "seed=1")) / 2.0;
