@@ -201,6 +201,17 @@ std::string intervals_markdown(const ResultIntervals& intervals, const TrainingI
               (over ? interval_text(over->estimate) : "-") + " |\n";
     }
   }
+  if (!training.safety_aggregates.empty()) {
+    text += "\nFraction of training epochs whose mean episode cost exceeded d, per column across environments "
+            "(selected configurations; strata: the environments), " + level + " intervals:\n\n"
+            "| column | environments | runs | mean | IQM |\n|---|---|---|---|---|\n";
+    for (const IntervalRow& row : training.safety_aggregates) {
+      if (row.statistic != "mean") continue;
+      const IntervalRow* iqm = find_row(training.safety_aggregates, "", row.column, row.metric, "iqm", false);
+      text += "| " + row.column + " | " + std::to_string(row.environments) + " | " + std::to_string(row.seeds) +
+              " | " + interval_text(row.estimate) + " | " + (iqm ? interval_text(iqm->estimate) : "-") + " |\n";
+    }
+  }
   // 5. The frontier.
   if (frontier) {
     text += "\nCost-limit frontier (mean over seeds [" + level + " interval]):\n\n"
@@ -237,7 +248,9 @@ void write_interval_files(const ResultIntervals& intervals, const TrainingInterv
   write_file_atomically(out_dir / "aggregates.csv", interval_rows_csv(intervals.aggregates, c));
   write_file_atomically(out_dir / "distinguishable.csv", difference_rows_csv(intervals.differences, c));
   write_file_atomically(out_dir / "profiles.csv", profile_rows_csv(intervals.profiles, c));
-  write_file_atomically(out_dir / "training_safety.csv", interval_rows_csv(training.safety, c));
+  std::vector<IntervalRow> safety = training.safety;  // per configuration, then across environments
+  safety.insert(safety.end(), training.safety_aggregates.begin(), training.safety_aggregates.end());
+  write_file_atomically(out_dir / "training_safety.csv", interval_rows_csv(safety, c));
   write_file_atomically(out_dir / "curves.csv", curve_rows_csv(training.curves, c));
   write_file_atomically(out_dir / "table1_ci.md", intervals_markdown(intervals, training, frontier));
   if (frontier) write_file_atomically(out_dir / "frontier.csv", frontier_csv(*frontier, c));

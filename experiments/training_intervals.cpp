@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <optional>
+#include <set>
 
 #include "experiments/progress_columns.h"
 #include "experiments/statistics/seed_summary.h"
@@ -116,6 +119,9 @@ TrainingIntervals build_training_intervals(const std::vector<ConfigurationResult
                                            const BootstrapOptions& options) {
   check_bootstrap_options(options);
   TrainingIntervals out;
+  std::vector<std::string> column_order;
+  std::map<std::string, Strata> over_limit_by_column;  // selected configurations, one stratum per environment
+  std::map<std::string, std::set<double>> limits_by_column;
   for (const ConfigurationResults& config : results) {
     if (config.seeds.size() < 2) continue;  // result_intervals notes it
     const std::vector<ProgressColumns> logs = read_seed_logs(config);
@@ -150,9 +156,32 @@ TrainingIntervals build_training_intervals(const std::vector<ConfigurationResult
         }
         if (!costs.empty()) over_limit.push_back(fraction_above(costs, channel.limit));
       }
-      if (over_limit.size() == logs.size()) add_rows(out.safety, base, channel.prefix + "epochs_over_limit", over_limit, options);
+      if (over_limit.size() == logs.size()) {
+        add_rows(out.safety, base, channel.prefix + "epochs_over_limit", over_limit, options);
+        if (base.selected && channel.prefix.empty()) {
+          if (!over_limit_by_column.count(base.column)) column_order.push_back(base.column);
+          over_limit_by_column[base.column].push_back(over_limit);
+          limits_by_column[base.column].insert(channel.limit);
+        }
+      }
     }
     if (base.selected) add_curves(out.curves, config, logs, options);
+  }
+  for (const std::string& column : column_order) {
+    const Strata& strata = over_limit_by_column[column];
+    IntervalRow row;
+    row.column = column;
+    row.cost_limit = limits_by_column[column].size() == 1 ? *limits_by_column[column].begin()
+                                                          : std::numeric_limits<double>::quiet_NaN();
+    row.selected = true;
+    row.environments = strata.size();
+    row.seeds = pooled_values(strata).size();
+    row.metric = "epochs_over_limit";
+    for (const PointStatistic statistic : kStatistics) {
+      row.statistic = std::string(to_string(statistic));
+      row.estimate = stratified_bootstrap_interval(strata, pooled_statistic(statistic), options);
+      out.safety_aggregates.push_back(row);
+    }
   }
   return out;
 }

@@ -6,6 +6,10 @@
 //   whose mean episode cost exceeded the limit d, each as mean, median and IQM
 //   with its bootstrap interval; with several constraints, each constraint's own
 //   (constraint_<i>_...);
+// - per Table 1 column, across environments (the selected configurations;
+//   one stratum per environment): the fraction of epochs over the limit, as
+//   mean, median and IQM with stratified bootstrap intervals (environment
+//   empty in those rows);
 // - per selected configuration (Figure 2's lines): the mean over seeds of the
 //   episode return, episode cost, cost rate and cumulative cost at every epoch,
 //   with a pointwise bootstrap band of that mean instead of +- one standard
@@ -31,7 +35,8 @@ struct CurveRow {
 };
 
 struct TrainingIntervals {
-  std::vector<IntervalRow> safety;
+  std::vector<IntervalRow> safety;             // per configuration
+  std::vector<IntervalRow> safety_aggregates;  // per column across environments
   std::vector<CurveRow> curves;
   std::vector<std::string> notes;
 };

@@ -122,6 +122,35 @@ TEST_F(TableIntervals, TheFrontierHasOnePointPerLimitWithTheSeedsMeanReturn) {
   EXPECT_TRUE(trpo_seen);
 }
 
+// The fraction of epochs whose mean episode cost exceeds d and the final
+// cumulative cost, worked out from a run's progress.csv here.
+std::pair<double, double> over_limit_and_cumulative(const fs::path& run_dir, double limit) {
+  const auto rows = csv_rows(run_dir / "progress.csv");
+  double over = 0.0;
+  for (const auto& row : rows) over += std::stod(row.at("episode_cost_mean")) > limit ? 1.0 : 0.0;
+  return {over / static_cast<double>(rows.size()), std::stod(rows.back().at("cumulative_cost"))};
+}
+
+TEST_F(TableIntervals, SafetyDuringTrainingIsTheSeedsMeanOfWhatTheirLogsSay) {
+  ASSERT_EQ(run_bsg("table " + sweep_.string() + " --ci").exit_code, 0);
+  const fs::path config = sweep_ / "SafetyBallCircle-v0" / "lag-trpo" / "cost_limit=5";
+  const auto [over_0, cumulative_0] = over_limit_and_cumulative(config / "seed=0", 5.0);
+  const auto [over_1, cumulative_1] = over_limit_and_cumulative(config / "seed=1", 5.0);
+  std::size_t checked = 0;
+  for (const auto& row : csv_rows(sweep_ / "training_safety.csv")) {
+    if (row.at("config") != "cost_limit=5" || row.at("statistic") != "mean") continue;
+    if (row.at("metric") == "epochs_over_limit") {
+      EXPECT_NEAR(std::stod(row.at("point")), (over_0 + over_1) / 2.0, 1e-12);
+      ++checked;
+    }
+    if (row.at("metric") == "cumulative_cost") {
+      EXPECT_NEAR(std::stod(row.at("point")), (cumulative_0 + cumulative_1) / 2.0, 1e-9 * (1.0 + cumulative_0));
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 2u);
+}
+
 TEST_F(TableIntervals, PlotCurvesDrawsEveryFigureWithItsCsvBeside) {
   ASSERT_EQ(run_bsg("table " + sweep_.string() + " --ci").exit_code, 0);
   const fs::path plots = temp_->path() / "plots";
