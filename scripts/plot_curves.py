@@ -422,6 +422,8 @@ def plot_ci_aggregates(sweep_dir, out_dir):
             panel.axvline(1.0, color="black", linestyle="--", linewidth=1.0)
         if metric == "feasible":
             panel.set_xlim(-0.02, 1.02)
+        else:
+            panel.margins(x=0.05)  # an interval of width zero (seeds alike) stays in view
     figure.tight_layout(rect=(0, 0, 1, 0.9))
     path = os.path.join(out_dir, "aggregates.png")
     figure.savefig(path, dpi=100)
