@@ -405,6 +405,7 @@ def plot_ci_aggregates(sweep_dir, out_dir):
     for panel, (metric, statistic, title) in zip(axes[0], panels):
         panel.set_title(title)
         panel.grid(alpha=0.3, axis="x")
+        ends = []
         for index, column in enumerate(columns):
             data = [r for r in rows if r["column"] == column and r["metric"] == metric and r["statistic"] == statistic]
             if not data:
@@ -412,6 +413,7 @@ def plot_ci_aggregates(sweep_dir, out_dir):
             row = data[0]
             drawn.append(row)
             point, low, high = float(row["point"]), float(row["low"]), float(row["high"])
+            ends += [low, high]
             color = column_color(column, columns)
             panel.barh(index, high - low, left=low, height=0.6, color=color, alpha=0.5)
             panel.plot([point, point], [index - 0.3, index + 0.3], color="black", linewidth=1.5)
@@ -422,8 +424,9 @@ def plot_ci_aggregates(sweep_dir, out_dir):
             panel.axvline(1.0, color="black", linestyle="--", linewidth=1.0)
         if metric == "feasible":
             panel.set_xlim(-0.02, 1.02)
-        else:
-            panel.margins(x=0.05)  # an interval of width zero (seeds alike) stays in view
+        elif ends:  # bars hold the axis at their ends: pad it so that an interval of width zero stays in view
+            pad = 0.05 * (max(ends) - min(ends)) or 0.5
+            panel.set_xlim(min(ends) - pad, max(ends) + pad)
     figure.tight_layout(rect=(0, 0, 1, 0.9))
     path = os.path.join(out_dir, "aggregates.png")
     figure.savefig(path, dpi=100)
