@@ -279,8 +279,10 @@ def column_color(column, columns):
     for alg, label in ALGORITHM_LABELS.items():
         if label == column:
             return ALGORITHM_COLORS[alg]
-    palette = plt.get_cmap("tab10")
-    return palette((len(ALGORITHM_COLORS) + columns.index(column)) % 10)
+    # Columns of their own (CPPO-PID, TRPO-PID, "... corrected"): colours no algorithm uses.
+    others = [c for c in columns if c not in ALGORITHM_LABELS.values()]
+    extra = ["tab:cyan", "black", "gold", "navy", "lime", "teal", "maroon", "darkviolet"]
+    return extra[others.index(column) % len(extra)]
 
 
 def ordered_columns(rows):
@@ -482,7 +484,8 @@ def plot_ci_frontier(sweep_dir, out_dir):
                     for k in ("cost_limit", "mean_return", "return_low", "return_high", "mean_cost", "cost_low",
                               "cost_high"))
                 color = column_color(column, columns)
-                label = column if family == "default" else f"{column} {family}"
+                single_family = sum(1 for c, _ in lines if c == column) == 1
+                label = column if single_family else f"{column} {family}"
                 label += f" ({data[0]['seeds']} seeds)"
                 ax_return.errorbar(h, j, xerr=[h - h_low, h_high - h], yerr=[j - j_low, j_high - j], color=color,
                                    marker="o", capsize=3, linewidth=1.5, label=label)
