@@ -12,7 +12,7 @@ include(CMakePackageConfigHelpers)
 # Every library, lowest first (the order the pkg-config file links in reverse).
 set(BSG_INSTALLED_LIBRARIES bsg_common ${BSG_ENVS_ROOMS} bsg_envs ${BSG_ALGOS_ROOMS} bsg_algos)
 if(TARGET bsg_experiments)
-  list(APPEND BSG_INSTALLED_LIBRARIES bsg_experiments)
+  list(APPEND BSG_INSTALLED_LIBRARIES bsg_experiments_statistics bsg_experiments)
 endif()
 set(BSG_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/bsg)
 

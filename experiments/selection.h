@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -39,6 +40,7 @@ struct SeedResult {
   std::vector<double> episode_returns;   // needed only for mean_minus_std
   double cost_rate = 0.0;                // training cost rate (NaN if the run predates it)
   std::vector<double> constraint_costs{};  // H_i of the evaluation.json constraints list (may be empty)
+  std::filesystem::path run_dir{};         // where its progress.csv is (empty: not known)
 };
 
 // One configuration of one (environment, algorithm).

@@ -168,7 +168,8 @@ std::vector<ConfigurationResults> load_sweep_results(const std::filesystem::path
       // A run trained with eval_episodes: 0 is finished but has no J or H.
       if (!evaluation || evaluation->episodes == 0) continue;
       SeedResult seed{run.seed, evaluation->mean_return, evaluation->mean_cost, {}, evaluation->cost_rate,
-                      config.constraint_limits.empty() ? std::vector<double>{} : evaluation->constraint_costs};
+                      config.constraint_limits.empty() ? std::vector<double>{} : evaluation->constraint_costs,
+                      run.run_dir};
       if (with_episode_returns) seed.episode_returns = read_value_per_line(directory.returns());
       config.seeds.push_back(std::move(seed));
     }

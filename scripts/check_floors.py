@@ -39,8 +39,11 @@ FLOORS = {
                        "envs/description", "common"],
     # Beside algos: reads a world and a task's markings and draws them.
     "render": ["envs", "envs/assembly", "envs/tasks", "envs/physics", "envs/description", "common"],
+    # The numerics of results with their uncertainty (bootstrap, IQM, profiles):
+    # numbers in, numbers out, nothing of runs or sweeps.
+    "experiments/statistics": ["common"],
     # Only the training room of algos/ is seen from above it.
-    "experiments": ["algos/training", "algos/core", "envs", "envs/description", "common"],
+    "experiments": ["experiments/statistics", "algos/training", "algos/core", "envs", "envs/description", "common"],
 }
 INCLUDE = re.compile(r'^[ \t]*#[ \t]*include\s+"([^"]+)"', re.M)
 SOURCE_SUFFIXES = (".h", ".cpp")

@@ -3,6 +3,7 @@
 
     scripts/plot_curves.py RUN_DIR [--out DIR] [--smooth N]
     scripts/plot_curves.py SWEEP_DIR [--out DIR] [--smooth N] [--all-configs]
+    scripts/plot_curves.py SWEEP_DIR --ci [--out DIR]
 
 A run directory (it holds progress.csv, as `bsg train` leaves it): one PNG,
 RUN_DIR/learning_curve.png, with the run's mean episode return and mean
@@ -24,6 +25,19 @@ averaging (the original plot.py always used 13); the sweep default 1 draws the
 raw values. --all-configs draws every configuration instead of the selected
 ones (one PNG per environment and algorithm), as the report's Appendix figures
 do. Writes SWEEP_DIR/plots/<env_id>.png by default.
+
+--ci draws the interval estimates `bsg table SWEEP_DIR --ci` computed (it
+writes curves.csv, profiles.csv, aggregates.csv and frontier.csv beside
+table1.csv; this script computes no statistic of its own), each PNG with the
+rows it drew as a CSV file of the same name beside it: per environment,
+<env_id>_ci.png, the selected configurations' mean episode return, episode
+cost, cost rate and cumulative cost per epoch with the bootstrap band of the
+mean across seeds; profiles.png, the performance profiles of J / J_TRPO and
+of the feasibility margin (d - H) / d with their bands; aggregates.png, the
+IQM across environments of J / J_TRPO and of H / d and P(H <= d) per column
+with intervals; and, for a sweep over cost limits, frontier_<env_id>.png: per
+constraint, the final return J against the final cost H (one point per limit,
+interval bars both ways) and H against d with the diagonal H = d.
 
 Runs with Debian's Python 3 and Matplotlib (/usr/bin/python3 with
 python3-matplotlib; see scripts/install_deps.sh).
@@ -244,6 +258,264 @@ def plot_all_configurations(sweep_dir, out_dir, window):
     return written
 
 
+def read_rows(path, what):
+    """The rows of a CSV file `bsg table --ci` wrote, as dicts."""
+    if not os.path.exists(path):
+        raise PlotError(f"{path} not found: run 'bsg table {os.path.dirname(path) or '.'} --ci' first ({what})")
+    with open(path, newline="") as file:
+        return list(csv.DictReader(file))
+
+
+def write_rows(path, rows, fieldnames):
+    """The data of a figure, beside its PNG."""
+    with open(path, "w", newline="") as file:
+        writer = csv.DictWriter(file, fieldnames=fieldnames, lineterminator="\n")
+        writer.writeheader()
+        writer.writerows(rows)
+
+
+def column_color(column, columns):
+    """A colour per Table 1 column: the algorithm's own where the column is the algorithm's."""
+    for alg, label in ALGORITHM_LABELS.items():
+        if label == column:
+            return ALGORITHM_COLORS[alg]
+    # Columns of their own (CPPO-PID, TRPO-PID, "... corrected"): colours no algorithm uses.
+    others = [c for c in columns if c not in ALGORITHM_LABELS.values()]
+    extra = ["tab:cyan", "black", "gold", "navy", "lime", "teal", "maroon", "darkviolet"]
+    return extra[others.index(column) % len(extra)]
+
+
+def ordered_columns(rows):
+    columns = []
+    for row in rows:
+        if row["column"] not in columns:
+            columns.append(row["column"])
+    return columns
+
+
+def confidence_of(rows):
+    return f"{100 * float(rows[0]['confidence']):g} %" if rows else ""
+
+
+CURVE_PANELS = (("return", "Episode return"), ("cost", "Episode cost"), ("cost_rate", "Cost rate (training)"),
+                ("cumulative_cost", "Cumulative cost (training)"))
+
+
+def plot_ci_curves(sweep_dir, out_dir):
+    rows = read_rows(os.path.join(sweep_dir, "curves.csv"), "learning curves with bands")
+    limits = {}
+    table_path = os.path.join(sweep_dir, "table1.csv")
+    if os.path.exists(table_path):
+        for row in read_table(sweep_dir):
+            if row["cost_limit"] and row["env_id"] not in limits:
+                limits[row["env_id"]] = float(row["cost_limit"])
+    written = []
+    envs = []
+    for row in rows:
+        if row["env_id"] not in envs:
+            envs.append(row["env_id"])
+    for env_id in envs:
+        env_rows = [r for r in rows if r["env_id"] == env_id]
+        columns = ordered_columns(env_rows)
+        figure, axes = plt.subplots(1, 4, figsize=(17, 3.9))
+        figure.suptitle(f"{env_label(env_id)}: mean over seeds with its {confidence_of(env_rows)} bootstrap band "
+                        "(selected configuration per algorithm)")
+        for panel, (metric, title) in zip(axes, CURVE_PANELS):
+            panel.set_title(title)
+            panel.set_xlabel("Epoch")
+            panel.grid(alpha=0.3)
+            for column in columns:
+                data = [r for r in env_rows if r["column"] == column and r["metric"] == metric]
+                if not data:
+                    continue
+                epochs = np.array([int(r["epoch"]) for r in data])
+                mean, low, high = (np.array([float(r[k]) for r in data]) for k in ("mean", "low", "high"))
+                color = column_color(column, columns)
+                panel.plot(epochs, mean, color=color, linewidth=1.8, label=f"{column} ({data[0]['seeds']} seeds)")
+                panel.fill_between(epochs, low, high, color=color, alpha=0.25, linewidth=0)
+        if env_id in limits and math.isfinite(limits[env_id]):
+            axes[1].axhline(limits[env_id], color="black", linestyle="--", linewidth=1.2, label=f"d = {limits[env_id]:g}")
+        handles, labels = axes[0].get_legend_handles_labels()
+        for handle, label in zip(*axes[1].get_legend_handles_labels()):
+            if label.startswith("d = "):
+                handles.append(handle)
+                labels.append(label)
+        figure.legend(handles, labels, loc="lower center", ncol=min(len(labels), 7), frameon=False)
+        figure.tight_layout(rect=(0, 0.1, 1, 0.94))
+        path = os.path.join(out_dir, f"{env_id}_ci.png")
+        figure.savefig(path, dpi=100)
+        plt.close(figure)
+        write_rows(path[:-4] + ".csv", env_rows, list(env_rows[0].keys()))
+        written.append((path, len(columns)))
+    return written
+
+
+PROFILE_TITLES = {"J_over_trpo": ("Normalised return J / J_TRPO", "tau"),
+                  "feasibility_margin": ("Feasibility margin (d - H) / d", "tau")}
+
+
+def plot_ci_profiles(sweep_dir, out_dir):
+    rows = read_rows(os.path.join(sweep_dir, "profiles.csv"), "performance profiles")
+    if not rows:
+        return []
+    metrics = [m for m in PROFILE_TITLES if any(r["metric"] == m for r in rows)]
+    columns = ordered_columns(rows)
+    figure, axes = plt.subplots(1, len(metrics), figsize=(max(8.0, 6.5 * len(metrics)), 4.4), squeeze=False)
+    figure.suptitle(f"Performance profiles ({confidence_of(rows)} stratified bootstrap bands)")
+    for panel, metric in zip(axes[0], metrics):
+        title, xlabel = PROFILE_TITLES[metric]
+        panel.set_title(title)
+        panel.set_xlabel(xlabel)
+        panel.set_ylabel("Fraction of runs with score > tau")
+        panel.set_ylim(-0.02, 1.02)
+        panel.grid(alpha=0.3)
+        if metric == "feasibility_margin":
+            panel.axvline(0.0, color="black", linestyle="--", linewidth=1.0, label="H = d")
+        for column in columns:
+            data = [r for r in rows if r["column"] == column and r["metric"] == metric]
+            if not data:
+                continue
+            tau, value, low, high = (np.array([float(r[k]) for r in data])
+                                     for k in ("tau", "fraction_above", "low", "high"))
+            color = column_color(column, columns)
+            panel.plot(tau, value, color=color, linewidth=1.8, drawstyle="steps-post",
+                       label=f"{column} ({data[0]['seeds']} runs, {data[0]['environments']} env)")
+            panel.fill_between(tau, low, high, color=color, alpha=0.2, step="post", linewidth=0)
+        panel.legend(fontsize=8, frameon=False)
+    figure.tight_layout(rect=(0, 0, 1, 0.93))
+    path = os.path.join(out_dir, "profiles.png")
+    figure.savefig(path, dpi=100)
+    plt.close(figure)
+    write_rows(path[:-4] + ".csv", rows, list(rows[0].keys()))
+    return [(path, len(columns))]
+
+
+AGGREGATE_PANELS = (("J_over_trpo", "iqm", "IQM of J / J_TRPO"), ("H_over_d", "iqm", "IQM of H / d"),
+                    ("feasible", "proportion", "P(H <= d)"))
+
+
+def plot_ci_aggregates(sweep_dir, out_dir):
+    rows = read_rows(os.path.join(sweep_dir, "aggregates.csv"), "aggregates across environments")
+    panels = [p for p in AGGREGATE_PANELS if any(r["metric"] == p[0] and r["statistic"] == p[1] for r in rows)]
+    if not panels:
+        return []
+    columns = ordered_columns(rows)
+    figure, axes = plt.subplots(1, len(panels), figsize=(4.6 * len(panels), 0.5 * len(columns) + 1.8),
+                                squeeze=False)
+    figure.suptitle(f"Across environments, selected configurations ({confidence_of(rows)} intervals)")
+    drawn = []
+    for panel, (metric, statistic, title) in zip(axes[0], panels):
+        panel.set_title(title)
+        panel.grid(alpha=0.3, axis="x")
+        ends = []
+        for index, column in enumerate(columns):
+            data = [r for r in rows if r["column"] == column and r["metric"] == metric and r["statistic"] == statistic]
+            if not data:
+                continue
+            row = data[0]
+            drawn.append(row)
+            point, low, high = float(row["point"]), float(row["low"]), float(row["high"])
+            ends += [low, high]
+            color = column_color(column, columns)
+            panel.barh(index, high - low, left=low, height=0.6, color=color, alpha=0.5)
+            panel.plot([point, point], [index - 0.3, index + 0.3], color="black", linewidth=1.5)
+        panel.set_yticks(range(len(columns)))
+        panel.set_yticklabels(columns if panel is axes[0][0] else [""] * len(columns))
+        panel.invert_yaxis()
+        if metric == "H_over_d":
+            panel.axvline(1.0, color="black", linestyle="--", linewidth=1.0)
+        if metric == "feasible":
+            panel.set_xlim(-0.02, 1.02)
+        elif ends:  # bars hold the axis at their ends: pad it so that an interval of width zero stays in view
+            pad = 0.05 * (max(ends) - min(ends)) or 0.5
+            panel.set_xlim(min(ends) - pad, max(ends) + pad)
+    figure.tight_layout(rect=(0, 0, 1, 0.9))
+    path = os.path.join(out_dir, "aggregates.png")
+    figure.savefig(path, dpi=100)
+    plt.close(figure)
+    write_rows(path[:-4] + ".csv", drawn, list(rows[0].keys()))
+    return [(path, len(columns))]
+
+
+def plot_ci_frontier(sweep_dir, out_dir):
+    path = os.path.join(sweep_dir, "frontier.csv")
+    if not os.path.exists(path):
+        return []  # not a sweep over cost limits
+    rows = read_rows(path, "cost-limit frontier")
+    written = []
+    envs = []
+    for row in rows:
+        if row["env_id"] not in envs:
+            envs.append(row["env_id"])
+    for env_id in envs:
+        env_rows = [r for r in rows if r["env_id"] == env_id]
+        constraints = sorted({int(r["constraint"]) for r in env_rows})
+        lines = []
+        for row in env_rows:
+            key = (row["column"], row["family"])
+            if key not in lines:
+                lines.append(key)
+        columns = ordered_columns(env_rows)
+        figure, axes = plt.subplots(len(constraints), 2, figsize=(12, 4.6 * len(constraints)), squeeze=False)
+        figure.suptitle(f"{env_label(env_id)}: cost-limit frontier, mean over seeds with "
+                        f"{confidence_of(env_rows)} bootstrap intervals")
+        for row_axes, constraint in zip(axes, constraints):
+            ax_return, ax_cost = row_axes
+            suffix = f" {constraint}" if len(constraints) > 1 else ""
+            ax_return.set_title(f"Final return against final cost{suffix}")
+            ax_return.set_xlabel(f"H{suffix} (final policy)")
+            ax_return.set_ylabel("J (final policy)")
+            ax_cost.set_title(f"Final cost against the limit{suffix}")
+            ax_cost.set_xlabel(f"d{suffix}")
+            ax_cost.set_ylabel(f"H{suffix}")
+            limits = sorted({float(r["cost_limit"]) for r in env_rows if int(r["constraint"]) == constraint})
+            top = max([float(r["cost_high"]) for r in env_rows if int(r["constraint"]) == constraint] + limits)
+            ax_cost.plot([0, max(limits) * 1.05], [0, max(limits) * 1.05], color="black", linestyle="--",
+                         linewidth=1.0, label="H = d")
+            for limit in limits:
+                ax_return.axvline(limit, color="gray", linestyle=":", linewidth=0.8)
+            for column, family in lines:
+                data = [r for r in env_rows if r["column"] == column and r["family"] == family and
+                        int(r["constraint"]) == constraint]
+                if not data:
+                    continue
+                d, j, j_low, j_high, h, h_low, h_high = (
+                    np.array([float(r[k]) for r in data])
+                    for k in ("cost_limit", "mean_return", "return_low", "return_high", "mean_cost", "cost_low",
+                              "cost_high"))
+                color = column_color(column, columns)
+                single_family = sum(1 for c, _ in lines if c == column) == 1
+                label = column if single_family else f"{column} {family}"
+                label += f" ({data[0]['seeds']} seeds)"
+                ax_return.errorbar(h, j, xerr=[h - h_low, h_high - h], yerr=[j - j_low, j_high - j], color=color,
+                                   marker="o", capsize=3, linewidth=1.5, label=label)
+                for x, y, limit in zip(h, j, d):
+                    ax_return.annotate(f"d={limit:g}", (x, y), textcoords="offset points", xytext=(4, 4),
+                                       fontsize=7, color=color)
+                ax_cost.errorbar(d, h, yerr=[h - h_low, h_high - h], color=color, marker="o", capsize=3,
+                                 linewidth=1.5, label=label)
+            ax_cost.set_xlim(0, max(limits) * 1.05)
+            ax_cost.set_ylim(0, top * 1.05)
+            for axes_ in row_axes:
+                axes_.grid(alpha=0.3)
+            ax_cost.legend(fontsize=8, frameon=False)
+        figure.tight_layout(rect=(0, 0, 1, 0.95))
+        path = os.path.join(out_dir, f"frontier_{env_id}.png")
+        figure.savefig(path, dpi=100)
+        plt.close(figure)
+        write_rows(path[:-4] + ".csv", env_rows, list(env_rows[0].keys()))
+        written.append((path, len(lines)))
+    return written
+
+
+def plot_intervals(sweep_dir, out_dir, _window=None):
+    written = plot_ci_curves(sweep_dir, out_dir)
+    written += plot_ci_profiles(sweep_dir, out_dir)
+    written += plot_ci_aggregates(sweep_dir, out_dir)
+    written += plot_ci_frontier(sweep_dir, out_dir)
+    return written
+
+
 def read_run_config_value(run_dir, key):
     """A scalar `key: value` of RUN_DIR/config.yaml (as bsg writes it), or None."""
     path = os.path.join(run_dir, "config.yaml")
@@ -319,12 +591,20 @@ def main(argv=None):
     parser.add_argument("--smooth", type=int, help="Hann window in epochs (default: 9 for a run, 1 for a sweep)")
     parser.add_argument("--all-configs", action="store_true",
                         help="sweep: one PNG per environment and algorithm with every configuration")
+    parser.add_argument("--ci", action="store_true",
+                        help="sweep: the interval estimates of 'bsg table SWEEP_DIR --ci' (curves with bootstrap "
+                             "bands, performance profiles, aggregates, the cost-limit frontier), a CSV beside "
+                             "each PNG")
     args = parser.parse_args(argv)
     if args.smooth is not None and args.smooth < 1:
         parser.error("--smooth must be at least 1")
     is_run = os.path.exists(os.path.join(args.directory, "progress.csv"))
     if is_run and args.all_configs:
         parser.error("--all-configs applies to a sweep directory, not to a run directory")
+    if is_run and args.ci:
+        parser.error("--ci applies to a sweep directory, not to a run directory")
+    if args.ci and (args.all_configs or args.smooth is not None):
+        parser.error("--ci draws the bands bsg table computed: no --all-configs or --smooth with it")
     window = args.smooth if args.smooth is not None else (9 if is_run else 1)
     out_dir = args.out or (args.directory if is_run else os.path.join(args.directory, "plots"))
     try:
@@ -335,7 +615,7 @@ def main(argv=None):
             path, summary = plot_run(args.directory, out_dir, window)
             print(f"summary: {summary}; curves: {path}")
             return 0
-        plot = plot_all_configurations if args.all_configs else plot_selected
+        plot = plot_intervals if args.ci else plot_all_configurations if args.all_configs else plot_selected
         written = plot(args.directory, out_dir, window)
     except (PlotError, OSError, KeyError, ValueError) as error:
         print(f"plot_curves: error: {error}", file=sys.stderr)

@@ -71,3 +71,52 @@ def test_all_configs_is_refused_for_a_run_directory(tmp_path):
     result = plot(run_dir, "--all-configs")
     assert result.returncode == 2
     assert "--all-configs applies to a sweep directory" in result.stderr
+
+
+def write_interval_files(sweep):
+    """The files of `bsg table --ci` for two environments, hand-made."""
+    sweep.mkdir()
+    curves = ["env_id,column,config,metric,epoch,seeds,mean,low,high,confidence"]
+    for env in ("SafetyBallCircle-v0", "SafetyBallRun-v0"):
+        for metric in ("return", "cost", "cost_rate", "cumulative_cost"):
+            curves += [f"{env},TRPO-L,default,{metric},{e},3,{e},{e - 1},{e + 1},0.95" for e in range(5)]
+    (sweep / "curves.csv").write_text("\n".join(curves) + "\n")
+    (sweep / "profiles.csv").write_text(
+        "column,metric,environments,seeds,tau,fraction_above,low,high,confidence\n"
+        "TRPO-L,feasibility_margin,2,6,-1,1,1,1,0.95\nTRPO-L,feasibility_margin,2,6,1,0,0,0,0.95\n")
+    (sweep / "aggregates.csv").write_text(
+        "env_id,column,config,config_dir,cost_limit,selected,environments,seeds,metric,statistic,point,low,high,"
+        "confidence\n,TRPO-L,,,25,true,2,6,feasible,proportion,0.5,0.2,0.8,0.95\n")
+    (sweep / "frontier.csv").write_text(
+        "env_id,column,family,config,constraint,cost_limit,seeds,mean_return,return_low,return_high,mean_cost,"
+        "cost_low,cost_high,feasible,feasible_low,feasible_high,confidence\n"
+        "SafetyBallCircle-v0,TRPO-L,default,cost_limit=5,1,5,3,100,90,110,6,4,8,0.33,0.06,0.79,0.95\n"
+        "SafetyBallCircle-v0,TRPO-L,default,cost_limit=25,1,25,3,300,280,320,24,20,28,0.67,0.21,0.94,0.95\n")
+
+
+def test_ci_figures_each_get_the_rows_they_drew_as_csv_beside_them(tmp_path):
+    sweep = tmp_path / "sweep"
+    write_interval_files(sweep)
+    result = plot(sweep, "--ci")
+    assert result.returncode == 0, result.stderr
+    plots = sweep / "plots"
+    names = sorted(p.name for p in plots.iterdir())
+    assert names == sorted(["SafetyBallCircle-v0_ci.png", "SafetyBallCircle-v0_ci.csv", "SafetyBallRun-v0_ci.png",
+                            "SafetyBallRun-v0_ci.csv", "profiles.png", "profiles.csv", "aggregates.png",
+                            "aggregates.csv", "frontier_SafetyBallCircle-v0.png", "frontier_SafetyBallCircle-v0.csv"])
+    for png in plots.glob("*.png"):
+        assert png.read_bytes()[:8] == PNG_MAGIC
+    # One environment's curves: its 4 metrics x 5 epochs, none of the other's.
+    run_rows = (plots / "SafetyBallRun-v0_ci.csv").read_text().splitlines()
+    assert len(run_rows) == 1 + 20
+    assert all(row.startswith("SafetyBallRun-v0,") for row in run_rows[1:])
+    frontier = (plots / "frontier_SafetyBallCircle-v0.csv").read_text().splitlines()
+    assert [row.split(",")[5] for row in frontier[1:]] == ["5", "25"]
+
+
+def test_ci_without_bsg_table_ci_says_what_to_run(tmp_path):
+    sweep = tmp_path / "sweep"
+    sweep.mkdir()
+    result = plot(sweep, "--ci")
+    assert result.returncode == 1
+    assert "curves.csv not found: run 'bsg table" in result.stderr and "--ci' first" in result.stderr
