@@ -34,6 +34,7 @@
 
 #include "common/random.h"
 #include "envs/env.h"
+#include "sample_mean.h"
 
 namespace bsg::envs {
 namespace {
@@ -100,23 +101,8 @@ Sample play(const std::string& id, std::uint64_t seed) {
   return sample;
 }
 
-struct MeanAndError {
-  double mean = 0;
-  double sd = 0;
-  double variance_of_mean = 0;  // s²/n
-};
-
-MeanAndError mean_and_error(const std::vector<double>& x) {
-  const double n = static_cast<double>(x.size());
-  MeanAndError result;
-  for (double v : x) result.mean += v;
-  result.mean /= n;
-  double ss = 0;
-  for (double v : x) ss += (v - result.mean) * (v - result.mean);
-  result.sd = std::sqrt(ss / (n - 1));
-  result.variance_of_mean = ss / (n - 1) / n;
-  return result;
-}
+using bsg::testing::MeanAndError;
+using bsg::testing::mean_and_error;
 
 // Mann–Whitney rank statistic of bsg against the fork as a z value (mid-ranks for ties, the
 // variance corrected for them): free of any assumption on the distribution, so the heavy-tailed

@@ -17,6 +17,7 @@
 
 #include "common/random.h"
 #include "envs/env.h"
+#include "sample_mean.h"
 
 namespace bsg::envs {
 namespace {
@@ -58,21 +59,8 @@ Sample play(const std::string& id, PhysicsModel physics, bool random_policy, std
   return sample;
 }
 
-struct MeanAndError {
-  double mean = 0;
-  double variance_of_mean = 0;  // s²/n
-};
-
-MeanAndError mean_and_error(const std::vector<double>& x) {
-  const double n = static_cast<double>(x.size());
-  MeanAndError result;
-  for (double v : x) result.mean += v;
-  result.mean /= n;
-  double ss = 0;
-  for (double v : x) ss += (v - result.mean) * (v - result.mean);
-  result.variance_of_mean = ss / (n - 1) / n;
-  return result;
-}
+using bsg::testing::MeanAndError;
+using bsg::testing::mean_and_error;
 
 void expect_equivalent(const std::vector<double>& faithful, const std::vector<double>& lean,
                        const std::string& what) {
