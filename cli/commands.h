@@ -30,4 +30,9 @@ void add_rollout_command(CLI::App& app, Action& run);
 // bsg bench [--env ID] [--steps N] [--json] (cmd_bench.cpp)
 void add_bench_command(CLI::App& app, Action& run);
 
+// bsg collect --out FILE --policy random|RUN_DIR[=SHARE]... (--episodes N | --transitions N) (cmd_collect.cpp)
+void add_collect_command(CLI::App& app, Action& run);
+// bsg dataset info FILE [--plot FILE.png] [--json] (cmd_dataset.cpp)
+void add_dataset_command(CLI::App& app, Action& run);
+
 }  // namespace bsg::cli

@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
   bsg::cli::add_envs_command(app, run);
   bsg::cli::add_rollout_command(app, run);
   bsg::cli::add_bench_command(app, run);
+  bsg::cli::add_collect_command(app, run);
+  bsg::cli::add_dataset_command(app, run);
 
   try {
     app.parse(argc, argv);

@@ -112,6 +112,23 @@ CaptionLayout layout_caption(const std::vector<std::string>& fields, int width, 
   return boxed(split_into_lines(fields, fields.size()), 1);  // narrower than a field: cut
 }
 
+void draw_text(Image& image, int x, int y, const std::string& text, int scale, int r, int g, int b) {
+  for (size_t i = 0; i < text.size(); ++i) {
+    const Glyph* glyph = find_glyph(text[i]);
+    if (glyph == nullptr) continue;
+    for (int row = 0; row < 7; ++row) {
+      for (int col = 0; col < 5; ++col) {
+        if (glyph->rows[static_cast<size_t>(row)][col] != '#') continue;
+        fill(image, x + static_cast<int>(i) * 6 * scale + col * scale, y + row * scale, scale, scale, r, g, b, false);
+      }
+    }
+  }
+}
+
+int text_width(const std::string& text, int scale) {
+  return text.empty() ? 0 : (6 * static_cast<int>(text.size()) - 1) * scale;
+}
+
 CaptionLayout draw_caption(Image& image, const std::vector<std::string>& fields) {
   const CaptionLayout layout = layout_caption(fields, image.width, image.height);
   const int scale = layout.scale, margin = 2 * scale;

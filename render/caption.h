@@ -31,6 +31,12 @@ int preferred_caption_scale(int height);
 // How `fields` fit a frame `width` wide and `height` high (see above).
 CaptionLayout layout_caption(const std::vector<std::string>& fields, int width, int height);
 
+// Draws `text` in the caption font with its top-left corner at (x, y), each
+// font cell `scale` pixels, in the colour (r, g, b); for the labels of plots.
+void draw_text(Image& image, int x, int y, const std::string& text, int scale, int r, int g, int b);
+// The width in pixels of `text` drawn at `scale` (6 cells a character, the last without its gap).
+int text_width(const std::string& text, int scale);
+
 // Draws `fields` as layout_caption lays them out; returns the layout.
 CaptionLayout draw_caption(Image& image, const std::vector<std::string>& fields);
 

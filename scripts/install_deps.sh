@@ -23,6 +23,8 @@ packages=(
   libegl-mesa0 libgl1-mesa-dri  # Mesa's EGL driver and llvmpipe, the software rasteriser (no GPU needed)
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev   # MP4 videos, H.264 via Debian's libx264
   libpng-dev                    # PNG pictures and trajectory plots
+  libhdf5-dev                   # offline datasets in DSRL's HDF5 format (bsg collect, algos/offline/)
+  python3-h5py                  # bsg.datasets.load in Python, reading those files
   clang-14 libclang-rt-14-dev   # libFuzzer targets of the file readers (tests/fuzz/libfuzzer, ctest fuzz.libfuzzer_short)
 )
 

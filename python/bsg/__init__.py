@@ -20,11 +20,13 @@ description (``bsg.describe(id)`` lists them, docs/environments.md):
 
 The package's files import one way only, each from those below it
 (docs/python.md#the-package): registration -> making, vector -> wrappers ->
-gymnasium_env -> specs -> env -> spaces, rendering -> gymnasium_support, _core.
+gymnasium_env -> specs -> env -> spaces, rendering -> gymnasium_support -> datasets, _core.
+``bsg.datasets`` reads offline datasets (DSRL's HDF5 layout, docs/datasets.md).
 This file imports them all and registers last.
 """
 
 from . import _core
+from . import datasets
 from .env import Env, EnvSpec, describe, env_ids
 from .env import restore_env as _restore_env  # noqa: F401  (what pickles of bsg.Env name)
 from .gymnasium_env import GymnasiumEnv

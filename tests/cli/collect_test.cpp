@@ -1,0 +1,100 @@
+// `bsg collect` end to end: a checkpoint's policy and the random policy into
+// one file; one-line errors with exit 1 for a checkpoint of another
+// environment, an unknown environment and bad counts, and no file (nor
+// temporary) left behind by a refused collection.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "../test_support.h"
+#include "algos/offline/dataset_file.h"
+#include "run_bsg.h"
+
+namespace fs = std::filesystem;
+using bsg::testing::run_bsg;
+using bsg::testing::TemporaryDirectory;
+using bsg::testing::write_text_file;
+
+namespace {
+
+const std::string kConfigs = std::string(" --configs ") + BSG_SOURCE_DIR + "/configs";
+
+// One epoch of 1000 steps of TRPO-L on `env_id`.
+std::string train_tiny_run(const TemporaryDirectory& dir, const std::string& env_id) {
+  const fs::path file = dir.path() / (env_id + ".yaml");
+  write_text_file(file, "env_id: " + env_id +
+                            "\nalg: lag-trpo\nseed: 1\nepochs: 1\nsteps_per_epoch: 1000\neval_episodes: 1\n");
+  const std::string out = (dir.path() / env_id).string();
+  const auto trained = run_bsg("train " + file.string() + kConfigs + " --quiet --out " + out);
+  EXPECT_EQ(trained.exit_code, 0) << trained.output;
+  return out;
+}
+
+// The one line of an error, without the program's prefix.
+void expect_one_line_error(const bsg::testing::ProgramResult& result, const std::string& part) {
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find(part), std::string::npos) << result.output;
+  EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;
+}
+
+bool only_entries(const fs::path& dir, std::size_t n) {
+  return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator())) == n;
+}
+
+TEST(Collect, MixOfACheckpointAndTheRandomPolicy) {
+  TemporaryDirectory dir("collect");
+  const std::string run = train_tiny_run(dir, "SafetyBallRun-v0");
+  const std::string file = (dir.path() / "mix.hdf5").string();
+  const auto result = run_bsg("collect --out " + file + " --policy " + run + "=3 --policy random --episodes 4 --seed 2");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const bsg::algos::OfflineDataset d = bsg::algos::read_dataset_file(file);
+  EXPECT_EQ(d.text_attributes.at("env_id"), "SafetyBallRun-v0");
+  EXPECT_EQ(d.number_attributes.at("episodes"), 4.0);
+  // The checkpoint's three episodes first, then the random policy's one.
+  const std::string& policies = d.text_attributes.at("policies");
+  EXPECT_NE(policies.find("checkpoint " + run), std::string::npos) << policies;
+  EXPECT_NE(policies.find("3 episodes"), std::string::npos) << policies;
+  EXPECT_NE(policies.find("random: share 1.000000, 1 episodes"), std::string::npos) << policies;
+  EXPECT_EQ(d.text_attributes.at("bsg_version"), BSG_VERSION_STRING);
+
+  // A checkpoint of SafetyBallRun-v0 cannot collect on SafetyBallCircle-v0.
+  const auto other = run_bsg("collect --out " + (dir.path() / "x.hdf5").string() +
+                             " --env SafetyBallCircle-v0 --policy " + run + " --episodes 1");
+  expect_one_line_error(other, "was trained on SafetyBallRun-v0, not on the collection's SafetyBallCircle-v0");
+  EXPECT_FALSE(fs::exists(dir.path() / "x.hdf5"));
+}
+
+TEST(Collect, BadInputIsOneLine) {
+  TemporaryDirectory dir("collect");
+  const std::string out = " --out " + (dir.path() / "x.hdf5").string();
+  expect_one_line_error(run_bsg("collect" + out + " --env SafetyBallNowhere-v0 --policy random --episodes 1"),
+                        "SafetyBallNowhere-v0");
+  expect_one_line_error(run_bsg("collect" + out + " --env SafetyBallCircle-v0 --policy random --episodes 0"),
+                        "--episodes must be at least 1, got 0");
+  expect_one_line_error(run_bsg("collect" + out + " --env SafetyBallCircle-v0 --policy random --transitions -5"),
+                        "--transitions must be at least 1, got -5");
+  expect_one_line_error(
+      run_bsg("collect" + out + " --env SafetyBallCircle-v0 --policy random --episodes 1 --transitions 9"),
+      "exactly one of --episodes N and --transitions N");
+  expect_one_line_error(run_bsg("collect" + out + " --env SafetyBallCircle-v0 --policy random=0 --episodes 1"),
+                        "the share after '=' must be a positive number");
+  expect_one_line_error(run_bsg("collect" + out + " --policy random --episodes 1"), "name the environment with --env");
+  expect_one_line_error(run_bsg("collect" + out + " --env SafetyBallCircle-v0 --policy " +
+                                (dir.path() / "no_run").string() + " --episodes 1"),
+                        "no_run");
+  EXPECT_TRUE(only_entries(dir.path(), 0));
+}
+
+TEST(Collect, RefusesToReplaceAFileWithoutForce) {
+  TemporaryDirectory dir("collect");
+  const std::string file = (dir.path() / "d.hdf5").string();
+  const std::string args = "collect --out " + file + " --env SafetyBallCircle-v0 --policy random --transitions 10";
+  ASSERT_EQ(run_bsg(args).exit_code, 0);
+  expect_one_line_error(run_bsg(args), "exists (--force replaces it)");
+  EXPECT_EQ(run_bsg(args + " --force").exit_code, 0);
+  EXPECT_EQ(bsg::algos::read_dataset_file(file).size(), 10u);
+  EXPECT_TRUE(only_entries(dir.path(), 1));
+}
+
+}  // namespace
