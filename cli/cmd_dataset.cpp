@@ -4,17 +4,31 @@
 // returns, how many keep within the stored cost limit, and how it was made.
 // --plot draws each episode's cost return against its reward return, the
 // stored cost limit dashed (DSRL's picture of a dataset's reward-cost frontier).
+//
+// `bsg dataset bc FILE --variant all|safe [--cost-limit K] [--seeds 0,1,2]
+// [--updates N] [--batch-size B] [--hidden 256,256] [--learning-rate LR]
+// [--eval-episodes N] [--json]`: behaviour cloning on the file (BC-All or
+// BC-Safe, docs/datasets.md#behaviour-cloning), one policy per seed, each
+// evaluated online on the file's environment (its mean actions, N episodes
+// seeded from the seed) and scored with DSRL's normalised reward and cost.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "algos/offline/behaviour_cloning.h"
+#include "algos/offline/collection.h"
+#include "algos/offline/dataset_environment.h"
 #include "algos/offline/dataset_file.h"
+#include "algos/offline/normalized_score.h"
 #include "commands.h"
 #include "render/png_file.h"
 #include "render/scatter_plot.h"
@@ -111,6 +125,101 @@ int dataset_info(const DatasetInfoArguments& args) {
   return 0;
 }
 
+struct BcArguments {
+  std::string file;
+  std::string variant = "all";
+  std::optional<double> cost_limit;
+  std::vector<std::uint64_t> seeds{0, 1, 2};
+  int updates = 20000;
+  int batch_size = 512;
+  std::vector<int> hidden{256, 256};
+  double learning_rate = 1e-3;
+  int eval_episodes = 10;
+  bool json = false;
+};
+
+double number_attribute(const algos::OfflineDataset& dataset, const std::string& file, const std::string& key) {
+  const auto it = dataset.number_attributes.find(key);
+  if (it == dataset.number_attributes.end()) {
+    throw std::invalid_argument("dataset file " + file + ": no attribute " + key + " (not written by bsg collect?)");
+  }
+  return it->second;
+}
+
+int dataset_bc(const BcArguments& args) {
+  if (args.eval_episodes < 1) throw std::invalid_argument("--eval-episodes must be at least 1");
+  if (args.seeds.empty()) throw std::invalid_argument("--seeds names no seed");
+  const algos::OfflineDataset dataset = algos::read_dataset_file(args.file);
+  const double cost_limit = args.cost_limit.value_or(number_attribute(dataset, args.file, "cost_limit"));
+  const double min_reward = number_attribute(dataset, args.file, "min_episode_reward");
+  const double max_reward = number_attribute(dataset, args.file, "max_episode_reward");
+  const envs::EnvDescription description = algos::dataset_env_description(dataset);
+  const auto physics = dataset.text_attributes.find("physics");
+  std::unique_ptr<envs::Env> env = envs::make(
+      description, {.physics = envs::parse_physics_model(physics == dataset.text_attributes.end() ? "faithful"
+                                                                                                   : physics->second)});
+  algos::BehaviourCloningOptions options;
+  options.safe_only = args.variant == "safe";
+  options.cost_limit = cost_limit;
+  options.hidden_sizes = args.hidden;
+  options.updates = args.updates;
+  options.batch_size = args.batch_size;
+  options.learning_rate = args.learning_rate;
+  const std::string name = options.safe_only ? "BC-Safe" : "BC-All";
+  nlohmann::json out = {{"file", args.file}, {"variant", name}, {"cost_limit", cost_limit},
+                        {"min_episode_reward", min_reward}, {"max_episode_reward", max_reward}};
+  std::vector<double> rewards, costs;
+  std::ostringstream table;  // printed at the end, so that an error is the only output
+  if (!args.json) {
+    table << name << " on " << args.file << " (" << description.name << "), cost limit " << cost_limit << "\n"
+          << std::setw(6) << "seed" << std::setw(8) << "rows" << std::setw(12) << "loss" << std::setw(12)
+          << "return" << std::setw(10) << "cost" << std::setw(12) << "norm. R" << std::setw(10) << "norm. C"
+          << "\n";
+  }
+  for (std::uint64_t seed : args.seeds) {
+    options.seed = seed;
+    const algos::BehaviourCloningResult trained = algos::train_behaviour_cloning(dataset, options);
+    const algos::OfflineDataset episodes = algos::collect_dataset(
+        *env, {{trained.policy.get(), 1.0}}, {algos::CollectionUnit::episodes, args.eval_episodes, seed});
+    double reward = 0.0, cost = 0.0;
+    const std::vector<algos::DatasetEpisode> split = algos::dataset_episodes(episodes);
+    for (const algos::DatasetEpisode& e : split) reward += e.reward_return, cost += e.cost_return;
+    reward /= static_cast<double>(split.size());
+    cost /= static_cast<double>(split.size());
+    const algos::NormalizedScore score = algos::normalized_score(reward, cost, cost_limit, min_reward, max_reward);
+    rewards.push_back(score.reward);
+    costs.push_back(score.cost);
+    out["seeds"].push_back({{"seed", seed}, {"rows", trained.rows}, {"episodes", trained.episodes},
+                            {"final_loss", trained.final_loss}, {"return", reward}, {"cost", cost},
+                            {"normalized_reward", score.reward}, {"normalized_cost", score.cost}});
+    if (!args.json) {
+      table << std::setw(6) << seed << std::setw(8) << trained.rows << std::setw(12) << std::setprecision(4)
+            << trained.final_loss << std::fixed << std::setprecision(3) << std::setw(12) << reward
+            << std::setw(10) << cost << std::setw(12) << score.reward << std::setw(10) << score.cost
+            << std::defaultfloat << "\n";
+    }
+  }
+  const auto mean_std = [](const std::vector<double>& v) {
+    double mean = 0.0, var = 0.0;
+    for (double x : v) mean += x;
+    mean /= static_cast<double>(v.size());
+    for (double x : v) var += (x - mean) * (x - mean);
+    return std::pair{mean, std::sqrt(var / static_cast<double>(v.size()))};
+  };
+  const auto [r_mean, r_std] = mean_std(rewards);
+  const auto [c_mean, c_std] = mean_std(costs);
+  out["normalized_reward"] = {{"mean", r_mean}, {"std", r_std}};
+  out["normalized_cost"] = {{"mean", c_mean}, {"std", c_std}};
+  if (args.json) {
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::cout << std::fixed << std::setprecision(3) << "normalised reward " << r_mean << " (std " << r_std
+              << "), normalised cost " << c_mean << " (std " << c_std << ") over " << rewards.size()
+              << " seeds\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 void add_dataset_command(CLI::App& app, Action& run) {
@@ -123,6 +232,24 @@ void add_dataset_command(CLI::App& app, Action& run) {
   info->add_option("--plot", args->plot, "write the episodes' cost return against reward return as a PNG");
   info->add_flag("--json", args->json, "print JSON");
   info->callback([&run, args]() { run = [args]() { return dataset_info(*args); }; });
+
+  CLI::App* bc = command->add_subcommand(
+      "bc", "Behaviour cloning (BC-All or BC-Safe) on a dataset file, evaluated online with DSRL's normalised scores");
+  auto bc_args = std::make_shared<BcArguments>();
+  bc->add_option("FILE", bc_args->file, "an HDF5 dataset written by bsg collect")->required();
+  bc->add_option("--variant", bc_args->variant, "all (BC-All, every row) or safe (BC-Safe, episodes within the limit)")
+      ->check(CLI::IsMember({"all", "safe"}));
+  bc->add_option("--cost-limit", bc_args->cost_limit, "kappa for BC-Safe and the normalised cost (default: the file's)")
+      ->check(CLI::NonNegativeNumber);
+  bc->add_option("--seeds", bc_args->seeds, "one policy per seed (default 0,1,2)")->delimiter(',');
+  bc->add_option("--updates", bc_args->updates, "Adam steps (default 20000)")->check(CLI::PositiveNumber);
+  bc->add_option("--batch-size", bc_args->batch_size, "rows per minibatch (default 512)")->check(CLI::PositiveNumber);
+  bc->add_option("--hidden", bc_args->hidden, "hidden layer sizes (default 256,256)")->delimiter(',');
+  bc->add_option("--learning-rate", bc_args->learning_rate, "Adam's learning rate (default 1e-3)")
+      ->check(CLI::PositiveNumber);
+  bc->add_option("--eval-episodes", bc_args->eval_episodes, "online evaluation episodes per seed (default 10)");
+  bc->add_flag("--json", bc_args->json, "print JSON");
+  bc->callback([&run, bc_args]() { run = [bc_args]() { return dataset_bc(*bc_args); }; });
 }
 
 }  // namespace bsg::cli

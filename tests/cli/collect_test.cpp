@@ -98,3 +98,49 @@ TEST(Collect, RefusesToReplaceAFileWithoutForce) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(DatasetCommand, InfoCountsEpisodesAndDrawsThePlot) {
+  TemporaryDirectory dir("dataset_info");
+  const std::string file = (dir.path() / "d.hdf5").string();
+  // 600 transitions of 250-step episodes: two complete episodes and a cut third (rows 500..599).
+  ASSERT_EQ(run_bsg("collect --out " + file + " --env SafetyBallCircle-v0 --policy random --transitions 600").exit_code,
+            0);
+  const std::string png = (dir.path() / "scatter.png").string();
+  const auto info = run_bsg("dataset info " + file + " --plot " + png);
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("transitions 600, complete episodes 3 (0 ended by the environment)"), std::string::npos)
+      << info.output;
+  const std::string bytes = bsg::testing::read_text_file(png);
+  ASSERT_GE(bytes.size(), 8u);
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+}
+
+TEST(DatasetCommand, BadInputIsOneLine) {
+  TemporaryDirectory dir("dataset_info");
+  write_text_file(dir.path() / "x.hdf5", "not hdf5\n");
+  expect_one_line_error(run_bsg("dataset info " + (dir.path() / "x.hdf5").string()), "not an HDF5 file");
+  expect_one_line_error(run_bsg("dataset bc " + (dir.path() / "x.hdf5").string()), "not an HDF5 file");
+  // A hand-made file of one episode that costs 1 at each of its 2 steps:
+  // BC-Safe at kappa = 1 has nothing to learn from.
+  bsg::algos::OfflineDataset d;
+  d.observation_dim = 1;
+  d.action_dim = 1;
+  d.observations = d.next_observations = d.actions = {0, 0};
+  d.rewards = {1, 1};
+  d.costs = {1, 1};
+  d.terminals = {0, 0};
+  d.timeouts = {0, 1};
+  d.text_attributes["env_description"] = "agent: Ball\ntask: Run\n";
+  d.number_attributes = {{"cost_limit", 1}, {"min_episode_reward", 0}, {"max_episode_reward", 2}};
+  const std::string file = (dir.path() / "d.hdf5").string();
+  bsg::algos::write_dataset_file(file, d);
+  expect_one_line_error(run_bsg("dataset bc " + file + " --variant safe --updates 1"),
+                        "BC-Safe finds no episode with cost return <= 1");
+  d.number_attributes.erase("max_episode_reward");
+  bsg::algos::write_dataset_file(file, d);
+  expect_one_line_error(run_bsg("dataset bc " + file + " --updates 1"), "no attribute max_episode_reward");
+}
+
+}  // namespace
