@@ -69,6 +69,8 @@ void write_array(hid_t file, const std::filesystem::path& path, const char* name
   Handle space(H5Screate_simple(matrix ? 2 : 1, dims.data(), nullptr), H5Sclose);
   Handle properties(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   if (!space.valid() || !properties.valid()) fail(path, std::string("cannot describe ") + name);
+  // No modification times: the same data gives the same bytes.
+  check(H5Pset_obj_track_times(properties.get(), false), path, "cannot describe " + std::string(name));
   if (rows > 0) {
     const std::array<hsize_t, 2> chunk{std::min(rows, kChunkRows), columns};
     check(H5Pset_chunk(properties.get(), matrix ? 2 : 1, chunk.data()), path, "cannot chunk " + std::string(name));
@@ -105,7 +107,9 @@ void write_number_attribute(hid_t file, const std::filesystem::path& path, const
 
 void write_contents(const std::filesystem::path& temporary, const std::filesystem::path& path,
                     const OfflineDataset& dataset) {
-  Handle file(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  Handle creation(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+  check(H5Pset_obj_track_times(creation.get(), false), path, "cannot describe the file");
+  Handle file(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, creation.get(), H5P_DEFAULT), H5Fclose);
   if (!file.valid()) fail(path, "cannot create the HDF5 file " + temporary.string());
   const hsize_t n = dataset.size();
   const auto obs = static_cast<hsize_t>(dataset.observation_dim);

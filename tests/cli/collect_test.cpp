@@ -86,6 +86,16 @@ TEST(Collect, BadInputIsOneLine) {
   EXPECT_TRUE(only_entries(dir.path(), 0));
 }
 
+TEST(Collect, TheSameCommandWritesTheSameBytes) {
+  TemporaryDirectory dir("collect");
+  const std::string args = " --env SafetyBallReach-v0 --policy random --episodes 2 --seed 4";
+  ASSERT_EQ(run_bsg("collect --out " + (dir.path() / "a.hdf5").string() + args).exit_code, 0);
+  ASSERT_EQ(run_bsg("collect --out " + (dir.path() / "b.hdf5").string() + args).exit_code, 0);
+  const std::string a = bsg::testing::read_text_file(dir.path() / "a.hdf5");
+  EXPECT_GT(a.size(), 1000u);
+  EXPECT_TRUE(a == bsg::testing::read_text_file(dir.path() / "b.hdf5"));
+}
+
 TEST(Collect, RefusesToReplaceAFileWithoutForce) {
   TemporaryDirectory dir("collect");
   const std::string file = (dir.path() / "d.hdf5").string();
