@@ -250,6 +250,7 @@ void add_dataset_command(CLI::App& app, Action& run) {
   bc->add_option("--eval-episodes", bc_args->eval_episodes, "online evaluation episodes per seed (default 10)");
   bc->add_flag("--json", bc_args->json, "print JSON");
   bc->callback([&run, bc_args]() { run = [bc_args]() { return dataset_bc(*bc_args); }; });
+  add_dataset_make_command(*command, run);
 }
 
 }  // namespace bsg::cli

@@ -32,7 +32,9 @@ void add_bench_command(CLI::App& app, Action& run);
 
 // bsg collect --out FILE --policy random|RUN_DIR[=SHARE]... (--episodes N | --transitions N) (cmd_collect.cpp)
 void add_collect_command(CLI::App& app, Action& run);
-// bsg dataset info FILE [--plot FILE.png] [--json] (cmd_dataset.cpp)
+// bsg dataset info FILE [--plot FILE.png] [--json] | bc FILE ... (cmd_dataset.cpp) | make RECIPE ...
 void add_dataset_command(CLI::App& app, Action& run);
+// bsg dataset make RECIPE [--out DIR] [--jobs N] (cmd_dataset_make.cpp), a subcommand of `dataset`
+void add_dataset_make_command(CLI::App& dataset, Action& run);
 
 }  // namespace bsg::cli

@@ -3,6 +3,7 @@
 #include "common/config_error.h"
 #include "common/run_config_resolve.h"
 #include "common/run_config_schema.h"
+#include "envs/env.h"
 
 namespace bsg::experiments {
 
@@ -67,7 +68,9 @@ std::vector<GridRun> expand_grid(const GridSpec& grid) {
 RunConfig resolve_grid_run(const GridRun& run, const std::filesystem::path& configs_dir,
                            const std::string& grid_source_name) {
   try {
-    return resolve_run_config(RunConfigRequest{configs_dir, {}, run.set_arguments, {}}).config;
+    // Every registered id, as `bsg train` accepts: a fork id (no configs/envs/
+    // file) then takes cost_limit, epochs, steps_per_epoch and max_ep_len from the grid.
+    return resolve_run_config(RunConfigRequest{configs_dir, {}, run.set_arguments, envs::registered_ids()}).config;
   } catch (const ConfigError& e) {
     throw ConfigError(grid_source_name + ": run " + run.relative_dir().string() + ": " + e.what());
   }
