@@ -9,8 +9,9 @@
 // [--updates N] [--batch-size B] [--hidden 256,256] [--learning-rate LR]
 // [--eval-episodes N] [--json]`: behaviour cloning on the file (BC-All or
 // BC-Safe, docs/datasets.md#behaviour-cloning), one policy per seed, each
-// evaluated online on the file's environment (its mean actions, N episodes
-// seeded from the seed) and scored with DSRL's normalised reward and cost.
+// evaluated online on the file's environment (N episodes collected with the
+// seed derive_seed(seed, evaluation_environment, 0), so not from the
+// dataset's own starts) and scored with DSRL's normalised reward and cost.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -30,6 +31,7 @@
 #include "algos/offline/dataset_file.h"
 #include "algos/offline/normalized_score.h"
 #include "commands.h"
+#include "common/seeding.h"
 #include "render/png_file.h"
 #include "render/scatter_plot.h"
 
@@ -180,7 +182,8 @@ int dataset_bc(const BcArguments& args) {
     options.seed = seed;
     const algos::BehaviourCloningResult trained = algos::train_behaviour_cloning(dataset, options);
     const algos::OfflineDataset episodes = algos::collect_dataset(
-        *env, {{trained.policy.get(), 1.0}}, {algos::CollectionUnit::episodes, args.eval_episodes, seed});
+        *env, {{trained.policy.get(), 1.0}},
+        {algos::CollectionUnit::episodes, args.eval_episodes, derive_seed(seed, SeedStream::evaluation_environment, 0)});
     double reward = 0.0, cost = 0.0;
     const std::vector<algos::DatasetEpisode> split = algos::dataset_episodes(episodes);
     for (const algos::DatasetEpisode& e : split) reward += e.reward_return, cost += e.cost_return;
@@ -223,7 +226,7 @@ int dataset_bc(const BcArguments& args) {
 }  // namespace
 
 void add_dataset_command(CLI::App& app, Action& run) {
-  CLI::App* command = app.add_subcommand("dataset", "Offline datasets: bsg dataset info FILE");
+  CLI::App* command = app.add_subcommand("dataset", "Offline datasets: bsg dataset info FILE | bc FILE | make RECIPE");
   command->require_subcommand(1);
   CLI::App* info = command->add_subcommand(
       "info", "Transitions, episodes, return and cost ranges of a dataset file; --plot draws cost against return");
