@@ -1,6 +1,7 @@
 #include "algos/offline/dataset_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <hdf5.h>
 #include <unistd.h>
 
@@ -137,6 +138,7 @@ std::filesystem::path make_temporary(const std::filesystem::path& path) {
   std::string name = atomic_temporary_prefix(path).string() + std::to_string(::getpid()) + ".XXXXXX";
   const int fd = ::mkostemp(name.data(), O_CLOEXEC);
   if (fd < 0) fail(path, std::string("cannot create a temporary file: ") + std::strerror(errno));
+  ::fchmod(fd, 0644);  // as common/atomic_file does: mkostemp makes 0600
   ::close(fd);
   return name;
 }

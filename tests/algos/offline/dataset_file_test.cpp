@@ -71,6 +71,10 @@ TEST(DatasetFile, WrittenAndReadBackIsTheSame) {
   EXPECT_EQ(back.text_attributes.at("env_id"), "SafetyBallCircle-v0");
   EXPECT_EQ(back.number_attributes.at("cost_limit"), 10.0);
   EXPECT_TRUE(back.constraint_names.empty());
+  // Readable by others, as common/atomic_file's files are.
+  EXPECT_EQ(std::filesystem::status(dir.path() / "d.hdf5").permissions() & std::filesystem::perms::all,
+            std::filesystem::perms::owner_read | std::filesystem::perms::owner_write |
+                std::filesystem::perms::group_read | std::filesystem::perms::others_read);
   // Nothing but the file itself is left in the directory (no temporary).
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), std::filesystem::directory_iterator()), 1);
 }
