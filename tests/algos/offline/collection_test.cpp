@@ -13,6 +13,7 @@
 #include "../scripted_env.h"
 #include "algos/offline/dataset_file.h"
 #include "common/random.h"
+#include "common/run_config.h"
 #include "common/seeding.h"
 
 namespace bsg::algos {
@@ -110,6 +111,43 @@ TEST(Collection, ActionsAreClippedToTheDeclaredBounds) {
   testing::ScriptedEnv env(3);
   const OfflineDataset d = collect_dataset(env, {{&loud, 1.0}}, {CollectionUnit::episodes, 1, 0});
   EXPECT_EQ(d.actions, (std::vector<float>{1, -1, 1, -1, 1, -1}));
+}
+
+TEST(Collection, SeveralConstraintsFillTheMatrixAndSumIntoCosts) {
+  // A policy that always pushes the ball diagonally, so that it leaves the avenue (|y| > 2) and
+  // speeds up: both of BallRun's cost terms are non-zero at some steps.
+  struct Diagonal final : CollectionPolicy {
+    std::string description() const override { return "diagonal"; }
+    void start_episode(std::uint64_t) override {}
+    void act(std::span<const double>, std::span<double> action) override {
+      action[0] = 1.0;
+      action[1] = 1.0;
+    }
+  } diagonal;
+  RunConfig config;
+  config.constraints = {{{"cost_outside_bounds"}, 20.0}, {{"cost_velocity_violation"}, 5.0}};
+  std::unique_ptr<envs::Env> env = envs::make("SafetyBallRun-v0");
+  StepCostSelector costs(config);
+  costs.bind(env->spec().cost_term_names, env->spec().id);
+  const OfflineDataset d = collect_dataset(*env, {{&diagonal, 1.0}}, {CollectionUnit::episodes, 1, 9}, costs,
+                                           {"cost_outside_bounds", "cost_velocity_violation"});
+  // The oracle: the same episode stepped here, each term read by its name.
+  std::unique_ptr<envs::Env> oracle = envs::make("SafetyBallRun-v0");
+  oracle->reset(derive_seed(9, SeedStream::environment, 0, 0));
+  ASSERT_EQ(d.constraint_costs.size(), 2 * d.size());
+  double outside = 0.0, fast = 0.0;
+  for (std::size_t t = 0; t < d.size(); ++t) {
+    const envs::StepResult step = oracle->step(std::vector<double>{1.0, 1.0});
+    ASSERT_EQ(d.constraint_costs[2 * t], static_cast<float>(step.cost_term("cost_outside_bounds"))) << t;
+    ASSERT_EQ(d.constraint_costs[2 * t + 1], static_cast<float>(step.cost_term("cost_velocity_violation"))) << t;
+    ASSERT_EQ(d.costs[t], static_cast<float>(step.cost_term("cost_outside_bounds") +
+                                             step.cost_term("cost_velocity_violation")))
+        << t;
+    outside += step.cost_term("cost_outside_bounds");
+    fast += step.cost_term("cost_velocity_violation");
+  }
+  EXPECT_GT(outside, 0.0);
+  EXPECT_GT(fast, 0.0);
 }
 
 TEST(Collection, RefusesACountBelowOne) {
