@@ -1,0 +1,156 @@
+#include "algos/off_policy/replay_buffer.h"
+
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+namespace bsg::algos {
+namespace {
+
+constexpr Eigen::Index kRewardColumn = 0;
+constexpr Eigen::Index kDiscountColumn = 1;
+constexpr Eigen::Index kTerminalColumn = 2;
+constexpr Eigen::Index kFirstCostColumn = 3;
+
+template <typename Row>
+void copy_row(std::span<const double> values, Row row) {
+  for (Eigen::Index j = 0; j < row.size(); ++j) row(j) = static_cast<float>(values[static_cast<std::size_t>(j)]);
+}
+
+}  // namespace
+
+ReplayBuffer::ReplayBuffer(int observation_size, int action_size, int cost_count, std::int64_t capacity)
+    : observation_size_(observation_size), action_size_(action_size), cost_count_(cost_count), capacity_(capacity) {
+  if (observation_size < 1 || action_size < 1 || cost_count < 0 || capacity < 1) {
+    throw std::invalid_argument("ReplayBuffer: sizes must be positive (observation " +
+                                std::to_string(observation_size) + ", action " + std::to_string(action_size) +
+                                ", costs " + std::to_string(cost_count) + ", capacity " + std::to_string(capacity) +
+                                ")");
+  }
+  observations_.resize(capacity, observation_size);
+  next_observations_.resize(capacity, observation_size);
+  actions_.resize(capacity, action_size);
+  scalars_.resize(capacity, kFirstCostColumn + cost_count);
+}
+
+std::int64_t ReplayBuffer::bytes_per_transition(int observation_size, int action_size, int cost_count) {
+  return 4 * (2 * static_cast<std::int64_t>(observation_size) + action_size) + 8 * (kFirstCostColumn + cost_count);
+}
+
+void ReplayBuffer::add(std::span<const double> observation, std::span<const double> action, double reward,
+                       std::span<const double> costs, std::span<const double> next_observation, double discount,
+                       bool terminal) {
+  if (static_cast<int>(observation.size()) != observation_size_ ||
+      static_cast<int>(next_observation.size()) != observation_size_ ||
+      static_cast<int>(action.size()) != action_size_ || static_cast<int>(costs.size()) != cost_count_) {
+    throw std::invalid_argument("ReplayBuffer::add: a transition of sizes (" + std::to_string(observation.size()) +
+                                ", " + std::to_string(action.size()) + ", " + std::to_string(costs.size()) + ", " +
+                                std::to_string(next_observation.size()) + "), expected (" +
+                                std::to_string(observation_size_) + ", " + std::to_string(action_size_) + ", " +
+                                std::to_string(cost_count_) + ", " + std::to_string(observation_size_) + ")");
+  }
+  const std::int64_t slot = next_slot_;
+  copy_row(observation, observations_.row(slot));
+  copy_row(next_observation, next_observations_.row(slot));
+  copy_row(action, actions_.row(slot));
+  scalars_(slot, kRewardColumn) = reward;
+  scalars_(slot, kDiscountColumn) = discount;
+  scalars_(slot, kTerminalColumn) = terminal ? 1.0 : 0.0;
+  for (int i = 0; i < cost_count_; ++i) scalars_(slot, kFirstCostColumn + i) = costs[static_cast<std::size_t>(i)];
+  next_slot_ = (next_slot_ + 1) % capacity_;  // the ring wraps: the oldest slot is overwritten next
+  if (size_ < capacity_) ++size_;
+  ++total_added_;
+}
+
+void ReplayBuffer::gather(std::span<const std::int64_t> slots, ReplayBatch& batch) const {
+  const Eigen::Index rows = static_cast<Eigen::Index>(slots.size());
+  if (batch.rewards.size() != rows || batch.observations.cols() != observation_size_ ||
+      batch.costs.cols() != cost_count_) {
+    batch.observations.resize(rows, observation_size_);
+    batch.next_observations.resize(rows, observation_size_);
+    batch.actions.resize(rows, action_size_);
+    batch.rewards.resize(rows);
+    batch.costs.resize(rows, cost_count_);
+    batch.discounts.resize(rows);
+    batch.terminals.resize(rows);
+  }
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const std::int64_t slot = slots[static_cast<std::size_t>(r)];
+    if (slot < 0 || slot >= size_) {
+      throw std::out_of_range("ReplayBuffer::gather: slot " + std::to_string(slot) + " outside [0, " +
+                              std::to_string(size_) + ")");
+    }
+    batch.observations.row(r) = observations_.row(slot).cast<double>();
+    batch.next_observations.row(r) = next_observations_.row(slot).cast<double>();
+    batch.actions.row(r) = actions_.row(slot).cast<double>();
+    batch.rewards(r) = scalars_(slot, kRewardColumn);
+    batch.discounts(r) = scalars_(slot, kDiscountColumn);
+    batch.terminals(r) = scalars_(slot, kTerminalColumn);
+    for (int i = 0; i < cost_count_; ++i) batch.costs(r, i) = scalars_(slot, kFirstCostColumn + i);
+  }
+}
+
+void ReplayBuffer::sample(int batch_size, Rng& rng, std::vector<std::int64_t>& slots, ReplayBatch& batch) const {
+  if (size_ == 0) throw std::logic_error("ReplayBuffer::sample: the buffer is empty");
+  slots.resize(static_cast<std::size_t>(batch_size));  // no allocation once sized
+  for (std::int64_t& slot : slots) slot = static_cast<std::int64_t>(uniform_index(rng, static_cast<std::uint64_t>(size_)));
+  gather(slots, batch);
+}
+
+void ReplayBuffer::save(BinaryWriter& writer) const {
+  writer.write_section("replay buffer");
+  writer.write_i64(observation_size_);
+  writer.write_i64(action_size_);
+  writer.write_i64(cost_count_);
+  writer.write_i64(capacity_);
+  writer.write_i64(size_);
+  writer.write_i64(next_slot_);
+  writer.write_i64(total_added_);
+  // The held slots' bytes as stored (rows 0 .. size - 1).
+  const auto bytes_of = [&](const auto& matrix) {
+    using Scalar = typename std::decay_t<decltype(matrix)>::Scalar;
+    return std::string_view(reinterpret_cast<const char*>(matrix.data()),
+                            static_cast<std::size_t>(size_ * matrix.cols()) * sizeof(Scalar));
+  };
+  writer.write_string(bytes_of(observations_));
+  writer.write_string(bytes_of(next_observations_));
+  writer.write_string(bytes_of(actions_));
+  writer.write_string(bytes_of(scalars_));
+}
+
+void ReplayBuffer::load(BinaryReader& reader) {
+  reader.expect_section("replay buffer");
+  const std::int64_t observation_size = reader.read_i64("replay buffer observation size");
+  const std::int64_t action_size = reader.read_i64("replay buffer action size");
+  const std::int64_t cost_count = reader.read_i64("replay buffer cost count");
+  const std::int64_t capacity = reader.read_i64("replay buffer capacity");
+  if (observation_size != observation_size_ || action_size != action_size_ || cost_count != cost_count_ ||
+      capacity != capacity_) {
+    reader.fail("replay buffer sizes (" + std::to_string(observation_size) + ", " + std::to_string(action_size) +
+                ", " + std::to_string(cost_count) + ", " + std::to_string(capacity) + ") differ from the run's (" +
+                std::to_string(observation_size_) + ", " + std::to_string(action_size_) + ", " +
+                std::to_string(cost_count_) + ", " + std::to_string(capacity_) + ")");
+  }
+  const std::int64_t size = reader.read_i64("replay buffer size");
+  const std::int64_t next_slot = reader.read_i64("replay buffer next slot");
+  const std::int64_t total_added = reader.read_i64("replay buffer transitions added");
+  if (size < 0 || size > capacity_ || next_slot < 0 || next_slot >= capacity_ || total_added < size) {
+    reader.fail("replay buffer counters out of range");
+  }
+  const auto read_into = [&](auto& matrix, const char* field) {
+    using Scalar = typename std::decay_t<decltype(matrix)>::Scalar;
+    const std::string bytes = reader.read_string(field);
+    const std::size_t expected = static_cast<std::size_t>(size * matrix.cols()) * sizeof(Scalar);
+    if (bytes.size() != expected) reader.fail(std::string(field) + " has the wrong length");
+    std::memcpy(matrix.data(), bytes.data(), expected);
+  };
+  read_into(observations_, "replay buffer observations");
+  read_into(next_observations_, "replay buffer next observations");
+  read_into(actions_, "replay buffer actions");
+  read_into(scalars_, "replay buffer rewards, discounts, terminals and costs");
+  size_ = size;
+  next_slot_ = next_slot;
+  total_added_ = total_added;
+}
+
+}  // namespace bsg::algos
