@@ -242,18 +242,16 @@ double OffPolicyLearner::actor_loss(const ReplayBatch& batch, const Eigen::Ref<c
   // - min_k Q_k(s, a) (SAC); - Q_1(s, a) (TD3, DDPG: Fujimoto et al.'s actor uses Q_1)
   const int critics_in_loss = squashed ? options_.reward_critics : 1;
   if (critics_in_loss == 2) {
+    // each twin's pass in its own workspace, so that both are cached for their input gradients
     const Eigen::MatrixXd& q0 = reward_critics_[0].forward_batch(critic_inputs_, critic_workspace_);
-    q_min_ = q0;
-    const Eigen::MatrixXd& q1 = reward_critics_[1].forward_batch(critic_inputs_, critic_workspace_);
-    q_argmin_ = (q1.array() < q_min_.array()).cast<double>();
-    q_min_ = q_min_.cwiseMin(q1);
-    // the critic 1 pass is cached: its gradient first, then critic 0's after a new pass
-    output_gradient_ = -scale * q_argmin_;
-    reward_critics_[1].input_gradient_batch(output_gradient_, critic_workspace_, input_gradient_);
-    action_gradient_ += input_gradient_.rightCols(action_size_);
-    reward_critics_[0].forward_batch(critic_inputs_, critic_workspace_);
+    const Eigen::MatrixXd& q1 = reward_critics_[1].forward_batch(critic_inputs_, twin_critic_workspace_);
+    q_argmin_ = (q1.array() < q0.array()).cast<double>();  // ties go to Q_1
+    q_min_ = q0.cwiseMin(q1);
     output_gradient_ = -scale * (1.0 - q_argmin_.array()).matrix();
     reward_critics_[0].input_gradient_batch(output_gradient_, critic_workspace_, input_gradient_);
+    action_gradient_ += input_gradient_.rightCols(action_size_);
+    output_gradient_ = -scale * q_argmin_;
+    reward_critics_[1].input_gradient_batch(output_gradient_, twin_critic_workspace_, input_gradient_);
     action_gradient_ += input_gradient_.rightCols(action_size_);
   } else {
     q_min_ = reward_critics_[0].forward_batch(critic_inputs_, critic_workspace_);
@@ -310,9 +308,17 @@ void OffPolicyLearner::update_targets() {
 
 OffPolicyStepStats OffPolicyLearner::update(const ReplayBatch& batch, std::span<const double> lambdas, Rng& rng,
                                             const MpiContext& mpi) {
+  OffPolicyStepStats stats;
+  update(batch, lambdas, rng, mpi, stats);
+  return stats;
+}
+
+void OffPolicyLearner::update(const ReplayBatch& batch, std::span<const double> lambdas, Rng& rng,
+                              const MpiContext& mpi, OffPolicyStepStats& stats) {
   const Eigen::Index rows = batch.rows();
   const bool squashed = options_.actor == ActorKind::squashed_gaussian;
-  OffPolicyStepStats stats;
+  stats.reward_critic_loss = stats.reward_q_mean = stats.actor_loss = stats.log_prob_mean = stats.alpha = 0.0;
+  stats.actor_updated = false;
   // 1. targets
   resize_if_needed(next_noise_, rows, action_size_);
   if (squashed || options_.target_smoothing) fill_standard_normal(next_noise_, rng);
@@ -350,12 +356,12 @@ OffPolicyStepStats OffPolicyLearner::update(const ReplayBatch& batch, std::span<
     if (squashed && options_.auto_alpha) {
       double alpha_gradient = 0.0;
       alpha_loss(mpi.average(log_prob_mean), &alpha_gradient);
-      alpha_adam_.step(log_alpha_, Eigen::VectorXd::Constant(1, alpha_gradient));
+      alpha_gradient_.setConstant(1, alpha_gradient);
+      alpha_adam_.step(log_alpha_, alpha_gradient_);
     }
     update_targets();
   }
   stats.alpha = squashed ? alpha() : 0.0;
-  return stats;
 }
 
 void OffPolicyLearner::save(BinaryWriter& writer) const {

@@ -105,6 +105,10 @@ class OffPolicyLearner {
 
   // One gradient step of every network on `batch`; `lambdas` holds lambda_1..lambda_m (empty
   // without constraints). Draws the noise it needs from `rng`.
+  // `stats` is overwritten; its vectors keep their capacity, so that a step on a batch of the size
+  // of the previous one allocates nothing.
+  void update(const ReplayBatch& batch, std::span<const double> lambdas, Rng& rng, const MpiContext& mpi,
+              OffPolicyStepStats& stats);
   OffPolicyStepStats update(const ReplayBatch& batch, std::span<const double> lambdas, Rng& rng, const MpiContext& mpi);
 
   // --- the pieces of update(), public for the derivative tests ---
@@ -147,6 +151,7 @@ class OffPolicyLearner {
   std::vector<Adam> reward_critic_adams_;
   std::vector<Adam> cost_critic_adams_;
   Eigen::VectorXd log_alpha_;  // one entry, for Adam
+  Eigen::VectorXd alpha_gradient_;
   Adam alpha_adam_;
   std::int64_t update_count_ = 0;
 
@@ -155,6 +160,7 @@ class OffPolicyLearner {
   Eigen::VectorXd act_outputs_;
   MlpBatchWorkspace actor_workspace_;
   MlpBatchWorkspace critic_workspace_;
+  MlpBatchWorkspace twin_critic_workspace_;  // the second reward critic's pass in the actor step
   Eigen::MatrixXd critic_inputs_;     // N x (|S| + |A|)
   Eigen::MatrixXd next_actions_;      // N x |A|
   Eigen::MatrixXd policy_actions_;    // N x |A|

@@ -232,7 +232,8 @@ void OffPolicyTrainer::collect_step(int epoch, int env_index, bool random_action
 void OffPolicyTrainer::train(int updates, EpochAccounts& accounts) {
   for (int u = 0; u < updates; ++u) {
     buffer_.sample(config_.batch_size, sample_rng_, slots_, batch_);
-    const OffPolicyStepStats stats = learner_->update(batch_, lambdas_, sample_rng_, mpi_);
+    learner_->update(batch_, lambdas_, sample_rng_, mpi_, step_stats_);
+    const OffPolicyStepStats& stats = step_stats_;
     ++accounts.updates;
     accounts.reward_critic_loss += stats.reward_critic_loss;
     accounts.reward_q += stats.reward_q_mean;

@@ -106,6 +106,7 @@ class OffPolicyTrainer {
   Eigen::VectorXd action_;
   Eigen::VectorXd step_costs_;
   ReplayBatch batch_;
+  OffPolicyStepStats step_stats_;
   std::vector<std::int64_t> slots_;
   TrainingProgress progress_;
   std::optional<ProgressCsv> progress_csv_;

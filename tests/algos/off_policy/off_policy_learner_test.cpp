@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "../../common/finite_differences.h"
+#include "../../heap_counter.h"
 #include "algos/off_policy/polyak.h"
 #include "algos/off_policy/squashed_gaussian.h"
 #include "algos/off_policy/target_smoothing.h"
@@ -347,6 +348,29 @@ TEST(OffPolicyLearner, SaveAndLoadRestoreEveryNetworkAndOptimiser) {
   EXPECT_EQ(learner.actor().parameters(), restored.actor().parameters());
   EXPECT_EQ(learner.target_cost_critic(0).parameters(), restored.target_cost_critic(0).parameters());
   EXPECT_EQ(learner.update_count(), restored.update_count());
+}
+
+TEST(OffPolicyLearner, AGradientStepAllocatesNothingOnceSized) {
+  if (!testing::heap_calls_countable()) GTEST_SKIP() << "heap calls are not countable here (AddressSanitizer)";
+  for (const Algorithm alg : {Algorithm::sac_lag, Algorithm::td3_lag, Algorithm::ddpg_lag}) {
+    SCOPED_TRACE(std::string(to_string(alg)));
+    RunConfig config;
+    config.alg = alg;
+    config.hidden_sizes = {32, 32};
+    config.auto_alpha = true;
+    config.policy_delay = 2;
+    Rng rng(12);
+    OffPolicyLearner learner(OffPolicyOptions::from_config(config, kAct), kObs, kAct, 2, rng);
+    const ReplayBatch batch = random_batch(rng, 2);
+    const std::vector<double> lambdas{0.3, 0.0};
+    const MpiContext mpi = MpiContext::single_process();
+    OffPolicyStepStats stats;
+    for (int step = 0; step < 2; ++step) learner.update(batch, lambdas, rng, mpi, stats);  // sizes everything
+    const long allocations = testing::allocations_of([&] {
+      for (int step = 0; step < 4; ++step) learner.update(batch, lambdas, rng, mpi, stats);
+    });
+    EXPECT_EQ(allocations, 0);
+  }
 }
 
 }  // namespace
