@@ -1,5 +1,6 @@
 #include "algos/off_policy/replay_buffer.h"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -151,6 +152,55 @@ void ReplayBuffer::load(BinaryReader& reader) {
   size_ = size;
   next_slot_ = next_slot;
   total_added_ = total_added;
+}
+
+void ReplayBuffer::write_transitions(std::int64_t first, std::int64_t count, std::string& bytes) const {
+  if (count < 0 || first < total_added_ - size_ || first + count > total_added_) {
+    throw std::out_of_range("ReplayBuffer::write_transitions: transitions [" + std::to_string(first) + ", " +
+                            std::to_string(first + count) + ") are not all held (held: [" +
+                            std::to_string(total_added_ - size_) + ", " + std::to_string(total_added_) + "))");
+  }
+  const auto append_row = [&](const auto& matrix, std::int64_t slot) {
+    using Scalar = typename std::decay_t<decltype(matrix)>::Scalar;
+    bytes.append(reinterpret_cast<const char*>(matrix.row(slot).data()),
+                 static_cast<std::size_t>(matrix.cols()) * sizeof(Scalar));
+  };
+  for (std::int64_t k = first; k < first + count; ++k) {
+    const std::int64_t slot = k % capacity_;
+    append_row(observations_, slot);
+    append_row(next_observations_, slot);
+    append_row(actions_, slot);
+    append_row(scalars_, slot);
+  }
+}
+
+void ReplayBuffer::restore_transitions(std::int64_t first, std::int64_t count, std::string_view bytes) {
+  const std::int64_t row_bytes = bytes_per_transition(observation_size_, action_size_, cost_count_);
+  if (first < 0 || count < 0 || static_cast<std::int64_t>(bytes.size()) != count * row_bytes) {
+    throw std::invalid_argument("ReplayBuffer::restore_transitions: " + std::to_string(bytes.size()) +
+                                " bytes for " + std::to_string(count) + " transitions of " + std::to_string(row_bytes));
+  }
+  std::size_t position = 0;
+  const auto read_row = [&](auto& matrix, std::int64_t slot) {
+    using Scalar = typename std::decay_t<decltype(matrix)>::Scalar;
+    const std::size_t length = static_cast<std::size_t>(matrix.cols()) * sizeof(Scalar);
+    std::memcpy(matrix.row(slot).data(), bytes.data() + position, length);
+    position += length;
+  };
+  for (std::int64_t k = first; k < first + count; ++k) {
+    const std::int64_t slot = k % capacity_;
+    read_row(observations_, slot);
+    read_row(next_observations_, slot);
+    read_row(actions_, slot);
+    read_row(scalars_, slot);
+  }
+}
+
+void ReplayBuffer::restore_counters(std::int64_t total_added) {
+  if (total_added < 0) throw std::invalid_argument("ReplayBuffer::restore_counters: negative count");
+  total_added_ = total_added;
+  size_ = std::min(total_added, capacity_);
+  next_slot_ = total_added % capacity_;
 }
 
 }  // namespace bsg::algos

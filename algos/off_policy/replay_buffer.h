@@ -13,6 +13,8 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/binary_io.h"
@@ -56,10 +58,19 @@ class ReplayBuffer {
   // Throws std::logic_error if the buffer is empty.
   void sample(int batch_size, Rng& rng, std::vector<std::int64_t>& slots, ReplayBatch& batch) const;
 
-  // Everything, for the checkpoint (the held transitions only, oldest first is not needed: slots as stored).
+  // Everything, for the checkpoint (the held slots as stored).
   void save(BinaryWriter& writer) const;
   // Restores what save() wrote; fails on the reader if the sizes differ from this buffer's.
   void load(BinaryReader& reader);
+
+  // The append-only record (algos/training/replay_buffer_log.h): transition k of the run (k counts
+  // every add, from 0) lives in slot k mod capacity while it is held. write_transitions appends the
+  // bytes of transitions [first, first + count), which must all be held; restore_transitions puts
+  // such bytes back into their slots; restore_counters then sets the counters for `total_added`
+  // transitions added (size min(total_added, capacity), next slot total_added mod capacity).
+  void write_transitions(std::int64_t first, std::int64_t count, std::string& bytes) const;
+  void restore_transitions(std::int64_t first, std::int64_t count, std::string_view bytes);
+  void restore_counters(std::int64_t total_added);
 
  private:
   using RowMatrixF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;

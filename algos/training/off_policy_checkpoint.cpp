@@ -24,6 +24,7 @@ std::string encode_off_policy_checkpoint(const RunConfig& config, const OffPolic
   writer.write_f64(state.progress.elapsed_seconds);
   writer.write_string(state.progress.progress_log.value_or(""));
   save_training_cost(state.progress.training_cost, writer);
+  writer.write_i64(state.replay_transitions);
   writer.write_i64(state.steps_since_update);
   writer.write_f64(state.owed_updates);
   writer.write_section("multipliers");
@@ -59,6 +60,8 @@ OffPolicyCheckpoint load_off_policy_checkpoint(const std::filesystem::path& path
   state.progress.progress_log = reader.read_string("progress log");
   const int constraint_count = config.constraints.empty() ? 1 : static_cast<int>(config.constraints.size());
   state.progress.training_cost = load_training_cost(reader, constraint_count);
+  state.replay_transitions = reader.read_i64("replay transitions");
+  if (state.replay_transitions < 0) reader.fail("replay transitions negative");
   state.steps_since_update = reader.read_i64("steps since the last update");
   state.owed_updates = reader.read_f64("owed updates");
   if (state.steps_since_update < 0 || !(state.owed_updates >= 0.0 && state.owed_updates < 1e9)) {
@@ -76,33 +79,6 @@ OffPolicyCheckpoint load_off_policy_checkpoint(const std::filesystem::path& path
   learner.load(reader);
   reader.expect_end();
   return state;
-}
-
-std::filesystem::path replay_buffer_path(const std::filesystem::path& directory, int rank, int epochs) {
-  return directory / ("replay_buffer.r" + std::to_string(rank) + ".e" + std::to_string(epochs) + ".bin");
-}
-
-void save_replay_buffer(const std::filesystem::path& path, const ReplayBuffer& buffer) {
-  BinaryWriter writer;
-  buffer.save(writer);
-  write_checkpoint_file(path, writer.bytes());
-}
-
-void load_replay_buffer(const std::filesystem::path& path, ReplayBuffer& buffer) {
-  const std::string payload = read_checkpoint_file(path);
-  BinaryReader reader(payload, path.string());
-  buffer.load(reader);
-  reader.expect_end();
-}
-
-void remove_old_replay_buffers(const std::filesystem::path& directory, int rank, int keep_epochs) {
-  const std::string prefix = "replay_buffer.r" + std::to_string(rank) + ".e";
-  const std::string keep = replay_buffer_path(directory, rank, keep_epochs).filename().string();
-  std::error_code error;
-  for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
-    const std::string name = entry.path().filename().string();
-    if (name.starts_with(prefix) && name.ends_with(".bin") && name != keep) std::filesystem::remove(entry.path(), error);
-  }
 }
 
 }  // namespace bsg::algos

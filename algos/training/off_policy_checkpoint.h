@@ -5,9 +5,10 @@
 //                      those epochs, the training cost, the update schedule's carry
 //   "multipliers"      every Lagrange multiplier's named state (none for sac, td3, ddpg)
 //   "off-policy networks"  the learner (off_policy_learner.h: every net, target, Adam state, log alpha)
-// and every rank r writes its replay buffer to replay_buffer.r<r>.e<epochs>.bin (the same container)
-// before rank 0 writes checkpoint.bin, removing its older buffer files after it: a run killed between
-// the two writes resumes from the previous checkpoint, whose buffer file is still there.
+// with the number of transitions each rank's replay buffer had taken, whose transitions every rank r
+// has appended to its record replay_buffer.r<r>.log (replay_buffer_log.h) before rank 0 writes
+// checkpoint.bin: a run killed between the two resumes from the previous checkpoint, and the record's
+// later transitions are cut off.
 #pragma once
 
 #include <filesystem>
@@ -17,7 +18,6 @@
 
 #include "algos/core/algorithm.h"
 #include "algos/off_policy/off_policy_learner.h"
-#include "algos/off_policy/replay_buffer.h"
 #include "algos/training/training_checkpoint.h"
 #include "common/run_config.h"
 
@@ -27,6 +27,7 @@ struct OffPolicySchedule;
 
 struct OffPolicyCheckpoint {
   TrainingProgress progress;
+  long long replay_transitions = 0;  // transitions each rank's buffer had taken
   long long steps_since_update = 0;
   double owed_updates = 0.0;
   std::vector<NamedScalar> multipliers;
@@ -38,12 +39,5 @@ std::string encode_off_policy_checkpoint(const RunConfig& config, const OffPolic
 // corrupt, not an off-policy checkpoint, or written for another configuration.
 OffPolicyCheckpoint load_off_policy_checkpoint(const std::filesystem::path& path, const RunConfig& config,
                                                OffPolicyLearner& learner);
-
-// replay_buffer.r<rank>.e<epochs>.bin in `directory`.
-std::filesystem::path replay_buffer_path(const std::filesystem::path& directory, int rank, int epochs);
-void save_replay_buffer(const std::filesystem::path& path, const ReplayBuffer& buffer);
-void load_replay_buffer(const std::filesystem::path& path, ReplayBuffer& buffer);
-// Removes this rank's buffer files of other epoch counts than `keep_epochs`.
-void remove_old_replay_buffers(const std::filesystem::path& directory, int rank, int keep_epochs);
 
 }  // namespace bsg::algos

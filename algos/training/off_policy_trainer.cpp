@@ -96,7 +96,8 @@ OffPolicyTrainer::OffPolicyTrainer(const RunConfig& config, RunDirectory directo
       critic_cost_count_(ignores_cost(config.alg) ? 0 : constraint_count_),
       local_steps_((check_run_config_for_ranks(config, mpi.size()), config.steps_per_epoch / mpi.size())),
       cost_selector_(bound_cost_selector(config, envs_.front()->spec())),
-      buffer_(observation_size_, action_size_, critic_cost_count_, config.buffer_size) {
+      buffer_(observation_size_, action_size_, critic_cost_count_, config.buffer_size),
+      buffer_log_(replay_buffer_log_path(directory_.root, mpi.rank())) {
   if (!is_off_policy(config.alg)) {
     throw std::invalid_argument("OffPolicyTrainer: " + std::string(to_string(config.alg)) + " is not off-policy");
   }
@@ -129,7 +130,7 @@ OffPolicyTrainer::OffPolicyTrainer(const RunConfig& config, RunDirectory directo
     schedule_.steps_since_update = saved.steps_since_update;
     schedule_.owed_updates = saved.owed_updates;
     if (multipliers_) multipliers_->restore_state(saved.multipliers);
-    load_replay_buffer(replay_buffer_path(directory_.root, mpi_.rank(), saved.progress.epochs_completed), buffer_);
+    buffer_log_.restore(buffer_, saved.replay_transitions);
     checkpoint_epochs_ = saved.progress.epochs_completed;
     if (mpi_.is_root()) {
       remove_stale_temporaries(directory_.root);
@@ -162,17 +163,16 @@ TrainingSafety OffPolicyTrainer::training_safety() const {
 }
 
 void OffPolicyTrainer::save_checkpoint() {
-  // Each rank's buffer first, then rank 0's checkpoint.bin naming the epoch, then the old buffers go.
-  save_replay_buffer(replay_buffer_path(directory_.root, mpi_.rank(), progress_.epochs_completed), buffer_);
+  // Each rank's new transitions first, then rank 0's checkpoint.bin naming how many there are.
+  buffer_log_.append(buffer_);
   mpi_.sum(0.0);
   if (mpi_.is_root()) {
     progress_.progress_log = progress_csv_->contents();
-    OffPolicyCheckpoint state{progress_, schedule_.steps_since_update, schedule_.owed_updates,
+    OffPolicyCheckpoint state{progress_, buffer_.total_added(), schedule_.steps_since_update, schedule_.owed_updates,
                               multipliers_ ? multipliers_->state() : std::vector<NamedScalar>{}};
     write_checkpoint_file(directory_.checkpoint(), encode_off_policy_checkpoint(config_, state, *learner_));
   }
   mpi_.sum(0.0);
-  remove_old_replay_buffers(directory_.root, mpi_.rank(), progress_.epochs_completed);
   checkpoint_epochs_ = progress_.epochs_completed;
 }
 

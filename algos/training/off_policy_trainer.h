@@ -18,7 +18,8 @@
 // After the last epoch: deterministic evaluation episodes (the actor's tanh(mu)) and evaluation.json.
 //
 // Resuming: the checkpoint (off_policy_checkpoint.h) holds the networks, optimisers, temperature,
-// multipliers, the update schedule's carry and every rank's replay buffer; with the per-epoch seeds
+// multipliers and the update schedule's carry, and every rank's replay buffer is in its append-only
+// record (replay_buffer_log.h); with the per-epoch seeds
 // above a resumed run reproduces an uninterrupted one exactly.
 //
 // progress.csv columns: epoch, total_env_steps, episode_{return,cost,length}_{mean,std,min,max},
@@ -39,6 +40,7 @@
 #include "algos/off_policy/off_policy_learner.h"
 #include "algos/off_policy/replay_buffer.h"
 #include "algos/training/progress_csv.h"
+#include "algos/training/replay_buffer_log.h"
 #include "algos/training/run_directory.h"
 #include "algos/training/trainer.h"
 #include "algos/training/training_checkpoint.h"
@@ -93,6 +95,7 @@ class OffPolicyTrainer {
   std::optional<LagrangeMultipliers> multipliers_;
   std::vector<double> lambdas_;
   ReplayBuffer buffer_;
+  ReplayBufferLog buffer_log_;
   std::vector<NStepAccumulator> accumulators_;
   OffPolicySchedule schedule_;
   Rng noise_rng_;

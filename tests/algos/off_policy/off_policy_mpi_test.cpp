@@ -124,8 +124,8 @@ TEST(OffPolicyMpi, ARunOnTwoRanksKeepsTheirParametersEqual) {
   // each rank kept its own buffer: 80 steps per rank and epoch
   EXPECT_EQ(trainer.buffer().total_added(), 3 * 80);
   if (mpi.is_root()) {
-    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(text) / "replay_buffer.r0.e3.bin"));
-    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(text) / "replay_buffer.r1.e3.bin"));
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(text) / "replay_buffer.r0.log"));
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(text) / "replay_buffer.r1.log"));
     EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(text) / "evaluation.json"));
   }
   mpi.sum(0.0);  // rank 0 removes the directory only after every rank is done with it

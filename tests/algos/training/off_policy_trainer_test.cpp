@@ -100,10 +100,44 @@ TEST(OffPolicyTrainer, ResumingContinuesWithTheSameNumbers) {
     EXPECT_EQ(without_times(dir.path() / "split" / "progress.csv"), without_times(dir.path() / "whole" / "progress.csv"));
     EXPECT_EQ(bsg::testing::read_text_file(dir.path() / "split" / "returns.csv"),
               bsg::testing::read_text_file(dir.path() / "whole" / "returns.csv"));
-    // only the last checkpoint's buffer file is kept
-    EXPECT_TRUE(fs::exists(dir.path() / "split" / "replay_buffer.r0.e5.bin"));
-    EXPECT_FALSE(fs::exists(dir.path() / "split" / "replay_buffer.r0.e3.bin"));
+    // the buffer's record holds the run's transitions once, not a copy per checkpoint
+    EXPECT_EQ(fs::file_size(dir.path() / "split" / "replay_buffer.r0.log"),
+              fs::file_size(dir.path() / "whole" / "replay_buffer.r0.log"));
   }
+}
+
+// A run killed after its buffer record grew but before checkpoint.bin was replaced (here: the
+// epoch-3 checkpoint put back after epoch 4 was saved, and a torn record appended) resumes from
+// the checkpoint it finds, cutting the later records off, and still ends as an uninterrupted run.
+TEST(OffPolicyTrainer, AKilledRunResumesFromItsCheckpointDroppingLaterBufferRecords) {
+  TemporaryDirectory dir;
+  const bsg::RunConfig config = scripted_config(bsg::Algorithm::sac_lag);
+  bsg::algos::OffPolicyTrainer whole(config, bsg::algos::RunDirectory(dir.path() / "whole"),
+                                     bsg::MpiContext::single_process(), {}, scripted_envs(2));
+  ASSERT_TRUE(whole.run().finished);
+  const fs::path split = dir.path() / "split";
+  for (const int stop_after : {3, 4}) {
+    bsg::algos::TrainerOptions options;
+    options.stop_after_epochs = stop_after;
+    options.resume = stop_after == 4;
+    bsg::algos::OffPolicyTrainer part(config, bsg::algos::RunDirectory(split), bsg::MpiContext::single_process(),
+                                      options, scripted_envs(2));
+    part.run();
+    if (stop_after == 3) fs::copy_file(split / "checkpoint.bin", dir.path() / "checkpoint_after_3.bin");
+  }
+  fs::copy_file(dir.path() / "checkpoint_after_3.bin", split / "checkpoint.bin", fs::copy_options::overwrite_existing);
+  const auto size_after_4 = fs::file_size(split / "replay_buffer.r0.log");
+  bsg::testing::write_text_file(split / "replay_buffer.r0.log",
+                                bsg::testing::read_text_file(split / "replay_buffer.r0.log") + "torn record");
+  bsg::algos::TrainerOptions resume;
+  resume.resume = true;
+  bsg::algos::OffPolicyTrainer last(config, bsg::algos::RunDirectory(split), bsg::MpiContext::single_process(), resume,
+                                    scripted_envs(2));
+  ASSERT_EQ(last.epochs_completed(), 3);
+  EXPECT_LT(fs::file_size(split / "replay_buffer.r0.log"), size_after_4);  // epoch 4's record is gone
+  ASSERT_TRUE(last.run().finished);
+  EXPECT_EQ(last.learner().actor().parameters(), whole.learner().actor().parameters());
+  EXPECT_EQ(without_times(split / "progress.csv"), without_times(dir.path() / "whole" / "progress.csv"));
 }
 
 TEST(OffPolicyTrainer, TakesUpdatesPerStepGradientStepsPerRoundAfterStartSteps) {
