@@ -56,4 +56,9 @@ void NStepAccumulator::add(std::span<const double> observation, std::span<const 
   }
 }
 
+void NStepAccumulator::flush(std::span<const double> next_observation, ReplayBuffer& buffer) {
+  while (count_ > 0) emit_oldest(next_observation, false, buffer);
+  first_ = 0;
+}
+
 }  // namespace bsg::algos

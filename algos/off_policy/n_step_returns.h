@@ -29,6 +29,10 @@ class NStepAccumulator {
            std::span<const double> costs, std::span<const double> next_observation, bool terminated,
            bool episode_ends, ReplayBuffer& buffer);
 
+  // Writes every pending step out as at a truncation: bootstrapped from `next_observation`, the
+  // state the episode has reached (a checkpoint taken in mid-episode, algos/training/off_policy_trainer.h).
+  void flush(std::span<const double> next_observation, ReplayBuffer& buffer);
+
   int pending() const { return count_; }
   // Drops the pending steps (a new episode starts without writing them).
   void clear() { count_ = 0; first_ = 0; }

@@ -163,6 +163,12 @@ TrainingSafety OffPolicyTrainer::training_safety() const {
 }
 
 void OffPolicyTrainer::save_checkpoint() {
+  // A checkpoint cuts the episodes (the next epoch resets the environments): steps still waiting
+  // for their n-step sums go to the buffer as at a truncation (none after a cutting epoch).
+  for (int j = 0; j < config_.num_envs; ++j) {
+    const std::size_t jj = static_cast<std::size_t>(j);
+    accumulators_[jj].flush(span_of(observations_[jj]), buffer_);
+  }
   // Each rank's new transitions first, then rank 0's checkpoint.bin naming how many there are.
   buffer_log_.append(buffer_);
   mpi_.sum(0.0);
@@ -185,7 +191,7 @@ void OffPolicyTrainer::check_finite(int epoch, const char* quantity, double valu
   }
 }
 
-void OffPolicyTrainer::collect_step(int epoch, int env_index, bool random_action, bool last_round,
+void OffPolicyTrainer::collect_step(int epoch, int env_index, bool random_action, bool cut,
                                     EpochAccounts& accounts) {
   const std::size_t j = static_cast<std::size_t>(env_index);
   envs::Env& env = *envs_[j];
@@ -209,7 +215,7 @@ void OffPolicyTrainer::collect_step(int epoch, int env_index, bool random_action
   // A termination ends the return; a time-out and the epoch's cut bootstrap from s'.
   const std::span<const double> critic_costs(step_costs_.data(), static_cast<std::size_t>(critic_cost_count_));
   accumulators_[j].add(span_of(observations_[j]), span_of(action_), step.reward, critic_costs, step.observation,
-                       step.terminated, episode_over || last_round, buffer_);
+                       step.terminated, episode_over || cut, buffer_);
   if (episode_over) {
     accounts.returns.push_back(episode_returns_[j]);
     accounts.costs.push_back(episode_costs_[j]);
@@ -220,7 +226,7 @@ void OffPolicyTrainer::collect_step(int epoch, int env_index, bool random_action
     episode_returns_[j] = episode_costs_[j] = 0.0;
     episode_lengths_[j] = 0;
     episode_constraint_costs_[j].setZero();
-    if (!last_round) {
+    if (!cut) {
       const std::span<const double> first = env.reset();  // continues the environment's stream
       observations_[j] = Eigen::Map<const Eigen::VectorXd>(first.data(), observation_size_);
     }
@@ -259,17 +265,24 @@ void OffPolicyTrainer::run_epoch(int epoch) {
   accounts.alpha = learner_->options().actor == ActorKind::squashed_gaussian ? learner_->alpha() : 0.0;
   noise_rng_.seed(stream_seed(config_, SeedStream::action_noise, mpi_.rank(), static_cast<std::uint64_t>(epoch)));
   sample_rng_.seed(stream_seed(config_, SeedStream::minibatch_shuffle, mpi_.rank(), static_cast<std::uint64_t>(epoch)));
-  for (int j = 0; j < config_.num_envs; ++j) {
-    const std::size_t jj = static_cast<std::size_t>(j);
-    const std::uint64_t seed = stream_seed(config_, SeedStream::environment, mpi_.rank(),
-                                           static_cast<std::uint64_t>(epoch) * config_.num_envs + j);
-    const std::span<const double> first = envs_[jj]->reset(seed);
-    observations_[jj] = Eigen::Map<const Eigen::VectorXd>(first.data(), observation_size_);
-    episode_returns_[jj] = episode_costs_[jj] = 0.0;
-    episode_lengths_[jj] = 0;
-    episode_constraint_costs_[jj].setZero();
-    accumulators_[jj].clear();
+  // Episodes run on across epochs; the environments start afresh only after a checkpoint (and at
+  // the start), so a run resumed from a checkpoint starts where the uninterrupted run started too.
+  if (epoch == checkpoint_epochs_) {
+    for (int j = 0; j < config_.num_envs; ++j) {
+      const std::size_t jj = static_cast<std::size_t>(j);
+      const std::uint64_t seed = stream_seed(config_, SeedStream::environment, mpi_.rank(),
+                                             static_cast<std::uint64_t>(epoch) * config_.num_envs + j);
+      const std::span<const double> first = envs_[jj]->reset(seed);
+      observations_[jj] = Eigen::Map<const Eigen::VectorXd>(first.data(), observation_size_);
+      episode_returns_[jj] = episode_costs_[jj] = 0.0;
+      episode_lengths_[jj] = 0;
+      episode_constraint_costs_[jj].setZero();
+      accumulators_[jj].clear();
+    }
   }
+  // An epoch that ends with a checkpoint cuts its episodes in its last round (bootstrapped, not counted).
+  const bool saves = (epoch + 1) % config_.save_freq == 0 || epoch + 1 == config_.epochs ||
+                     (options_.stop_after_epochs > 0 && epoch + 1 >= options_.stop_after_epochs);
   const int rounds = local_steps_ / config_.num_envs;
   const long long steps_per_round_all_ranks = static_cast<long long>(config_.num_envs) * mpi_.size();
   for (int round = 0; round < rounds; ++round) {
@@ -277,7 +290,7 @@ void OffPolicyTrainer::run_epoch(int epoch) {
     const long long steps_before = static_cast<long long>(epoch) * config_.steps_per_epoch + round * steps_per_round_all_ranks;
     const bool random_action = steps_before < config_.start_steps;
     const auto collect_start = Clock::now();
-    for (int j = 0; j < config_.num_envs; ++j) collect_step(epoch, j, random_action, round + 1 == rounds, accounts);
+    for (int j = 0; j < config_.num_envs; ++j) collect_step(epoch, j, random_action, saves && round + 1 == rounds, accounts);
     accounts.collect_seconds += seconds_since(collect_start);
     schedule_.steps_since_update += config_.num_envs;
     if (schedule_.steps_since_update >= config_.update_every) {
@@ -406,7 +419,7 @@ void OffPolicyTrainer::run_epoch(int epoch) {
       *options_.log << format_progress_line(line) << std::endl;
     }
   }
-  if ((epoch + 1) % config_.save_freq == 0 || epoch + 1 == config_.epochs) save_checkpoint();
+  if (saves) save_checkpoint();
 }
 
 TrainingOutcome OffPolicyTrainer::run() {

@@ -2,25 +2,22 @@
 // offline learning") beside the on-policy one (trainer.h), sharing its run directory, progress.csv,
 // evaluation files, training-cost accounts, Lagrange multipliers and constraint costs. Per epoch k,
 // on every rank:
-//   1. reset the rank's num_envs environments (seeds (environment, rank, k num_envs + j)) and reseed
-//      the action-noise and batch-sampling streams with (action_noise, rank, k) and (minibatch_shuffle, rank, k);
+//   1. reseed the action-noise and batch-sampling streams with (action_noise, rank, k) and
+//      (minibatch_shuffle, rank, k); in the first epoch after a checkpoint (and the first of all)
+//      reset the rank's num_envs environments with the seeds (environment, rank, k num_envs + j);
 //   2. steps_per_epoch / (ranks num_envs) rounds, each stepping every environment once: uniform random
 //      actions while fewer than start_steps environment steps (all ranks) have been taken, else the
 //      actor's exploring action; every step goes through its environment's n-step accumulator into
 //      the rank's replay buffer; an episode ends at a termination (no bootstrap), a truncation or
-//      max_ep_len (bootstrapped), and at the epoch's end (cut, bootstrapped, not counted as an episode);
-//   3. every update_every rounds' steps (per rank), update_every * updates_per_step gradient steps
-//      (fractions carried over) once start_steps have passed, each on batch_size transitions sampled
-//      from the rank's buffer (off_policy_learner.h; gradients averaged over ranks);
-//   4. the multipliers (-lag algorithms) take one step on the epoch's pooled mean episode costs J_Ci
-//      against d_i (algos/lagrange), used by the next epoch's actor steps;
-//   5. log the epoch (rank 0 writes progress.csv), save a checkpoint every save_freq epochs and after the last.
+//      max_ep_len (bootstrapped); episodes run on into the next epoch, except in an epoch that ends
+//      with a checkpoint, whose last round cuts them (bootstrapped, not counted as episodes);
 // After the last epoch: deterministic evaluation episodes (the actor's tanh(mu)) and evaluation.json.
 //
 // Resuming: the checkpoint (off_policy_checkpoint.h) holds the networks, optimisers, temperature,
 // multipliers and the update schedule's carry, and every rank's replay buffer is in its append-only
-// record (replay_buffer_log.h); with the per-epoch seeds
-// above a resumed run reproduces an uninterrupted one exactly.
+// record (replay_buffer_log.h); with the seeds above a run resumed from a checkpoint the
+// uninterrupted run also took (every save_freq epochs) reproduces it exactly. A stop by signal or
+// --stop-after saves (and cuts) at its own epoch, where the uninterrupted run did not.
 //
 // progress.csv columns: epoch, total_env_steps, episode_{return,cost,length}_{mean,std,min,max},
 // episodes, updates (gradient steps this epoch, per rank), reward_critic_loss (summed over the twin
@@ -74,7 +71,7 @@ class OffPolicyTrainer {
  private:
   struct EpochAccounts;
   void run_epoch(int epoch);
-  void collect_step(int epoch, int env_index, bool random_action, bool last_round, EpochAccounts& accounts);
+  void collect_step(int epoch, int env_index, bool random_action, bool cut, EpochAccounts& accounts);
   void train(int updates, EpochAccounts& accounts);
   void save_checkpoint();
   TrainingSafety training_safety() const;

@@ -30,9 +30,9 @@ bsg::RunConfig scripted_config(bsg::Algorithm alg) {
   config.alg = alg;
   config.hidden_sizes = {16, 16};
   config.epochs = 5;
-  config.steps_per_epoch = 200;  // 2 environments x 100 steps: episodes of 40 steps, the last one cut
+  config.steps_per_epoch = 200;  // 2 environments x 100 steps: episodes of 40 steps run across epochs
   config.max_ep_len = 40;
-  config.save_freq = 10;         // only the stop and the end save
+  config.save_freq = 3;          // checkpoints (and cut episodes) after epochs 3 and 5
   config.eval_episodes = 2;
   config.cost_limit = 1;
   config.num_envs = 2;
@@ -155,7 +155,7 @@ TEST(OffPolicyTrainer, TakesUpdatesPerStepGradientStepsPerRoundAfterStartSteps) 
   // carried. Epoch 1: 20 rounds of updates from 0.5 carried: 4, 3, 4, ... = 10 x 4 + 10 x 3 = 70.
   EXPECT_EQ(progress.at("updates")[0], 38.0);
   EXPECT_EQ(progress.at("updates")[1], 70.0);
-  // 100 steps per environment and epoch: 2 complete episodes of 40 steps each, the third cut.
+  // 100 steps per environment in epoch 0: 2 complete episodes of 40 steps each, the third runs on.
   EXPECT_EQ(progress.at("episodes")[0], 4.0);
   EXPECT_EQ(trainer.buffer().total_added(), 400);
   EXPECT_EQ(trainer.buffer().size(), 300);
