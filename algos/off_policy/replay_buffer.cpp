@@ -98,62 +98,6 @@ void ReplayBuffer::sample(int batch_size, Rng& rng, std::vector<std::int64_t>& s
   gather(slots, batch);
 }
 
-void ReplayBuffer::save(BinaryWriter& writer) const {
-  writer.write_section("replay buffer");
-  writer.write_i64(observation_size_);
-  writer.write_i64(action_size_);
-  writer.write_i64(cost_count_);
-  writer.write_i64(capacity_);
-  writer.write_i64(size_);
-  writer.write_i64(next_slot_);
-  writer.write_i64(total_added_);
-  // The held slots' bytes as stored (rows 0 .. size - 1).
-  const auto bytes_of = [&](const auto& matrix) {
-    using Scalar = typename std::decay_t<decltype(matrix)>::Scalar;
-    return std::string_view(reinterpret_cast<const char*>(matrix.data()),
-                            static_cast<std::size_t>(size_ * matrix.cols()) * sizeof(Scalar));
-  };
-  writer.write_string(bytes_of(observations_));
-  writer.write_string(bytes_of(next_observations_));
-  writer.write_string(bytes_of(actions_));
-  writer.write_string(bytes_of(scalars_));
-}
-
-void ReplayBuffer::load(BinaryReader& reader) {
-  reader.expect_section("replay buffer");
-  const std::int64_t observation_size = reader.read_i64("replay buffer observation size");
-  const std::int64_t action_size = reader.read_i64("replay buffer action size");
-  const std::int64_t cost_count = reader.read_i64("replay buffer cost count");
-  const std::int64_t capacity = reader.read_i64("replay buffer capacity");
-  if (observation_size != observation_size_ || action_size != action_size_ || cost_count != cost_count_ ||
-      capacity != capacity_) {
-    reader.fail("replay buffer sizes (" + std::to_string(observation_size) + ", " + std::to_string(action_size) +
-                ", " + std::to_string(cost_count) + ", " + std::to_string(capacity) + ") differ from the run's (" +
-                std::to_string(observation_size_) + ", " + std::to_string(action_size_) + ", " +
-                std::to_string(cost_count_) + ", " + std::to_string(capacity_) + ")");
-  }
-  const std::int64_t size = reader.read_i64("replay buffer size");
-  const std::int64_t next_slot = reader.read_i64("replay buffer next slot");
-  const std::int64_t total_added = reader.read_i64("replay buffer transitions added");
-  if (size < 0 || size > capacity_ || next_slot < 0 || next_slot >= capacity_ || total_added < size) {
-    reader.fail("replay buffer counters out of range");
-  }
-  const auto read_into = [&](auto& matrix, const char* field) {
-    using Scalar = typename std::decay_t<decltype(matrix)>::Scalar;
-    const std::string bytes = reader.read_string(field);
-    const std::size_t expected = static_cast<std::size_t>(size * matrix.cols()) * sizeof(Scalar);
-    if (bytes.size() != expected) reader.fail(std::string(field) + " has the wrong length");
-    std::memcpy(matrix.data(), bytes.data(), expected);
-  };
-  read_into(observations_, "replay buffer observations");
-  read_into(next_observations_, "replay buffer next observations");
-  read_into(actions_, "replay buffer actions");
-  read_into(scalars_, "replay buffer rewards, discounts, terminals and costs");
-  size_ = size;
-  next_slot_ = next_slot;
-  total_added_ = total_added;
-}
-
 void ReplayBuffer::write_transitions(std::int64_t first, std::int64_t count, std::string& bytes) const {
   if (count < 0 || first < total_added_ - size_ || first + count > total_added_) {
     throw std::out_of_range("ReplayBuffer::write_transitions: transitions [" + std::to_string(first) + ", " +

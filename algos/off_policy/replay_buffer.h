@@ -17,7 +17,6 @@
 #include <string_view>
 #include <vector>
 
-#include "common/binary_io.h"
 #include "common/random.h"
 
 namespace bsg::algos {
@@ -57,11 +56,6 @@ class ReplayBuffer {
   // `batch_size` slots drawn uniformly with replacement from [0, size) into `slots`, then gather.
   // Throws std::logic_error if the buffer is empty.
   void sample(int batch_size, Rng& rng, std::vector<std::int64_t>& slots, ReplayBatch& batch) const;
-
-  // Everything, for the checkpoint (the held slots as stored).
-  void save(BinaryWriter& writer) const;
-  // Restores what save() wrote; fails on the reader if the sizes differ from this buffer's.
-  void load(BinaryReader& reader);
 
   // The append-only record (algos/training/replay_buffer_log.h): transition k of the run (k counts
   // every add, from 0) lives in slot k mod capacity while it is held. write_transitions appends the

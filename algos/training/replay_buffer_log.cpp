@@ -71,13 +71,13 @@ void ReplayBufferLog::rewrite(const ReplayBuffer& buffer) {
 
 void ReplayBufferLog::append(const ReplayBuffer& buffer) {
   const std::int64_t total = buffer.total_added();
-  if (!std::filesystem::exists(path_) || transitions_on_file_ + (total - logged_until_) > 2 * buffer.capacity()) {
+  // Transitions overwritten since the last append are not needed: the held ones follow on.
+  const std::int64_t first = std::max(logged_until_, total - buffer.size());
+  if (!std::filesystem::exists(path_) || transitions_on_file_ + (total - first) > 2 * buffer.capacity()) {
     rewrite(buffer);  // a new record, or one that would hold more than twice the capacity
     return;
   }
   if (total == logged_until_) return;
-  // Transitions overwritten since the last append are not needed: the held ones follow on.
-  const std::int64_t first = std::max(logged_until_, total - buffer.size());
   const std::string bytes = record(buffer, first, total - first);
   const int fd = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
   if (fd < 0) fail(path_, std::string("cannot open for appending: ") + std::strerror(errno));
