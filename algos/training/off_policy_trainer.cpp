@@ -12,6 +12,7 @@
 #include "algos/training/epoch_log.h"
 #include "algos/training/evaluation_files.h"
 #include "algos/training/off_policy_checkpoint.h"
+#include "algos/training/off_policy_evaluation.h"
 #include "algos/training/progress_csv_fields.h"
 #include "algos/training/progress_line.h"
 #include "algos/training/run_environment.h"
@@ -447,59 +448,9 @@ TrainingOutcome OffPolicyTrainer::run() {
   if (!outcome.finished) return outcome;
 
   // Deterministic evaluation: floor(eval_episodes / R) episodes per rank of a = tanh(mu(s)).
-  const int local_episodes = config_.eval_episodes / mpi_.size();
-  envs::Env& env = *envs_.front();
-  Rng unused(0);  // act(deterministic) draws nothing
-  std::vector<double> local;  // (return, cost, length, constraint costs...) per episode
-  for (int e = 0; e < local_episodes; ++e) {
-    std::span<const double> observation = e == 0 ? env.reset(stream_seed(config_, SeedStream::evaluation_environment,
-                                                                          mpi_.rank(), 0))
-                                                  : env.reset();
-    Eigen::VectorXd current = Eigen::Map<const Eigen::VectorXd>(observation.data(), observation_size_);
-    double episode_return = 0.0, episode_cost = 0.0;
-    Eigen::VectorXd constraint_costs = Eigen::VectorXd::Zero(constraint_count_);
-    int length = 0;
-    while (true) {
-      learner_->act(span_of(current), true, unused, action_);
-      const envs::StepResult step = env.step(span_of(action_));
-      cost_selector_.select(step, step_costs_);
-      episode_return += step.reward;
-      episode_cost += step.cost;
-      constraint_costs += step_costs_;
-      ++length;
-      if (step.terminated || step.truncated || length >= config_.max_ep_len) break;
-      current = Eigen::Map<const Eigen::VectorXd>(step.observation.data(), observation_size_);
-    }
-    local.push_back(episode_return);
-    local.push_back(episode_cost);
-    local.push_back(length);
-    for (int i = 0; i < constraint_count_; ++i) local.push_back(constraint_costs(i));
-  }
-  const std::vector<double> gathered = mpi_.gather_to_root(local);
+  EvaluationSummary summary = evaluate_off_policy(*envs_.front(), *learner_, config_.eval_episodes, config_.seed,
+                                                  config_.max_ep_len, mpi_, cost_selector_);
   if (!mpi_.is_root()) return outcome;
-  EvaluationSummary summary;
-  const std::size_t width = 3 + static_cast<std::size_t>(constraint_count_);
-  for (std::size_t k = 0; k + width <= gathered.size(); k += width) {
-    EvaluationEpisode episode;
-    episode.episode_return = gathered[k];
-    episode.episode_cost = gathered[k + 1];
-    episode.episode_length = static_cast<int>(gathered[k + 2]);
-    episode.constraint_costs.assign(gathered.begin() + static_cast<std::ptrdiff_t>(k + 3),
-                                    gathered.begin() + static_cast<std::ptrdiff_t>(k + width));
-    summary.episodes.push_back(std::move(episode));
-  }
-  const double count = static_cast<double>(summary.episodes.size());
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  summary.mean_return = summary.mean_cost = summary.mean_length = count > 0 ? 0.0 : nan;
-  summary.mean_constraint_costs.assign(static_cast<std::size_t>(constraint_count_), count > 0 ? 0.0 : nan);
-  for (const EvaluationEpisode& episode : summary.episodes) {
-    summary.mean_return += episode.episode_return / count;
-    summary.mean_cost += episode.episode_cost / count;
-    summary.mean_length += episode.episode_length / count;
-    for (int i = 0; i < constraint_count_; ++i) {
-      summary.mean_constraint_costs[static_cast<std::size_t>(i)] += episode.constraint_costs[static_cast<std::size_t>(i)] / count;
-    }
-  }
   const TrainingSafety safety = training_safety();
   write_evaluation_files(directory_, summary, &safety);
   if (options_.log != nullptr) {

@@ -15,6 +15,8 @@
 #include "../../test_support.h"
 #include "../scripted_env.h"
 #include "algos/training/off_policy_trainer.h"
+#include "algos/training/progress_csv_fields.h"
+#include "algos/training/run_evaluation.h"
 #include "common/config_error.h"
 #include "common/run_config_resolve.h"
 
@@ -138,6 +140,30 @@ TEST(OffPolicyTrainer, AKilledRunResumesFromItsCheckpointDroppingLaterBufferReco
   ASSERT_TRUE(last.run().finished);
   EXPECT_EQ(last.learner().actor().parameters(), whole.learner().actor().parameters());
   EXPECT_EQ(without_times(split / "progress.csv"), without_times(dir.path() / "whole" / "progress.csv"));
+}
+
+// `bsg eval` of an off-policy run directory re-runs the final evaluation from the checkpoint: the
+// same episodes, so the same J and H as the run's evaluation.json.
+TEST(OffPolicyTrainer, EvaluatingTheRunDirectoryRepeatsTheFinalEvaluation) {
+  bsg::RunConfigRequest request;
+  request.configs_dir = fs::path(BSG_SOURCE_DIR) / "configs";
+  request.set_arguments = {"env_id=SafetyBallCircle-v0", "alg=sac-lag", "epochs=1", "steps_per_epoch=500",
+                           "eval_episodes=3", "hidden_sizes=[8, 8]", "num_envs=1", "start_steps=100",
+                           "update_every=50", "max_ep_len=100"};
+  const bsg::RunConfig config = bsg::resolve_run_config(request).config;
+  const TemporaryDirectory directory;
+  const bsg::algos::RunDirectory run(directory.path() / "run");
+  bsg::algos::OffPolicyTrainer trainer(config, run, bsg::MpiContext::single_process(), {});
+  const bsg::algos::TrainingOutcome outcome = trainer.run();
+  ASSERT_TRUE(outcome.evaluation.has_value());
+  const bsg::algos::RunEvaluation again =
+      bsg::algos::evaluate_run_directory(run, std::nullopt, bsg::MpiContext::single_process());
+  EXPECT_EQ(again.epochs_completed, 1);
+  ASSERT_EQ(again.summary.episodes.size(), 3u);
+  EXPECT_EQ(again.summary.mean_return, outcome.evaluation->mean_return);
+  EXPECT_EQ(again.summary.mean_cost, outcome.evaluation->mean_cost);
+  const std::string json = bsg::testing::read_text_file(run.evaluation());
+  EXPECT_TRUE(bsg::testing::contains(json, "\"mean_return\": " + bsg::algos::format_csv_number(again.summary.mean_return)));
 }
 
 TEST(OffPolicyTrainer, TakesUpdatesPerStepGradientStepsPerRoundAfterStartSteps) {
