@@ -124,6 +124,16 @@ OffPolicyLearner::OffPolicyLearner(OffPolicyOptions options, int observation_siz
 
 double OffPolicyLearner::alpha() const { return std::exp(log_alpha_(0)); }
 
+std::vector<const Mlp*> OffPolicyLearner::all_networks() const {
+  std::vector<const Mlp*> networks{&actor_};
+  for (const Mlp& net : reward_critics_) networks.push_back(&net);
+  for (const Mlp& net : cost_critics_) networks.push_back(&net);
+  networks.push_back(&target_actor_);
+  for (const Mlp& net : target_reward_critics_) networks.push_back(&net);
+  for (const Mlp& net : target_cost_critics_) networks.push_back(&net);
+  return networks;
+}
+
 std::vector<Mlp*> OffPolicyLearner::all_networks() {
   std::vector<Mlp*> networks{&actor_};
   for (Mlp& net : reward_critics_) networks.push_back(&net);
@@ -366,8 +376,7 @@ void OffPolicyLearner::update(const ReplayBatch& batch, std::span<const double> 
 
 void OffPolicyLearner::save(BinaryWriter& writer) const {
   writer.write_section("off-policy networks");
-  auto* self = const_cast<OffPolicyLearner*>(this);  // all_networks() only lists them
-  for (const Mlp* net : self->all_networks()) writer.write_vector(net->parameters());
+  for (const Mlp* net : all_networks()) writer.write_vector(net->parameters());
   save_adam(actor_adam_, writer);
   for (const Adam& adam : reward_critic_adams_) save_adam(adam, writer);
   for (const Adam& adam : cost_critic_adams_) save_adam(adam, writer);

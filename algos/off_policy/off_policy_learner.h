@@ -98,6 +98,7 @@ class OffPolicyLearner {
   Mlp& target_cost_critic(int i) { return target_cost_critics_.at(static_cast<std::size_t>(i)); }
   Mlp& target_actor() { return target_actor_; }
   std::vector<Mlp*> all_networks();  // online then target, in checkpoint order
+  std::vector<const Mlp*> all_networks() const;
 
   // One action for observation `observation`: deterministic (evaluation) or exploring (SAC's
   // sample; the deterministic actors' tanh(mu) + N(0, exploration_noise^2) clipped to [-1, 1]).

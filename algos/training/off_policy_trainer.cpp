@@ -327,7 +327,7 @@ void OffPolicyTrainer::run_epoch(int epoch) {
   }
   if (!learner_->actor().parameters().allFinite()) check_finite(epoch, "actor parameter", std::nan(""));
   for (int k = 0; k < learner_->options().reward_critics; ++k) {
-    if (!const_cast<OffPolicyLearner&>(*learner_).reward_critic(k).parameters().allFinite()) {
+    if (!learner_->reward_critic(k).parameters().allFinite()) {
       check_finite(epoch, "reward critic parameter", std::nan(""));
     }
   }
