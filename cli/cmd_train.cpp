@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "algos/training/off_policy_trainer.h"
 #include "algos/training/run_environment.h"
 #include "algos/training/run_directory.h"
 #include "algos/training/trainer.h"
@@ -148,8 +149,10 @@ int train(const TrainArguments& args) {
                 << directory->root.string() << std::endl;
       if (configs) std::cout << describe_configs(*configs) << std::endl;
     }
-    const std::unique_ptr<algos::OnPolicyTrainer> trainer = make_trainer(config, *directory, mpi, options);
-    const algos::TrainingOutcome outcome = trainer->run();
+    // The off-policy learners (SAC, TD3, DDPG and their -lag forms) have a loop of their own.
+    const algos::TrainingOutcome outcome =
+        is_off_policy(config.alg) ? algos::OffPolicyTrainer(config, *directory, mpi, options).run()
+                                  : make_trainer(config, *directory, mpi, options)->run();
     if (mpi.is_root() && !outcome.finished) {
       (outcome.stop_requested ? std::cerr : std::cout)
           << (outcome.stop_requested ? "bsg train: stop signal received: " : "") << "stopped after "

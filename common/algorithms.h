@@ -14,12 +14,14 @@ namespace bsg {
 
 // The five trust-region algorithms spelled in configs as the original code
 // spells them (plus "pcpo", which the original lacks), then the first-order
-// baselines spelled as OmniSafe spells them (docs/algorithms.md#first-order-updates).
-enum class Algorithm { trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup };
+// baselines spelled as OmniSafe spells them (docs/algorithms.md#first-order-updates), then the
+// off-policy learners with a replay buffer (docs/algorithms.md#off-policy-learners).
+enum class Algorithm { trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag };
 
 // Which update the policy takes: the natural-gradient step with a line search
-// (algos/trust_region) or minibatch Adam passes (algos/first_order).
-enum class AlgorithmFamily { trust_region, first_order };
+// (algos/trust_region), minibatch Adam passes (algos/first_order), or gradient
+// steps on batches from a replay buffer with critics of Q (algos/off_policy).
+enum class AlgorithmFamily { trust_region, first_order, off_policy };
 
 struct AlgorithmInfo {
   Algorithm alg;
@@ -32,7 +34,7 @@ struct AlgorithmInfo {
   bool clipped_surrogate;      // PPO's clipped ratio (the clip key)
 };
 
-inline constexpr std::array<AlgorithmInfo, 9> kAlgorithms = {{
+inline constexpr std::array<AlgorithmInfo, 15> kAlgorithms = {{
     // alg                 name        label      pid_label     family                        constr lagr  clip
     {Algorithm::trpo,     "trpo",     "TRPO",    "",           AlgorithmFamily::trust_region, false, false, false},
     {Algorithm::lag_trpo, "lag-trpo", "TRPO-L",  "TRPO-PID",   AlgorithmFamily::trust_region, true,  true,  false},
@@ -44,6 +46,13 @@ inline constexpr std::array<AlgorithmInfo, 9> kAlgorithms = {{
     {Algorithm::ppo_lag,  "ppo-lag",  "PPO-Lag", "CPPO-PID",   AlgorithmFamily::first_order,  true,  true,  true},
     {Algorithm::focops,   "focops",   "FOCOPS",  "FOCOPS-PID", AlgorithmFamily::first_order,  true,  true,  false},
     {Algorithm::cup,      "cup",      "CUP",     "CUP-PID",    AlgorithmFamily::first_order,  true,  true,  true},
+    {Algorithm::sac,      "sac",      "SAC",     "",           AlgorithmFamily::off_policy,   false, false, false},
+    {Algorithm::td3,      "td3",      "TD3",     "",           AlgorithmFamily::off_policy,   false, false, false},
+    {Algorithm::ddpg,     "ddpg",     "DDPG",    "",           AlgorithmFamily::off_policy,   false, false, false},
+    // SAC-PID, TD3-PID, DDPG-PID: OmniSafe's names for the PID multiplier forms.
+    {Algorithm::sac_lag,  "sac-lag",  "SAC-Lag", "SAC-PID",    AlgorithmFamily::off_policy,   true,  true,  false},
+    {Algorithm::td3_lag,  "td3-lag",  "TD3-Lag", "TD3-PID",    AlgorithmFamily::off_policy,   true,  true,  false},
+    {Algorithm::ddpg_lag, "ddpg-lag", "DDPG-Lag", "DDPG-PID",  AlgorithmFamily::off_policy,   true,  true,  false},
 }};
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }
@@ -70,6 +79,11 @@ constexpr bool ignores_cost(Algorithm alg) { return !algorithm_info(alg).constra
 // Whether the algorithm takes the first-order update rather than the trust-region step.
 constexpr bool is_first_order(Algorithm alg) {
   return algorithm_info(alg).family == AlgorithmFamily::first_order;
+}
+
+// Whether the algorithm learns from a replay buffer (algos/off_policy) rather than on-policy batches.
+constexpr bool is_off_policy(Algorithm alg) {
+  return algorithm_info(alg).family == AlgorithmFamily::off_policy;
 }
 
 // Whether the algorithm keeps Lagrange multipliers (and so can use the PID rule).

@@ -211,6 +211,43 @@ void cached_backward(const Mlp& net, const Eigen::Ref<const Eigen::MatrixXd>& ou
   parameter_gradient = buffers.gradient.template cast<double>();
 }
 
+// dL/dX of rows [start, start + length) whose dL/dZ_L the caller has written
+// into the top `length` rows of buffers.layer_deltas.back(): the backward pass
+// of the deltas alone, then dL/dX = delta_1 W_1.
+template <typename Scalar>
+void input_gradient_rows(const FlatLayout<Scalar>& layout, const Scalar* parameters, MlpBatchBuffers<Scalar>& buffers,
+                         Eigen::Index start, Eigen::Index length,
+                         Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& input_gradient) {
+  for (int layer = layout.layers() - 1; layer > 0; --layer) {
+    const auto delta = buffers.layer_deltas[layer].topRows(length);
+    auto delta_previous = buffers.layer_deltas[layer - 1].topRows(length);
+    delta_previous.noalias() = delta * layout.weights(parameters, layer);
+    // tanh'(z) = 1 - tanh(z)^2
+    delta_previous.array() *= Scalar(1) - buffers.layer_outputs[layer - 1].middleRows(start, length).array().square();
+  }
+  input_gradient.topRows(length).noalias() = buffers.layer_deltas[0].topRows(length) * layout.weights(parameters, 0);
+}
+
+template <typename Scalar>
+void cached_input_gradient(const Mlp& net, const Eigen::Ref<const Eigen::MatrixXd>& output_gradients,
+                           MlpBatchWorkspace& workspace, Eigen::Ref<Eigen::MatrixXd> input_gradient) {
+  MlpBatchBuffers<Scalar>& buffers = buffers_of<Scalar>(workspace);
+  const Eigen::Index rows = workspace.cached_rows;
+  for (int layer = 0; layer < net.num_layers(); ++layer) {
+    resize_if_needed(buffers.layer_deltas[layer], kBatchChunkRows, net.layer_sizes()[layer + 1]);
+  }
+  auto& chunk = buffers.input_gradient;
+  resize_if_needed(chunk, kBatchChunkRows, net.input_size());
+  const FlatLayout<Scalar> layout{net};
+  const Scalar* parameters = parameters_in(net, buffers);
+  for (Eigen::Index start = 0; start < rows; start += kBatchChunkRows) {
+    const Eigen::Index length = std::min(kBatchChunkRows, rows - start);
+    buffers.layer_deltas.back().topRows(length) = output_gradients.middleRows(start, length).template cast<Scalar>();
+    input_gradient_rows(layout, parameters, buffers, start, length, chunk);
+    input_gradient.middleRows(start, length) = chunk.topRows(length).template cast<double>();
+  }
+}
+
 template <typename Scalar>
 void cached_jvp(const Mlp& net, const Eigen::Ref<const Eigen::VectorXd>& direction, MlpBatchWorkspace& workspace) {
   MlpBatchBuffers<Scalar>& buffers = buffers_of<Scalar>(workspace);
@@ -431,6 +468,26 @@ void Mlp::backward_batch(const Eigen::Ref<const Eigen::MatrixXd>& output_gradien
     cached_backward<float>(*this, output_gradients, workspace, parameter_gradient);
   } else {
     cached_backward<double>(*this, output_gradients, workspace, parameter_gradient);
+  }
+}
+
+void Mlp::input_gradient_batch(const Eigen::Ref<const Eigen::MatrixXd>& output_gradients,
+                               MlpBatchWorkspace& workspace, Eigen::Ref<Eigen::MatrixXd> input_gradient) const {
+  check_batch_workspace(workspace, "Mlp::input_gradient_batch");
+  const Eigen::Index rows = workspace.rows();
+  if (output_gradients.rows() != rows || output_gradients.cols() != output_size() ||
+      input_gradient.rows() != rows || input_gradient.cols() != input_size()) {
+    throw std::invalid_argument("Mlp::input_gradient_batch: output_gradients is " +
+                                std::to_string(output_gradients.rows()) + " x " +
+                                std::to_string(output_gradients.cols()) + " and input_gradient " +
+                                std::to_string(input_gradient.rows()) + " x " + std::to_string(input_gradient.cols()) +
+                                ", expected " + std::to_string(rows) + " x " + std::to_string(output_size()) +
+                                " and " + std::to_string(rows) + " x " + std::to_string(input_size()));
+  }
+  if (dtype_ == Dtype::float32) {
+    cached_input_gradient<float>(*this, output_gradients, workspace, input_gradient);
+  } else {
+    cached_input_gradient<double>(*this, output_gradients, workspace, input_gradient);
   }
 }
 

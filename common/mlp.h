@@ -60,6 +60,7 @@ struct MlpBatchBuffers {
   std::vector<Matrix> layer_outputs;   // A_l after activation; cached: N rows, streamed: one chunk
   std::vector<Matrix> layer_tangents;  // JVP dA_l of one chunk
   std::vector<Matrix> layer_deltas;    // backward dL/dZ_l of one chunk
+  Matrix input_gradient;               // dL/dX of one chunk (input_gradient_batch)
   Vector parameters;                   // float32: the parameters rounded for this call
   Vector direction;                    // float32: the JVP direction rounded
   Vector gradient;                     // parameter gradient accumulated over the chunks
@@ -128,6 +129,14 @@ class Mlp {
   void backward_batch(const Eigen::Ref<const Eigen::MatrixXd>& output_gradients,
                       MlpBatchWorkspace& workspace,
                       Eigen::Ref<Eigen::VectorXd> parameter_gradient) const;
+
+  // Input gradient: row i is (dL/dy_i)^T dy_i/dx_i, the gradient of the loss
+  // with respect to sample i's input (a critic's dQ/da: the off-policy actor
+  // losses, algos/off_policy/), for the batch of the last forward_batch on
+  // `workspace`. `output_gradients` is N x out; `input_gradient` (N x in) is
+  // overwritten. The parameters' gradient is not formed.
+  void input_gradient_batch(const Eigen::Ref<const Eigen::MatrixXd>& output_gradients, MlpBatchWorkspace& workspace,
+                            Eigen::Ref<Eigen::MatrixXd> input_gradient) const;
 
   // Jacobian-vector product: row i is (dy_i/dtheta) v for the batch of the last
   // forward_batch on `workspace`. Returns the N x out tangents, stored in `workspace`.

@@ -146,6 +146,24 @@ struct RunConfig {
   bool learn_log_std = false;      // learn a state-independent log sigma per action dimension
   double learned_std_init = 0.509; // its initial sigma (the annealing's first)
 
+  // --- off-policy learners (SAC, TD3, DDPG and their -lag forms; docs/algorithms.md#off-policy-learners) ---
+  int num_envs = 1;                // environments per rank, stepped in turn
+  int start_steps = 10000;         // uniform random actions for the first start_steps steps (all ranks)
+  int update_every = 1;            // environment steps (per rank, over its environments) between rounds of updates
+  double updates_per_step = 1.0;   // gradient steps per environment step of a rank
+  int batch_size = 256;            // transitions per gradient step and rank
+  int buffer_size = 1000000;       // replay buffer capacity in transitions per rank
+  double polyak = 0.005;           // tau: target <- (1 - tau) target + tau online
+  int n_step = 1;                  // n-step returns
+  double critic_lr = 0.001;        // Adam step size of the Q networks
+  double exploration_noise = 0.1;  // TD3, DDPG: std of the Gaussian action noise
+  double policy_noise = 0.2;       // TD3: std of the target policy smoothing noise
+  double noise_clip = 0.5;         // TD3: the smoothing noise is clipped to +-noise_clip
+  int policy_delay = 2;            // TD3: critic steps per actor (and target) step
+  double alpha_init = 0.2;         // SAC: initial entropy temperature
+  bool auto_alpha = false;         // SAC: learn alpha towards the target entropy -|A|
+  double alpha_lr = 0.0003;        // SAC: Adam step size of log alpha
+
   // --- value networks (docs/algorithms.md#value-fits) ---
   bool use_cost_value_function = false;
   double vf_lr = 0.001;

@@ -148,7 +148,12 @@ TrainingMemoryEstimate estimate_training_memory(const RunConfig& config, int obs
   const double activation_values = 2 * batch * hidden_sum;
   // The rollout buffer: raw and normalised observations, actions, means,
   // log-probabilities, rewards, costs, values, advantages and returns.
-  const double buffer_values = batch * (2.0 * observation_dim + 2.0 * action_dim + 12.0);
+  // Off-policy: the replay buffer instead (observations, next observations,
+  // actions, reward, cost, discount and flags per transition), batch_size rows of activations.
+  const double buffer_values =
+      is_off_policy(config.alg)
+          ? static_cast<double>(config.buffer_size) * (2.0 * observation_dim + action_dim + 4.0)
+          : batch * (2.0 * observation_dim + 2.0 * action_dim + 12.0);
   constexpr double kProgramBytes = 64.0 * 1024 * 1024;
   TrainingMemoryEstimate estimate;
   estimate.network_bytes = 8 * (parameter_values + activation_values);
@@ -206,6 +211,14 @@ void check_run_config_for_ranks(const RunConfig& config, int num_ranks) {
                       " exceeds the local steps per rank steps_per_epoch / ranks = " +
                       std::to_string(local_steps) + " with " + ranks +
                       " ranks: reduce the ranks or increase steps_per_epoch");
+  }
+  if (is_off_policy(config.alg)) {
+    // The off-policy loop steps num_envs environments in turn and has no value-net minibatches.
+    if (local_steps % config.num_envs != 0) {
+      throw ConfigError("steps_per_epoch / ranks = " + std::to_string(local_steps) + " with " + ranks +
+                        " ranks is not a multiple of num_envs = " + std::to_string(config.num_envs));
+    }
+    return;
   }
   const int minibatch = local_steps / config.num_mini_batches;
   if (minibatch < 16) {

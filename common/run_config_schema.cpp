@@ -67,6 +67,11 @@ constexpr AlgorithmSet algorithms_in(AlgorithmFamily family) {
 constexpr AlgorithmSet kLagrangian = algorithms_where(&AlgorithmInfo::lagrange_multiplier);
 constexpr AlgorithmSet kTrustRegion = algorithms_in(AlgorithmFamily::trust_region);
 constexpr AlgorithmSet kFirstOrder = algorithms_in(AlgorithmFamily::first_order);
+constexpr AlgorithmSet kOffPolicy = algorithms_in(AlgorithmFamily::off_policy);
+constexpr AlgorithmSet kSacFamily = algorithm_bit(Algorithm::sac) | algorithm_bit(Algorithm::sac_lag);
+constexpr AlgorithmSet kTd3Family = algorithm_bit(Algorithm::td3) | algorithm_bit(Algorithm::td3_lag);
+constexpr AlgorithmSet kDeterministicActor =
+    kTd3Family | algorithm_bit(Algorithm::ddpg) | algorithm_bit(Algorithm::ddpg_lag);
 constexpr AlgorithmSet kClipped = algorithms_where(&AlgorithmInfo::clipped_surrogate);
 
 SchemaRow boolean(std::string_view key, bool RunConfig::*member, ConfigLayer layer,
@@ -107,12 +112,14 @@ const std::vector<SchemaRow>& schema_rows() {
   using R = RunConfig;
   using N = NumericRange;
   constexpr AlgorithmSet all = kAllAlgorithms;
+  constexpr AlgorithmSet on_policy = kTrustRegion | kFirstOrder;
   static const std::vector<SchemaRow> rows = {
     // --- run ---
     text("env_id", &R::env_id, L::run,
          "environment id, e.g. SafetyBallCircle-v0 (report Table 3)"),
     choice("alg", enum_access<&R::alg>(), kAlgorithmNames, L::run, all,
-           "algorithm: trpo, lag-trpo (TRPO-L), cpo, pdo, pcpo, or the first-order ppo, ppo-lag, focops, cup"),
+           "algorithm: trpo, lag-trpo (TRPO-L), cpo, pdo, pcpo, the first-order ppo, ppo-lag, focops, cup, or the "
+           "off-policy sac, td3, ddpg, sac-lag, td3-lag, ddpg-lag"),
     integer("seed", &R::seed, L::run, N::closed(0, 4294967295.0), all,
             "base seed; per-rank and per-environment seeds are derived from it (seeding.h)"),
     text("log_dir", &R::log_dir, L::run,
@@ -150,46 +157,46 @@ const std::vector<SchemaRow>& schema_rows() {
     // --- returns, advantages, normalisation (docs/algorithms.md#normalisers, #rollout-and-gae) ---
     real("gamma", &R::gamma, L::algorithm, N::open_closed(0, 1), all,
          "discount factor for rewards and costs"),
-    real("lam", &R::lam, L::algorithm, N::closed(0, 1), all,
+    real("lam", &R::lam, L::algorithm, N::closed(0, 1), on_policy,
          "GAE lambda for reward advantages"),
-    real("lam_c", &R::lam_c, L::algorithm, N::closed(0, 1), all,
+    real("lam_c", &R::lam_c, L::algorithm, N::closed(0, 1), on_policy,
          "GAE lambda for cost advantages"),
-    boolean("use_exploration_noise_anneal", &R::use_exploration_noise_anneal, L::algorithm, all,
+    boolean("use_exploration_noise_anneal", &R::use_exploration_noise_anneal, L::algorithm, on_policy,
             "anneal the exploration std: sigma_k = 0.499 (1 - k/E) + 0.01 (else fixed 0.5)"),
-    integer("exploration_anneal_epochs", &R::exploration_anneal_epochs, L::algorithm, N::closed(0, kIntMax), all,
+    integer("exploration_anneal_epochs", &R::exploration_anneal_epochs, L::algorithm, N::closed(0, kIntMax), on_policy,
             "n > 0: the annealing ends at epoch n, sigma_k = 0.499 (1 - min(k, n)/n) + 0.01, and sigma holds "
             "0.01 for the epochs after it; 0 = E, the original's schedule; at most epochs"),
-    real("exploration_std_floor", &R::exploration_std_floor, L::algorithm, N::at_least(0), all,
+    real("exploration_std_floor", &R::exploration_std_floor, L::algorithm, N::at_least(0), on_policy,
          "sigma_k = max(annealed sigma_k, floor): the noise never falls below the floor (keeps room for a KL "
          "step to move the mean action late in training); 0 = no floor (original)"),
-    boolean("use_standardized_obs", &R::use_standardized_obs, L::algorithm, all,
+    boolean("use_standardized_obs", &R::use_standardized_obs, L::algorithm, on_policy,
             "normalise observations by the running mean/std"),
-    boolean("use_reward_scaling", &R::use_reward_scaling, L::algorithm, all,
+    boolean("use_reward_scaling", &R::use_reward_scaling, L::algorithm, on_policy,
             "divide rewards by the running std of discounted returns, clip to +-10"),
-    boolean("use_standardized_advantages", &R::use_standardized_advantages, L::algorithm, all,
+    boolean("use_standardized_advantages", &R::use_standardized_advantages, L::algorithm, on_policy,
             "Q6: standardise advantages (the original never does)"),
-    boolean("center_advantages", &R::center_advantages, L::algorithm, all,
+    boolean("center_advantages", &R::center_advantages, L::algorithm, on_policy,
             "Q6: subtract the batch mean of the reward and cost advantages, keeping their scale "
             "(original: not centred; implied by use_standardized_advantages)"),
-    real("obs_clip", &R::obs_clip, L::algorithm, N::at_least(0), all,
+    real("obs_clip", &R::obs_clip, L::algorithm, N::at_least(0), on_policy,
          "Q3: clip normalised observations to +-obs_clip; 0 = no clipping (original)"),
-    boolean("exact_parallel_variance", &R::exact_parallel_variance, L::algorithm, all,
+    boolean("exact_parallel_variance", &R::exact_parallel_variance, L::algorithm, on_policy,
             "Q4: Chan's exact parallel variance instead of the original's update"),
-    boolean("consistent_return_statistic", &R::consistent_return_statistic, L::algorithm, all,
+    boolean("consistent_return_statistic", &R::consistent_return_statistic, L::algorithm, on_policy,
             "Q5: the return statistic's bootstrap value in raw units, V (s_ret + 1e-5), as the rewards "
             "(original: V's scaled value)"),
-    boolean("rescale_value_output", &R::rescale_value_output, L::algorithm, all,
+    boolean("rescale_value_output", &R::rescale_value_output, L::algorithm, on_policy,
             "Q19: when the return statistic changes, scale V's output layer by old/new std so that "
             "V's predictions in raw units are kept (PopArt)"),
-    integer("reward_scale_warmup_epochs", &R::reward_scale_warmup_epochs, L::algorithm, N::closed(0, kIntMax), all,
+    integer("reward_scale_warmup_epochs", &R::reward_scale_warmup_epochs, L::algorithm, N::closed(0, kIntMax), on_policy,
             "update the return statistic only in the first n epochs, then keep it; 0 = every epoch (original)"),
-    boolean("timeout_bootstrap", &R::timeout_bootstrap, L::algorithm, all,
+    boolean("timeout_bootstrap", &R::timeout_bootstrap, L::algorithm, on_policy,
             "bootstrap with V (V_C) of the next observation at a time-out (original); false: as a terminal"),
-    boolean("value_time_input", &R::value_time_input, L::algorithm, all,
+    boolean("value_time_input", &R::value_time_input, L::algorithm, on_policy,
             "Q20: V and V_C also see the fraction of the time limit left, (max_ep_len - t)/max_ep_len at "
             "episode step t; false: the observation alone (original)"),
     // --- trust region (docs/algorithms.md#trust-region-tools) ---
-    real("target_kl", &R::target_kl, L::algorithm, N::above(0), all,
+    real("target_kl", &R::target_kl, L::algorithm, N::above(0), on_policy,
          "delta: trust-region size (mean KL per action dimension, Q8); first-order algorithms: the "
          "early-stop KL (per sample summed over action dimensions, averaged over samples)"),
     real("cg_damping", &R::cg_damping, L::algorithm, N::at_least(0), kTrustRegion,
@@ -246,8 +253,8 @@ const std::vector<SchemaRow>& schema_rows() {
     boolean("pdo_line_search", &R::pdo_line_search, L::algorithm, algorithm_bit(Algorithm::pdo),
             "Q14: run the TRPO line search on PDO's reward loss (original); false: apply step"),
     // --- first-order updates (docs/algorithms.md#first-order-updates) ---
-    real("actor_lr", &R::actor_lr, L::algorithm, N::above(0), kFirstOrder,
-         "Adam step size on the policy (first-order updates)"),
+    real("actor_lr", &R::actor_lr, L::algorithm, N::above(0), kFirstOrder | kOffPolicy,
+         "Adam step size on the policy (first-order and off-policy updates)"),
     integer("update_iters", &R::update_iters, L::algorithm, N::closed(1, 10000), kFirstOrder,
             "passes over the batch per policy update (fewer after a KL early stop)"),
     integer("policy_minibatch_size", &R::policy_minibatch_size, L::algorithm, N::closed(1, kIntMax), kFirstOrder,
@@ -266,23 +273,58 @@ const std::vector<SchemaRow>& schema_rows() {
             "learn a log sigma per action dimension with the policy's Adam (replaces the annealed sigma)"),
     real("learned_std_init", &R::learned_std_init, L::algorithm, N::above(0), kFirstOrder,
          "initial sigma of every dimension with learn_log_std"),
+    // --- off-policy learners (docs/algorithms.md#off-policy-learners) ---
+    integer("num_envs", &R::num_envs, L::algorithm, N::closed(1, 4096), kOffPolicy,
+            "environments per rank, stepped in turn; steps_per_epoch / ranks must be a multiple of it"),
+    integer("start_steps", &R::start_steps, L::algorithm, N::closed(0, kIntMax), kOffPolicy,
+            "uniform random actions for the first start_steps environment steps (summed over ranks); "
+            "gradient steps begin after them"),
+    integer("update_every", &R::update_every, L::algorithm, N::closed(1, kIntMax), kOffPolicy,
+            "environment steps of a rank between rounds of gradient steps"),
+    real("updates_per_step", &R::updates_per_step, L::algorithm, N::open_closed(0, 1000), kOffPolicy,
+         "gradient steps per environment step of a rank (a round of update_every steps takes "
+         "update_every * updates_per_step of them, fractions carried to the next round)"),
+    integer("batch_size", &R::batch_size, L::algorithm, N::closed(1, 1000000), kOffPolicy,
+            "transitions per gradient step, sampled uniformly from the rank's replay buffer"),
+    integer("buffer_size", &R::buffer_size, L::algorithm, N::closed(1, kIntMax), kOffPolicy,
+            "replay buffer capacity in transitions per rank (the oldest are overwritten)"),
+    real("polyak", &R::polyak, L::algorithm, N::open_closed(0, 1), kOffPolicy,
+         "tau: target nets <- (1 - tau) target + tau online after each critic (TD3: actor) step"),
+    integer("n_step", &R::n_step, L::algorithm, N::closed(1, 1000), kOffPolicy,
+            "n-step returns: sum of n discounted rewards, then gamma^n Q of the n-th next state"),
+    real("critic_lr", &R::critic_lr, L::algorithm, N::above(0), kOffPolicy,
+         "Adam step size of the reward and cost Q networks"),
+    real("exploration_noise", &R::exploration_noise, L::algorithm, N::at_least(0), kDeterministicActor,
+         "std of the Gaussian noise on the deterministic actor's actions while collecting"),
+    real("policy_noise", &R::policy_noise, L::algorithm, N::at_least(0), kTd3Family,
+         "TD3: std of the target policy smoothing noise"),
+    real("noise_clip", &R::noise_clip, L::algorithm, N::at_least(0), kTd3Family,
+         "TD3: the smoothing noise is clipped to +-noise_clip"),
+    integer("policy_delay", &R::policy_delay, L::algorithm, N::closed(1, 1000), kOffPolicy,
+            "critic steps per actor, temperature and target step (TD3's delay; OmniSafe delays SAC's too)"),
+    real("alpha_init", &R::alpha_init, L::algorithm, N::above(0), kSacFamily,
+         "SAC: initial entropy temperature alpha"),
+    boolean("auto_alpha", &R::auto_alpha, L::algorithm, kSacFamily,
+            "SAC: learn log alpha towards the target entropy -|A| (false: alpha stays alpha_init)"),
+    real("alpha_lr", &R::alpha_lr, L::algorithm, N::above(0), kSacFamily,
+         "SAC: Adam step size of log alpha (auto_alpha)"),
     // --- value networks (docs/algorithms.md#value-fits) ---
-    boolean("use_cost_value_function", &R::use_cost_value_function, L::algorithm, all,
+    boolean("use_cost_value_function", &R::use_cost_value_function, L::algorithm, on_policy,
             "train the cost value net V_C"),
-    real("vf_lr", &R::vf_lr, L::algorithm, N::above(0), all,
+    real("vf_lr", &R::vf_lr, L::algorithm, N::above(0), on_policy,
          "Adam learning rate of the value nets"),
-    integer("train_v_iterations", &R::train_v_iterations, L::algorithm, N::closed(1, 10000), all,
+    integer("train_v_iterations", &R::train_v_iterations, L::algorithm, N::closed(1, 10000), on_policy,
             "Q15: passes over the local batch per epoch when fitting the value nets"),
-    integer("num_mini_batches", &R::num_mini_batches, L::algorithm, N::closed(1, 100000), all,
+    integer("num_mini_batches", &R::num_mini_batches, L::algorithm, N::closed(1, 100000), on_policy,
             "Q15: minibatches per pass; minibatch size floor(N / num_mini_batches) per rank"),
     // --- bookkeeping (docs/algorithms.md#the-epoch-loop, docs/reproducing.md#evaluation) ---
     integer("save_freq", &R::save_freq, L::algorithm, N::closed(1, kIntMax), all,
             "save a checkpoint every save_freq epochs and after the last"),
-    integer("check_freq", &R::check_freq, L::algorithm, N::closed(1, kIntMax), all,
+    integer("check_freq", &R::check_freq, L::algorithm, N::closed(1, kIntMax), on_policy,
             "check that parameters agree across ranks every check_freq epochs"),
     integer("eval_episodes", &R::eval_episodes, L::algorithm, N::closed(0, kIntMax), all,
             "evaluation episodes after training, split over ranks"),
-    boolean("sampled_evaluation", &R::sampled_evaluation, L::algorithm, all,
+    boolean("sampled_evaluation", &R::sampled_evaluation, L::algorithm, on_policy,
             "evaluate the policy as it was trained, a = mu + sigma eps at the last epoch's sigma, with "
             "its own noise stream; false = the deterministic mean action (original)"),
   };

@@ -35,12 +35,14 @@ FLOORS = {
     "algos/lagrange": ["algos/core", "envs", "envs/description", "common"],
     "algos/trust_region": ["algos/lagrange", "algos/core", "envs", "envs/description", "common"],
     "algos/first_order": ["algos/lagrange", "algos/core", "envs", "envs/description", "common"],
-    "algos/training": ["algos/first_order", "algos/trust_region", "algos/lagrange", "algos/core", "envs",
-                       "envs/description", "common"],
+    # Replay buffer, critics and the off-policy updates (SAC, TD3, DDPG and their -lag forms).
+    "algos/off_policy": ["algos/lagrange", "algos/core", "envs", "envs/description", "common"],
+    "algos/training": ["algos/off_policy", "algos/first_order", "algos/trust_region", "algos/lagrange", "algos/core",
+                       "envs", "envs/description", "common"],
     # Offline data (DSRL's datasets, behaviour cloning): reads checkpoints
     # through the training room, so it sits above it.
-    "algos/offline": ["algos/training", "algos/first_order", "algos/trust_region", "algos/lagrange", "algos/core",
-                      "envs", "envs/description", "common"],
+    "algos/offline": ["algos/training", "algos/off_policy", "algos/first_order", "algos/trust_region", "algos/lagrange",
+                      "algos/core", "envs", "envs/description", "common"],
     # Beside algos: reads a world and a task's markings and draws them.
     "render": ["envs", "envs/assembly", "envs/tasks", "envs/physics", "envs/description", "common"],
     # The numerics of results with their uncertainty (bootstrap, IQM, profiles):

@@ -25,6 +25,14 @@ std::unique_ptr<OnPolicyAlgorithm> make_algorithm(const RunConfig& config) {
     case Algorithm::ppo_lag: return std::make_unique<Ppo>(config);
     case Algorithm::focops: return std::make_unique<Focops>(config);
     case Algorithm::cup: return std::make_unique<Cup>(config);
+    case Algorithm::sac:
+    case Algorithm::td3:
+    case Algorithm::ddpg:
+    case Algorithm::sac_lag:
+    case Algorithm::td3_lag:
+    case Algorithm::ddpg_lag:
+      throw std::invalid_argument("make_algorithm: " + std::string(to_string(config.alg)) +
+                                  " is an off-policy learner; it trains with OffPolicyTrainer, not the on-policy loop");
   }
   throw std::invalid_argument("make_algorithm: unknown alg value " + std::to_string(static_cast<int>(config.alg)));
 }

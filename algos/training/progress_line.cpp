@@ -34,7 +34,11 @@ std::string format_progress_line(const ProgressLineInputs& in) {
     n = std::snprintf(text, sizeof(text), "  lambda %.4f", *in.lagrange_multiplier);
     line.append(text, static_cast<std::size_t>(n));
   }
-  n = std::snprintf(text, sizeof(text), "  KL %.5f  %.2f s/epoch  ETA %s", in.kl, in.epoch_seconds,
+  if (!std::isnan(in.kl)) {  // the off-policy learners have no KL to show
+    n = std::snprintf(text, sizeof(text), "  KL %.5f", in.kl);
+    line.append(text, static_cast<std::size_t>(n));
+  }
+  n = std::snprintf(text, sizeof(text), "  %.2f s/epoch  ETA %s", in.epoch_seconds,
                     format_duration(in.eta_seconds).c_str());
   line.append(text, static_cast<std::size_t>(n));
   return line;

@@ -16,7 +16,7 @@ struct ProgressLineInputs {
   double mean_cost = 0.0;
   std::optional<double> cost_limit;
   std::optional<double> lagrange_multiplier;
-  double kl = 0.0;
+  double kl = 0.0;  // NaN: not shown (the off-policy learners)
   double epoch_seconds = 0.0;
   double eta_seconds = 0.0;
 };

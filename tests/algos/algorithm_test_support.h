@@ -179,6 +179,12 @@ inline RunConfig config_for(Algorithm alg) {
       config.lambda_optimizer = LambdaOptimizer::adam;
       config.lambda_lr = 0.035;
       break;
+    case Algorithm::sac:
+    case Algorithm::td3:
+    case Algorithm::ddpg:
+    case Algorithm::sac_lag:
+    case Algorithm::td3_lag:
+    case Algorithm::ddpg_lag: break;  // off-policy: no on-policy update (algos/off_policy)
   }
   return config;
 }

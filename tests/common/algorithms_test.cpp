@@ -1,7 +1,7 @@
 // The table of algorithms (common/algorithms.h) against what the shipped
 // algorithm files say of each algorithm: a first-order algorithm's file sets
 // actor_lr, one with a Lagrange multiplier sets lambda_lr, one with PPO's
-// clipped ratio sets clip. The files are written for the updates in algos/,
+// clipped ratio sets clip, an off-policy one sets actor_lr and its critics' critic_lr. The files are written for the updates in algos/,
 // so they are a second, independent statement of each algorithm's family.
 #include "common/algorithms.h"
 
@@ -31,7 +31,9 @@ TEST(Algorithms, FamiliesAgreeWithTheShippedAlgorithmFiles) {
   for (const AlgorithmInfo& info : kAlgorithms) {
     SCOPED_TRACE(std::string(info.name));
     const YAML::Node file = YAML::LoadFile((kAlgorithmFiles / (std::string(info.name) + ".yaml")).string());
-    EXPECT_EQ(info.family == AlgorithmFamily::first_order, static_cast<bool>(file["actor_lr"]));
+    EXPECT_EQ(info.family == AlgorithmFamily::first_order || info.family == AlgorithmFamily::off_policy,
+              static_cast<bool>(file["actor_lr"]));
+    EXPECT_EQ(info.family == AlgorithmFamily::off_policy, static_cast<bool>(file["critic_lr"]));
     EXPECT_EQ(info.lagrange_multiplier, static_cast<bool>(file["lambda_lr"]));
     EXPECT_EQ(info.clipped_surrogate, static_cast<bool>(file["clip"]));
   }
@@ -40,8 +42,9 @@ TEST(Algorithms, FamiliesAgreeWithTheShippedAlgorithmFiles) {
 TEST(Algorithms, OnlyTheUnconstrainedIgnoreTheCostAndOnlyMultipliersHaveAPidLabel) {
   for (const AlgorithmInfo& info : kAlgorithms) {
     SCOPED_TRACE(std::string(info.name));
-    // TRPO and PPO are the report's unconstrained baselines.
-    EXPECT_EQ(ignores_cost(info.alg), info.name == "trpo" || info.name == "ppo");
+    // TRPO and PPO are the report's unconstrained baselines; SAC, TD3 and DDPG the off-policy ones.
+    EXPECT_EQ(ignores_cost(info.alg), info.name == "trpo" || info.name == "ppo" || info.name == "sac" ||
+                                          info.name == "td3" || info.name == "ddpg");
     EXPECT_EQ(info.pid_label.empty(), !info.lagrange_multiplier);
   }
   std::set<std::string_view> labels;

@@ -290,11 +290,12 @@ TEST_F(ScratchConfigs, UnknownEnvIdListsTheValidOnes) {
 }
 
 TEST_F(ScratchConfigs, UnknownAlgListsTheValidOnes) {
-  const fs::path run = write_run("env_id: SafetyBallCircle-v0\nalg: sac\n");
+  const fs::path run = write_run("env_id: SafetyBallCircle-v0\nalg: cvpo\n");
   const std::string m = error_of(request(run));
   EXPECT_TRUE(contains(m, run.string() + ":2:1"));
-  EXPECT_TRUE(contains(m, "'alg' = 'sac' is not valid"));
-  EXPECT_TRUE(contains(m, "trpo | lag-trpo | cpo | pdo | pcpo | ppo | ppo-lag | focops | cup"));
+  EXPECT_TRUE(contains(m, "'alg' = 'cvpo' is not valid"));
+  EXPECT_TRUE(contains(m, "trpo | lag-trpo | cpo | pdo | pcpo | ppo | ppo-lag | focops | cup | sac | td3 | ddpg | "
+                          "sac-lag | td3-lag | ddpg-lag"));
 }
 
 TEST_F(ScratchConfigs, MissingEnvIdOrAlgSaysWhereToSetIt) {

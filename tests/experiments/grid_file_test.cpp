@@ -94,9 +94,9 @@ TEST(GridFile, UnknownKeyInsideAnAlgorithmIsNamed) {
 }
 
 TEST(GridFile, UnknownAlgorithmIsNamed) {
-  const std::string message = parse_error("envs: [SafetyBallCircle-v0]\nseeds: [0]\nalgorithms:\n  sac:\n");
+  const std::string message = parse_error("envs: [SafetyBallCircle-v0]\nseeds: [0]\nalgorithms:\n  cvpo:\n");
   EXPECT_TRUE(contains(message, "g.yaml:4:3"));
-  EXPECT_TRUE(contains(message, "unknown algorithm 'sac'"));
+  EXPECT_TRUE(contains(message, "unknown algorithm 'cvpo'"));
   EXPECT_TRUE(contains(message, "trpo | lag-trpo | cpo | pdo | pcpo | ppo | ppo-lag | focops | cup"));
 }
 
