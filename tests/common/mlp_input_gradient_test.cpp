@@ -16,15 +16,7 @@ Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
   return m;
 }
 
-// L = sum_i w_i . y_i, so dL/dx_i = J_i^T w_i.
-double weighted_output_sum(const Mlp& net, const Eigen::MatrixXd& inputs, const Eigen::MatrixXd& weights) {
-  double sum = 0.0;
-  for (Eigen::Index i = 0; i < inputs.rows(); ++i) {
-    sum += net.forward(Eigen::VectorXd(inputs.row(i).transpose())).dot(weights.row(i).transpose());
-  }
-  return sum;
-}
-
+// The loss is L = sum_i w_i . y_i, so dL/dx_i = J_i^T w_i.
 void check_input_gradient(Dtype dtype, double tolerance) {
   Rng rng(7);
   Mlp net({5, 9, 7, 3}, rng, {.dtype = Dtype::float64});
