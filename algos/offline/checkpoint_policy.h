@@ -1,7 +1,10 @@
 // The policy of a trained run, read from its run directory's checkpoint, as a
-// CollectionPolicy: the observation normalised with the checkpoint's frozen
-// statistics, then the mean action, or a sample mu + sigma eps at the sigma of
-// the checkpoint's last epoch (the evaluation's two modes, evaluation.h).
+// CollectionPolicy. An on-policy run: the observation normalised with the
+// checkpoint's frozen statistics, then the mean action, or a sample
+// mu + sigma eps at the sigma of the checkpoint's last epoch (the evaluation's
+// two modes, evaluation.h). An off-policy run (SAC, TD3, DDPG and their -lag
+// forms): the deterministic actor tanh(mu(s)) for mean actions, the exploring
+// actions it collected with for sampled ones.
 #pragma once
 
 #include <filesystem>

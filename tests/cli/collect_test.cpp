@@ -8,7 +8,11 @@
 #include <string>
 
 #include "../test_support.h"
+#include "algos/off_policy/off_policy_learner.h"
 #include "algos/offline/dataset_file.h"
+#include "algos/training/off_policy_checkpoint.h"
+#include "common/run_config_yaml.h"
+#include "envs/env.h"
 #include "run_bsg.h"
 
 namespace fs = std::filesystem;
@@ -63,6 +67,46 @@ TEST(Collect, MixOfACheckpointAndTheRandomPolicy) {
                              " --env SafetyBallCircle-v0 --policy " + run + " --episodes 1");
   expect_one_line_error(other, "was trained on SafetyBallRun-v0, not on the collection's SafetyBallCircle-v0");
   EXPECT_FALSE(fs::exists(dir.path() / "x.hdf5"));
+}
+
+// An off-policy run's checkpoint collects too: with mean actions every stored
+// action is the deterministic actor tanh(mu(s)) of the stored observation,
+// computed here from the checkpoint's actor network directly.
+TEST(Collect, AnOffPolicyCheckpointActsWithItsDeterministicActor) {
+  TemporaryDirectory dir("collect");
+  const fs::path config_file = dir.path() / "sac.yaml";
+  write_text_file(config_file,
+                  "env_id: SafetyBallCircle-v0\nalg: sac-lag\nseed: 1\nepochs: 1\nsteps_per_epoch: 400\n"
+                  "num_envs: 2\nstart_steps: 200\nupdate_every: 50\nbatch_size: 32\nbuffer_size: 1000\n"
+                  "hidden_sizes: [16, 16]\neval_episodes: 1\n");
+  const std::string run = (dir.path() / "sac").string();
+  const auto trained = run_bsg("train " + config_file.string() + kConfigs + " --quiet --out " + run);
+  ASSERT_EQ(trained.exit_code, 0) << trained.output;
+  const std::string file = (dir.path() / "sac.hdf5").string();
+  const auto result = run_bsg("collect --out " + file + " --policy " + run + " --actions mean --episodes 1 --seed 3");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const bsg::algos::OfflineDataset d = bsg::algos::read_dataset_file(file);
+  ASSERT_GT(d.size(), 0u);
+
+  const bsg::RunConfig config =
+      bsg::load_resolved_run_config(fs::path(run) / "config.yaml", bsg::envs::registered_ids());
+  bsg::Rng unused(0);
+  bsg::algos::OffPolicyLearner learner(bsg::algos::OffPolicyOptions::from_config(config, d.action_dim),
+                                       d.observation_dim, d.action_dim, 1, unused);
+  bsg::algos::load_off_policy_checkpoint(fs::path(run) / "checkpoint.bin", config, learner);
+  double largest_error = 0.0;
+  for (std::size_t t = 0; t < d.size(); ++t) {
+    Eigen::VectorXd observation(d.observation_dim);
+    for (int j = 0; j < d.observation_dim; ++j) observation(j) = d.observations[t * d.observation_dim + j];
+    // The stored observation is float32: the actor sees the rounded value here, so allow float32's error.
+    const Eigen::VectorXd outputs = learner.actor().forward(observation);
+    for (int j = 0; j < d.action_dim; ++j) {
+      largest_error = std::max(largest_error, std::abs(std::tanh(outputs(j)) - d.actions[t * d.action_dim + j]));
+    }
+  }
+  EXPECT_LT(largest_error, 1e-4);
+  EXPECT_NE(d.text_attributes.at("policies").find("deterministic actions"), std::string::npos)
+      << d.text_attributes.at("policies");
 }
 
 TEST(Collect, BadInputIsOneLine) {
