@@ -134,19 +134,8 @@ CaptionLayout draw_caption(Image& image, const std::vector<std::string>& fields)
   const int scale = layout.scale, margin = 2 * scale;
   fill(image, 0, 0, layout.box_width, layout.box_height, 0, 0, 0, true);
   for (size_t line = 0; line < layout.lines.size(); ++line) {
-    const std::string& text = layout.lines[line];
     const int top = margin + static_cast<int>(line) * 9 * scale;
-    for (size_t i = 0; i < text.size(); ++i) {
-      const Glyph* glyph = find_glyph(text[i]);
-      if (glyph == nullptr) continue;
-      for (int row = 0; row < 7; ++row) {
-        for (int col = 0; col < 5; ++col) {
-          if (glyph->rows[static_cast<size_t>(row)][col] != '#') continue;
-          fill(image, margin + static_cast<int>(i) * 6 * scale + col * scale, top + row * scale, scale,
-               scale, 255, 255, 255, false);
-        }
-      }
-    }
+    draw_text(image, margin, top, layout.lines[line], scale, 255, 255, 255);
   }
   return layout;
 }

@@ -185,10 +185,7 @@ void OffPolicyTrainer::save_checkpoint() {
 
 void OffPolicyTrainer::check_finite(int epoch, const char* quantity, double value) const {
   if (!std::isfinite(value)) {
-    throw NonFiniteError(std::string("non-finite ") + quantity + " (" + std::to_string(value) + ") in epoch " +
-                         std::to_string(epoch) + "; training stopped, the last good checkpoint " +
-                         directory_.checkpoint().string() + " (after " + std::to_string(checkpoint_epochs_) +
-                         " epochs) is kept");
+    throw non_finite_error(epoch, quantity, value, directory_.checkpoint(), checkpoint_epochs_);
   }
 }
 

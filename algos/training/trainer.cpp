@@ -73,6 +73,13 @@ int local_steps(const RunConfig& config, const MpiContext& mpi) {
 
 }  // namespace
 
+NonFiniteError non_finite_error(int epoch, const char* quantity, double value,
+                                const std::filesystem::path& checkpoint, int checkpoint_epochs) {
+  return NonFiniteError(std::string("non-finite ") + quantity + " (" + std::to_string(value) + ") in epoch " +
+                        std::to_string(epoch) + "; training stopped, the last good checkpoint " +
+                        checkpoint.string() + " (after " + std::to_string(checkpoint_epochs) + " epochs) is kept");
+}
+
 OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi,
                                  TrainerOptions options)
     : OnPolicyTrainer(config, std::move(directory), mpi, options,
@@ -170,10 +177,7 @@ void OnPolicyTrainer::save_checkpoint() {
 
 void OnPolicyTrainer::check_finite(int epoch, const char* quantity, double value) const {
   if (!std::isfinite(value)) {
-    throw NonFiniteError(std::string("non-finite ") + quantity + " (" + std::to_string(value) + ") in epoch " +
-                         std::to_string(epoch) + "; training stopped, the last good checkpoint " +
-                         directory_.checkpoint().string() + " (after " + std::to_string(checkpoint_epochs_) +
-                         " epochs) is kept");
+    throw non_finite_error(epoch, quantity, value, directory_.checkpoint(), checkpoint_epochs_);
   }
 }
 

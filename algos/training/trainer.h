@@ -38,6 +38,7 @@
 #pragma once
 
 #include <chrono>
+#include <filesystem>
 #include <functional>
 #include <iosfwd>
 #include <memory>
@@ -66,6 +67,12 @@ class NonFiniteError : public std::runtime_error {
  public:
   explicit NonFiniteError(const std::string& message) : std::runtime_error(message) {}
 };
+
+// The error of a non-finite `quantity` (value `value`) in `epoch`: training
+// stops and names the last good checkpoint, which covers `checkpoint_epochs`
+// epochs and is kept (both loops, on-policy and off-policy, say it so).
+NonFiniteError non_finite_error(int epoch, const char* quantity, double value,
+                                const std::filesystem::path& checkpoint, int checkpoint_epochs);
 
 // Wall-clock seconds of one epoch's phases on this rank (bsg bench --train).
 struct EpochTimings {
