@@ -424,15 +424,7 @@ TrainingOutcome OffPolicyTrainer::run() {
   TrainingOutcome outcome;
   for (int epoch = progress_.epochs_completed; epoch < config_.epochs; ++epoch) {
     if (options_.stop_after_epochs > 0 && progress_.epochs_completed >= options_.stop_after_epochs) break;
-    try {
-      run_epoch(epoch);
-    } catch (const NonFiniteError&) {
-      throw;
-    } catch (const std::bad_alloc&) {
-      throw std::runtime_error("epoch " + std::to_string(epoch) + ": out of memory (std::bad_alloc)");
-    } catch (const std::exception& e) {
-      throw std::runtime_error("epoch " + std::to_string(epoch) + ": " + e.what());
-    }
+    run_epoch_naming_errors(epoch, "", [&] { run_epoch(epoch); });
     if (options_.stop_requested && progress_.epochs_completed < config_.epochs && options_.stop_requested()) {
       if (checkpoint_epochs_ != progress_.epochs_completed) save_checkpoint();
       outcome.stop_requested = true;

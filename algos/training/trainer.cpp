@@ -80,6 +80,19 @@ NonFiniteError non_finite_error(int epoch, const char* quantity, double value,
                         checkpoint.string() + " (after " + std::to_string(checkpoint_epochs) + " epochs) is kept");
 }
 
+void run_epoch_naming_errors(int epoch, std::string_view phases, const std::function<void()>& run_epoch) {
+  try {
+    run_epoch();
+  } catch (const NonFiniteError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error("epoch " + std::to_string(epoch) + ": out of memory (std::bad_alloc)" +
+                             (phases.empty() ? std::string() : " during " + std::string(phases)));
+  } catch (const std::exception& e) {
+    throw std::runtime_error("epoch " + std::to_string(epoch) + ": " + e.what());
+  }
+}
+
 OnPolicyTrainer::OnPolicyTrainer(const RunConfig& config, RunDirectory directory, const MpiContext& mpi,
                                  TrainerOptions options)
     : OnPolicyTrainer(config, std::move(directory), mpi, options,
@@ -387,16 +400,7 @@ TrainingOutcome OnPolicyTrainer::run() {
   TrainingOutcome outcome;
   for (int epoch = progress_.epochs_completed; epoch < config_.epochs; ++epoch) {
     if (options_.stop_after_epochs > 0 && progress_.epochs_completed >= options_.stop_after_epochs) break;
-    try {
-      run_epoch(epoch);
-    } catch (const NonFiniteError&) {
-      throw;
-    } catch (const std::bad_alloc&) {
-      throw std::runtime_error("epoch " + std::to_string(epoch) +
-                               ": out of memory (std::bad_alloc) during the epoch's rollout, update or value fits");
-    } catch (const std::exception& e) {
-      throw std::runtime_error("epoch " + std::to_string(epoch) + ": " + e.what());
-    }
+    run_epoch_naming_errors(epoch, "the epoch's rollout, update or value fits", [&] { run_epoch(epoch); });
     if (options_.stop_requested && progress_.epochs_completed < config_.epochs && options_.stop_requested()) {
       if (checkpoint_epochs_ != progress_.epochs_completed) save_checkpoint();
       outcome.stop_requested = true;

@@ -44,6 +44,7 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string_view>
 #include <vector>
 
 #include "algos/core/actor_critic.h"
@@ -73,6 +74,11 @@ class NonFiniteError : public std::runtime_error {
 // epochs and is kept (both loops, on-policy and off-policy, say it so).
 NonFiniteError non_finite_error(int epoch, const char* quantity, double value,
                                 const std::filesystem::path& checkpoint, int checkpoint_epochs);
+
+// Runs one epoch of either loop: a NonFiniteError passes through, any other
+// error is rethrown as std::runtime_error with the epoch prepended (and
+// `phases`, what the epoch does, named for an out-of-memory error).
+void run_epoch_naming_errors(int epoch, std::string_view phases, const std::function<void()>& run_epoch);
 
 // Wall-clock seconds of one epoch's phases on this rank (bsg bench --train).
 struct EpochTimings {
