@@ -32,6 +32,30 @@ void tanh_in_place(Eigen::DenseBase<Derived>& values) {
   }
 }
 
+// A = activation(Z) in place, for a hidden layer.
+template <typename Derived>
+void activate_in_place(Eigen::DenseBase<Derived>& values, Activation activation) {
+  if (activation == Activation::relu) {
+    values.derived().array() = values.derived().array().max(typename Derived::Scalar(0));
+  } else {
+    tanh_in_place(values);
+  }
+}
+
+// gradients *= activation'(Z), written with the layer's output A = activation(Z):
+// tanh' = 1 - A^2; relu' = 1 where A > 0, else 0 (0 at Z = 0, as PyTorch's).
+template <typename Gradients, typename Outputs>
+void multiply_by_derivative(Eigen::DenseBase<Gradients>& gradients, const Eigen::DenseBase<Outputs>& outputs,
+                            Activation activation) {
+  using Scalar = typename Gradients::Scalar;
+  if (activation == Activation::relu) {
+    gradients.derived().array() =
+        (outputs.derived().array() > Scalar(0)).select(gradients.derived().array(), Scalar(0));
+  } else {
+    gradients.derived().array() *= Scalar(1) - outputs.derived().array().square();
+  }
+}
+
 template <typename Matrix>
 void resize_if_needed(Matrix& matrix, Eigen::Index rows, Eigen::Index cols) {
   if (matrix.rows() != rows || matrix.cols() != cols) matrix.resize(rows, cols);
@@ -111,7 +135,7 @@ void forward_rows(const FlatLayout<Scalar>& layout, const Scalar* parameters, Ml
     auto a = buffers.layer_outputs[layer].middleRows(start, length);
     a.noalias() = previous.middleRows(start, length) * layout.weights(parameters, layer).transpose();  // Z = A W^T + 1 b^T
     a.rowwise() += layout.bias(parameters, layer).transpose();
-    if (layer + 1 < layout.layers()) tanh_in_place(a);
+    if (layer + 1 < layout.layers()) activate_in_place(a, layout.net.activation());
   }
 }
 
@@ -131,7 +155,7 @@ void backward_rows(const FlatLayout<Scalar>& layout, const Scalar* parameters, M
     if (layer > 0) {
       auto delta_previous = buffers.layer_deltas[layer - 1].topRows(length);
       delta_previous.noalias() = delta * layout.weights(parameters, layer);
-      delta_previous.array() *= Scalar(1) - previous.array().square();  // tanh'(z) = 1 - tanh(z)^2
+      multiply_by_derivative(delta_previous, previous, layout.net.activation());
     }
   }
 }
@@ -151,8 +175,8 @@ void jvp_rows(const FlatLayout<Scalar>& layout, const Scalar* parameters, const 
     }
     tangent.rowwise() += layout.bias(direction, layer).transpose();
     if (layer + 1 < layout.layers()) {
-      // dA = tanh'(Z) dZ = (1 - A^2) dZ
-      tangent.array() *= Scalar(1) - buffers.layer_outputs[layer].middleRows(start, length).array().square();
+      // dA = activation'(Z) dZ
+      multiply_by_derivative(tangent, buffers.layer_outputs[layer].middleRows(start, length), layout.net.activation());
     }
   }
 }
@@ -222,8 +246,8 @@ void input_gradient_rows(const FlatLayout<Scalar>& layout, const Scalar* paramet
     const auto delta = buffers.layer_deltas[layer].topRows(length);
     auto delta_previous = buffers.layer_deltas[layer - 1].topRows(length);
     delta_previous.noalias() = delta * layout.weights(parameters, layer);
-    // tanh'(z) = 1 - tanh(z)^2
-    delta_previous.array() *= Scalar(1) - buffers.layer_outputs[layer - 1].middleRows(start, length).array().square();
+    multiply_by_derivative(delta_previous, buffers.layer_outputs[layer - 1].middleRows(start, length),
+                           layout.net.activation());
   }
   input_gradient.topRows(length).noalias() = buffers.layer_deltas[0].topRows(length) * layout.weights(parameters, 0);
 }
@@ -334,7 +358,7 @@ void streamed_gradient(const Mlp& net, const Eigen::Ref<const Eigen::MatrixXd>& 
 }  // namespace
 
 Mlp::Mlp(std::vector<int> layer_sizes, Rng& rng, MlpOptions options)
-    : layer_sizes_(std::move(layer_sizes)), dtype_(options.dtype) {
+    : layer_sizes_(std::move(layer_sizes)), dtype_(options.dtype), activation_(options.activation) {
   if (layer_sizes_.size() < 2) {
     throw std::invalid_argument("Mlp: layer_sizes " + sizes_to_string(layer_sizes_) +
                                 " needs at least an input and an output size");
@@ -412,7 +436,7 @@ void Mlp::forward(const Eigen::Ref<const Eigen::VectorXd>& input,
       z.noalias() = weights(layer) * outputs[layer - 1];
     }
     z += bias(layer);
-    if (layer + 1 < num_layers()) tanh_in_place(z);
+    if (layer + 1 < num_layers()) activate_in_place(z, activation_);
   }
   output = outputs.back();
 }

@@ -1,6 +1,7 @@
 // A fully connected network on Eigen with hand-written backward pass and
-// Jacobian-vector product (docs/algorithms.md#networks). Hidden layers use tanh, the output layer is
-// the identity; layer sizes come from the caller, e.g. {d_o, 64, 64, d_a}.
+// Jacobian-vector product (docs/algorithms.md#networks). Hidden layers use tanh (or relu,
+// MlpOptions::activation), the output layer is the identity; layer sizes come from the caller,
+// e.g. {d_o, 64, 64, d_a}.
 //
 // Parameters live in one flat vector in the order of docs/algorithms.md#networks:
 // [W_1, b_1, W_2, b_2, ..., W_L, b_L], every W_l of shape (out, in) flattened
@@ -23,12 +24,14 @@
 //   zero_bias_init   false (default): biases ~ U(-1/sqrt(in), 1/sqrt(in)) as the
 //                    original code does (quirk Q1); true: zero biases as the report says.
 //   dtype            float64 (default here; the run config chooses, see configs/README.md).
+//   activation       tanh (default) or relu, of every hidden layer.
 #pragma once
 
 #include <Eigen/Core>
 #include <functional>
 #include <vector>
 
+#include "common/activation.h"
 #include "common/dtype.h"
 #include "common/random.h"
 
@@ -39,6 +42,7 @@ using RowMajorMatrixXd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, E
 struct MlpOptions {
   bool zero_bias_init = false;
   Dtype dtype = Dtype::float64;  // arithmetic of the batch passes
+  Activation activation = Activation::tanh;  // of the hidden layers
 };
 
 // Rows per chunk of a batch pass: every matrix product then fits Eigen's
@@ -92,6 +96,7 @@ class Mlp {
 
   Dtype dtype() const { return dtype_; }
   void set_dtype(Dtype dtype) { dtype_ = dtype; }
+  Activation activation() const { return activation_; }
 
   int input_size() const { return layer_sizes_.front(); }
   int output_size() const { return layer_sizes_.back(); }
@@ -169,6 +174,7 @@ class Mlp {
   std::vector<Eigen::Index> bias_offsets_;
   Eigen::VectorXd parameters_;
   Dtype dtype_ = Dtype::float64;
+  Activation activation_ = Activation::tanh;
 };
 
 }  // namespace bsg

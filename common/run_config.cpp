@@ -20,9 +20,6 @@ std::string_view to_string(CpoRSign sign) { return name_of(kCpoRSignNames, sign)
 std::string_view to_string(PcpoProjection projection) {
   return name_of(kPcpoProjectionNames, projection);
 }
-std::string_view to_string(Activation activation) {
-  return name_of(kActivationNames, activation);
-}
 std::string_view to_string(Learner learner) { return name_of(kLearnerNames, learner); }
 
 }  // namespace bsg

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/activation.h"
 #include "common/algorithms.h"
 #include "common/constraint_config.h"
 #include "common/physics_model.h"
@@ -45,15 +46,10 @@ inline constexpr std::array<std::string_view, 2> kPcpoProjectionNames = {"kl", "
 enum class Learner { faithful, corrected };
 inline constexpr std::array<std::string_view, 2> kLearnerNames = {"faithful", "corrected"};
 
-// Hidden-layer activation of the MLPs (docs/algorithms.md#networks: tanh is the only one used).
-enum class Activation { tanh };
-inline constexpr std::array<std::string_view, 1> kActivationNames = {"tanh"};
-
 std::string_view to_string(Algorithm alg);
 std::string_view to_string(LambdaOptimizer optimizer);
 std::string_view to_string(CpoRSign sign);
 std::string_view to_string(PcpoProjection projection);
-std::string_view to_string(Activation activation);
 std::string_view to_string(Learner learner);
 
 struct RunConfig {

@@ -72,7 +72,8 @@ void check_run_config_relations(const RunConfig& config, const ConfigOrigins& or
                       "' ignores cost (it maximises the return alone); use lag-trpo, pdo, cpo, pcpo, ppo-lag, "
                       "focops or cup, or give one constraint to judge the policy by");
   }
-  if (config.max_ep_len > config.steps_per_epoch) {
+  // The off-policy loop's episodes run on across epochs (check_run_config_for_ranks bounds them).
+  if (!is_off_policy(config.alg) && config.max_ep_len > config.steps_per_epoch) {
     throw ConfigError("max_ep_len = " + std::to_string(config.max_ep_len) + " (" +
                       origin_of(origins, "max_ep_len") + ") exceeds steps_per_epoch = " +
                       std::to_string(config.steps_per_epoch) + " (" +
@@ -206,7 +207,7 @@ void check_run_config_for_ranks(const RunConfig& config, int num_ranks) {
                       " is not divisible by the " + ranks + " MPI ranks");
   }
   const int local_steps = config.steps_per_epoch / num_ranks;
-  if (config.max_ep_len > local_steps) {
+  if (!is_off_policy(config.alg) && config.max_ep_len > local_steps) {
     throw ConfigError("max_ep_len = " + std::to_string(config.max_ep_len) +
                       " exceeds the local steps per rank steps_per_epoch / ranks = " +
                       std::to_string(local_steps) + " with " + ranks +
@@ -217,6 +218,19 @@ void check_run_config_for_ranks(const RunConfig& config, int num_ranks) {
     if (local_steps % config.num_envs != 0) {
       throw ConfigError("steps_per_epoch / ranks = " + std::to_string(local_steps) + " with " + ranks +
                         " ranks is not a multiple of num_envs = " + std::to_string(config.num_envs));
+    }
+    // Episodes run on across epochs but a checkpoint cuts them (docs/algorithms.md#off-policy-checkpoints),
+    // so each environment needs max_ep_len steps between checkpoints for an episode to end.
+    const long long steps_between_checkpoints =
+        static_cast<long long>(config.save_freq) * (local_steps / config.num_envs);
+    if (steps_between_checkpoints < config.max_ep_len) {
+      throw ConfigError("each environment steps save_freq * steps_per_epoch / (ranks * num_envs) = " +
+                        std::to_string(config.save_freq) + " * " + std::to_string(config.steps_per_epoch) + " / (" +
+                        ranks + " * " + std::to_string(config.num_envs) + ") = " +
+                        std::to_string(steps_between_checkpoints) +
+                        " steps between checkpoints, which cut episodes; that is fewer than max_ep_len = " +
+                        std::to_string(config.max_ep_len) +
+                        ", so no episode would end: raise save_freq or steps_per_epoch, or lower num_envs");
     }
     return;
   }

@@ -261,8 +261,9 @@ const std::vector<SchemaRow>& schema_rows() {
             "samples per policy minibatch, summed over ranks: floor(B / size) minibatches per pass"),
     boolean("kl_early_stop", &R::kl_early_stop, L::algorithm, kFirstOrder,
             "end the passes after one whose mean KL to the update's start exceeds target_kl"),
-    real("max_grad_norm", &R::max_grad_norm, L::algorithm, N::at_least(0), kFirstOrder,
-         "rescale the rank-averaged policy gradient to at most this norm; 0 = never"),
+    real("max_grad_norm", &R::max_grad_norm, L::algorithm, N::at_least(0), kFirstOrder | kOffPolicy,
+         "rescale the rank-averaged gradient of each step (first-order: the policy's; off-policy: the twin "
+         "reward critics' together, each cost critic's, the actor's) to at most this norm; 0 = never"),
     real("clip", &R::clip, L::algorithm, N::open(0, 1), kClipped,
          "epsilon of PPO's clipped surrogate (ppo, ppo-lag, cup's performance step)"),
     real("focops_lam", &R::focops_lam, L::algorithm, N::above(0), algorithm_bit(Algorithm::focops),

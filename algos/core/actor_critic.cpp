@@ -7,7 +7,9 @@
 namespace bsg::algos {
 namespace {
 
-MlpOptions init_options(const RunConfig& config) { return MlpOptions{config.zero_bias_init, config.dtype}; }
+MlpOptions init_options(const RunConfig& config) {
+  return MlpOptions{.zero_bias_init = config.zero_bias_init, .dtype = config.dtype, .activation = config.activation};
+}
 
 AdamOptions value_adam_options(const RunConfig& config) {
   AdamOptions options;

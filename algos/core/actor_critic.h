@@ -6,7 +6,7 @@
 // lockstep updates), so one copy describes the whole run.
 //
 // Parameters (from RunConfig):
-//   hidden_sizes, zero_bias_init, dtype   the three MLPs (docs/algorithms.md#networks)
+//   hidden_sizes, activation, zero_bias_init, dtype   the three MLPs (docs/algorithms.md#networks)
 //   vf_lr                                 Adam learning rate of V and V_C
 //   use_standardized_obs, obs_clip,       observation normalisation (docs/algorithms.md#observation-normaliser, Q3, Q4)
 //   exact_parallel_variance

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "algos/core/gradient_norm_clipping.h"
 #include "algos/core/shuffle.h"
 
 namespace bsg::algos {
@@ -298,10 +299,7 @@ MinibatchPassesResult minibatch_passes(const PolicyUpdateInputs& inputs, const F
       batch.loss(inputs.policy, std::span<const Eigen::Index>(permutation.data() + begin, static_cast<std::size_t>(end - begin)),
                  sample_loss, &gradient);
       inputs.mpi.average_in_place(gradient);  // one allreduce per step
-      result.gradient_norm = gradient.norm();
-      if (options.max_grad_norm > 0.0 && result.gradient_norm > options.max_grad_norm) {
-        gradient *= options.max_grad_norm / result.gradient_norm;  // clip_grad_norm_ on the averaged gradient
-      }
+      result.gradient_norm = clip_gradient_norm(gradient, options.max_grad_norm);  // on the averaged gradient
       adam.step(inputs.policy, gradient);
     }
     result.passes = pass + 1;

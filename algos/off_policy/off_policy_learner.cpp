@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "algos/core/gradient_norm_clipping.h"
 #include "algos/off_policy/polyak.h"
 #include "algos/off_policy/target_smoothing.h"
 
@@ -85,8 +86,9 @@ OffPolicyOptions OffPolicyOptions::from_config(const RunConfig& config, int acti
   options.auto_alpha = config.auto_alpha;
   options.alpha_lr = config.alpha_lr;
   options.target_entropy = -static_cast<double>(action_size);  // Haarnoja et al. 2018b: -dim(A)
+  options.max_grad_norm = config.max_grad_norm;
   options.hidden_sizes = config.hidden_sizes;
-  options.mlp = MlpOptions{.zero_bias_init = config.zero_bias_init, .dtype = config.dtype};
+  options.mlp = MlpOptions{.zero_bias_init = config.zero_bias_init, .dtype = config.dtype, .activation = config.activation};
   return options;
 }
 
@@ -333,13 +335,20 @@ void OffPolicyLearner::update(const ReplayBatch& batch, std::span<const double> 
   resize_if_needed(next_noise_, rows, action_size_);
   if (squashed || options_.target_smoothing) fill_standard_normal(next_noise_, rng);
   compute_targets(batch, next_noise_);
-  // 2. critics
+  // 2. critics: the reward critics' gradients (each depends only on its own critic and the targets),
+  // rescaled together, then their steps
+  reward_gradients_.resize(reward_critics_.size());
+  reward_gradient_views_.resize(reward_critics_.size());
   for (std::size_t k = 0; k < reward_critics_.size(); ++k) {
-    resize_if_needed(gradient_, reward_critics_[k].num_parameters());
-    stats.reward_critic_loss += critic_loss(reward_critics_[k], batch, reward_targets_, gradient_);
+    resize_if_needed(reward_gradients_[k], reward_critics_[k].num_parameters());
+    reward_gradient_views_[k] = &reward_gradients_[k];
+    stats.reward_critic_loss += critic_loss(reward_critics_[k], batch, reward_targets_, reward_gradients_[k]);
     if (k == 0) stats.reward_q_mean = critic_workspace_.outputs.mean();
-    mpi.average_in_place(gradient_);
-    reward_critic_adams_[k].step(reward_critics_[k].mutable_parameters(), gradient_);
+    mpi.average_in_place(reward_gradients_[k]);
+  }
+  clip_gradient_norm(reward_gradient_views_, options_.max_grad_norm);
+  for (std::size_t k = 0; k < reward_critics_.size(); ++k) {
+    reward_critic_adams_[k].step(reward_critics_[k].mutable_parameters(), reward_gradients_[k]);
   }
   stats.cost_critic_losses.assign(cost_critics_.size(), 0.0);
   stats.cost_q_means.assign(cost_critics_.size(), 0.0);
@@ -349,6 +358,7 @@ void OffPolicyLearner::update(const ReplayBatch& batch, std::span<const double> 
         critic_loss(cost_critics_[i], batch, cost_targets_.col(static_cast<Eigen::Index>(i)), gradient_);
     stats.cost_q_means[i] = critic_workspace_.outputs.mean();
     mpi.average_in_place(gradient_);
+    clip_gradient_norm(gradient_, options_.max_grad_norm);
     cost_critic_adams_[i].step(cost_critics_[i].mutable_parameters(), gradient_);
   }
   // 3. actor, temperature and targets every policy_delay critic steps
@@ -362,6 +372,7 @@ void OffPolicyLearner::update(const ReplayBatch& batch, std::span<const double> 
     stats.actor_loss = actor_loss(batch, noise_, lambdas, actor_gradient_, &log_prob_mean);
     stats.log_prob_mean = log_prob_mean;
     mpi.average_in_place(actor_gradient_);
+    clip_gradient_norm(actor_gradient_, options_.max_grad_norm);
     actor_adam_.step(actor_.mutable_parameters(), actor_gradient_);
     if (squashed && options_.auto_alpha) {
       double alpha_gradient = 0.0;

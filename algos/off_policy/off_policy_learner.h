@@ -16,7 +16,9 @@
 //   alpha    L_alpha = -log alpha mean(log pi(a|s) + target entropy)   [SAC with auto_alpha]
 //   targets  theta' <- (1 - tau) theta' + tau theta (polyak.h)
 // Every gradient is averaged over the MPI ranks before its Adam step, so ranks that start equal stay
-// equal. The derivative of a critic with respect to its action input (dQ/da) is Mlp::input_gradient_batch.
+// equal; with max_grad_norm > 0 the averaged gradients of each step are then rescaled to at most
+// that norm as OmniSafe does (the twin reward critics together, as its one module holding both;
+// each cost critic; the actor). The derivative of a critic with respect to its action input (dQ/da) is Mlp::input_gradient_batch.
 //
 // Batches are sized by the first update; later updates of that size allocate nothing.
 #pragma once
@@ -58,6 +60,7 @@ struct OffPolicyOptions {
   bool auto_alpha = false;
   double alpha_lr = 3e-4;
   double target_entropy = -1.0;    // -|A|
+  double max_grad_norm = 0.0;      // 0: gradients are not rescaled
   std::vector<int> hidden_sizes{64, 64};
   MlpOptions mlp{};
 
@@ -178,7 +181,9 @@ class OffPolicyLearner {
   SquashedGaussianSample sample_;
   Eigen::VectorXd reward_targets_;
   Eigen::MatrixXd cost_targets_;
-  Eigen::VectorXd gradient_;          // one network's parameter gradient
+  Eigen::VectorXd gradient_;          // one cost critic's parameter gradient
+  std::vector<Eigen::VectorXd> reward_gradients_;  // the reward critics' parameter gradients
+  std::vector<Eigen::VectorXd*> reward_gradient_views_;
   Eigen::VectorXd actor_gradient_;
 };
 

@@ -184,6 +184,12 @@ TEST(ShippedConfigs, EveryRunFileResolves) {
     RunConfigRequest request;
     request.configs_dir = kShippedConfigs;
     request.run_file = file.path();
+    // bsg train accepts every registered id: the environment files' and the fork's (<name>-fork,
+    // docs/environments.md), whose run files set the environment keys themselves.
+    request.valid_env_ids = list_config_env_ids(kShippedConfigs);
+    for (const std::string& id : list_config_env_ids(kShippedConfigs)) {
+      request.valid_env_ids.push_back(id.substr(0, id.size() - 3) + "-fork");  // "-v0" -> "-fork"
+    }
     EXPECT_NO_THROW(resolve_run_config(request));
     ++count;
   }

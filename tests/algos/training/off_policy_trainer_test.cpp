@@ -18,6 +18,7 @@
 #include "algos/training/progress_csv_fields.h"
 #include "algos/training/run_evaluation.h"
 #include "common/config_error.h"
+#include "common/run_config_checks.h"
 #include "common/run_config_resolve.h"
 
 namespace fs = std::filesystem;
@@ -185,6 +186,47 @@ TEST(OffPolicyTrainer, TakesUpdatesPerStepGradientStepsPerRoundAfterStartSteps) 
   EXPECT_EQ(progress.at("episodes")[0], 4.0);
   EXPECT_EQ(trainer.buffer().total_added(), 400);
   EXPECT_EQ(trainer.buffer().size(), 300);
+}
+
+TEST(OffPolicyTrainer, EpochsShorterThanAnEpisodeCarryItsEpisodesOn) {
+  // 10 steps per environment per epoch, episodes of 40: they end in epoch 3; the checkpoint after
+  // epoch 4 cuts the next ones, which restart in epoch 5 and end after the run (epoch 8).
+  TemporaryDirectory dir;
+  bsg::RunConfig config = scripted_config(bsg::Algorithm::sac);
+  config.epochs = 8;
+  config.steps_per_epoch = 20;
+  config.save_freq = 5;
+  config.start_steps = 40;
+  config.update_every = 5;
+  EXPECT_NO_THROW(bsg::check_run_config_for_ranks(config, 1));
+  bsg::algos::OffPolicyTrainer trainer(config, bsg::algos::RunDirectory(dir.path() / "run"),
+                                       bsg::MpiContext::single_process(), {}, scripted_envs(2));
+  ASSERT_TRUE(trainer.run().finished);
+  const auto progress = bsg::testing::read_csv_columns(dir.path() / "run" / "progress.csv");
+  EXPECT_EQ(progress.at("episodes"), (std::vector<double>{0, 0, 0, 2, 0, 0, 0, 0}));
+}
+
+TEST(OffPolicyConfig, RefusesCheckpointsTooCloseForAnEpisodeToEnd) {
+  bsg::RunConfig config = scripted_config(bsg::Algorithm::sac);
+  config.steps_per_epoch = 20;  // 10 steps per environment
+  config.save_freq = 3;         // 30 steps between the checkpoints that cut episodes of 40
+  try {
+    bsg::check_run_config_for_ranks(config, 1);
+    ADD_FAILURE() << "accepted";
+  } catch (const bsg::ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_TRUE(bsg::testing::contains(message, "3 * 20 / (1 * 2) = 30 steps between checkpoints")) << message;
+    EXPECT_TRUE(bsg::testing::contains(message, "max_ep_len = 40")) << message;
+  }
+  config.alg = bsg::Algorithm::trpo;  // the on-policy loop still needs an episode per epoch
+  config.steps_per_epoch = 32;
+  config.num_mini_batches = 1;
+  try {
+    bsg::check_run_config_for_ranks(config, 1);
+    ADD_FAILURE() << "accepted";
+  } catch (const bsg::ConfigError& e) {
+    EXPECT_TRUE(bsg::testing::contains(e.what(), "max_ep_len = 40 exceeds the local steps per rank")) << e.what();
+  }
 }
 
 TEST(OffPolicyConfig, RejectsBadValuesAndKeysOfOtherFamiliesWithOneLine) {

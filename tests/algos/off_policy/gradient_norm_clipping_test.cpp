@@ -1,0 +1,112 @@
+// max_grad_norm (PyTorch's clip_grad_norm_ as OmniSafe applies it): the rescaling on hand-computed
+// vectors, and in the off-policy step the twin reward critics rescaled together and each cost
+// critic alone before their first Adam steps, against the gradients of the public loss pieces and
+// Adam's first-step formula written out here.
+#include "algos/core/gradient_norm_clipping.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "../../common/finite_differences.h"
+#include "algos/off_policy/off_policy_learner.h"
+#include "common/mpi_context.h"
+
+namespace bsg::algos {
+namespace {
+
+using testing::relative_error;
+
+TEST(GradientNormClipping, RescalesToTheLimitOnlyAboveIt) {
+  Eigen::VectorXd g = Eigen::Vector2d(3.0, 4.0);
+  EXPECT_EQ(clip_gradient_norm(g, 10.0), 5.0);
+  EXPECT_EQ(g, Eigen::VectorXd(Eigen::Vector2d(3.0, 4.0)));
+  EXPECT_EQ(clip_gradient_norm(g, 0.0), 5.0);  // 0: never
+  EXPECT_EQ(g, Eigen::VectorXd(Eigen::Vector2d(3.0, 4.0)));
+  EXPECT_EQ(clip_gradient_norm(g, 1.0), 5.0);
+  EXPECT_NEAR(g(0), 0.6, 1e-15);
+  EXPECT_NEAR(g(1), 0.8, 1e-15);
+}
+
+TEST(GradientNormClipping, SeveralVectorsShareOneNorm) {
+  Eigen::VectorXd a = Eigen::VectorXd::Constant(1, 3.0);
+  Eigen::VectorXd b = Eigen::Vector3d(0.0, 4.0, 0.0);
+  Eigen::VectorXd* both[] = {&a, &b};
+  EXPECT_EQ(clip_gradient_norm(both, 2.5), 5.0);
+  EXPECT_NEAR(a(0), 1.5, 1e-15);
+  EXPECT_NEAR(b(1), 2.0, 1e-15);
+  EXPECT_EQ(b(0), 0.0);
+}
+
+constexpr int kObs = 3, kAct = 2, kRows = 9;
+
+Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
+  Eigen::MatrixXd m(rows, cols);
+  for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = uniform(rng, -1.0, 1.0);
+  return m;
+}
+
+// Adam's first step from zero moments: m^ = g, v^ = g^2, so theta -= lr g / (|g| + eps).
+Eigen::VectorXd first_adam_step(const Eigen::VectorXd& gradient, double learning_rate) {
+  return -learning_rate * gradient.array() / (gradient.array().abs() + 1e-8);
+}
+
+TEST(OffPolicyGradientClipping, TwinCriticsTogetherAndEachCostCriticAloneBeforeTheirAdamSteps) {
+  RunConfig config;
+  config.alg = Algorithm::sac_lag;
+  config.hidden_sizes = {6, 5};
+  config.dtype = Dtype::float64;
+  config.critic_lr = 1e-3;
+  // Small enough that every clipped entry is near Adam's epsilon, where the step shows the scale.
+  config.max_grad_norm = 1e-7;
+  Rng init_rng(3);
+  OffPolicyLearner learner(OffPolicyOptions::from_config(config, kAct), kObs, kAct, 1, init_rng);
+  OffPolicyLearner probe = learner;
+  Rng batch_rng(4);
+  ReplayBatch batch;
+  batch.observations = random_matrix(kRows, kObs, batch_rng);
+  batch.actions = random_matrix(kRows, kAct, batch_rng);
+  batch.rewards = random_matrix(kRows, 1, batch_rng);
+  batch.costs = random_matrix(kRows, 1, batch_rng).cwiseAbs();
+  batch.next_observations = random_matrix(kRows, kObs, batch_rng);
+  batch.discounts = Eigen::VectorXd::Constant(kRows, 0.97);
+  batch.terminals = Eigen::VectorXd::Zero(kRows);
+
+  // The unclipped gradients: the step's first draws are eps for a' ~ pi(.|s'), column by column.
+  Rng step_rng(5);
+  Rng noise_rng = step_rng;
+  Eigen::MatrixXd next_noise(kRows, kAct);
+  for (Eigen::Index j = 0; j < kAct; ++j) {
+    for (Eigen::Index i = 0; i < kRows; ++i) next_noise(i, j) = standard_normal(noise_rng);
+  }
+  probe.compute_targets(batch, next_noise);
+  const Eigen::VectorXd reward_targets = probe.reward_targets();
+  const Eigen::VectorXd cost_targets = probe.cost_targets().col(0);
+  std::vector<Eigen::VectorXd> reward_gradients(2);
+  double squared_norm = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    reward_gradients[k].resize(probe.reward_critic(k).num_parameters());
+    probe.critic_loss(probe.reward_critic(k), batch, reward_targets, reward_gradients[k]);
+    squared_norm += reward_gradients[k].squaredNorm();
+  }
+  Eigen::VectorXd cost_gradient(probe.cost_critic(0).num_parameters());
+  probe.critic_loss(probe.cost_critic(0), batch, cost_targets, cost_gradient);
+  const double twin_scale = config.max_grad_norm / std::sqrt(squared_norm);
+  const double cost_scale = config.max_grad_norm / cost_gradient.norm();
+  ASSERT_LT(twin_scale, 1e-3);
+  ASSERT_LT(cost_scale, 1e-3);
+
+  const std::vector<double> lambdas{0.5};
+  learner.update(batch, lambdas, step_rng, MpiContext::single_process());
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::VectorXd moved = learner.reward_critic(k).parameters() - probe.reward_critic(k).parameters();
+    EXPECT_LT(relative_error(moved, first_adam_step(twin_scale * reward_gradients[k], config.critic_lr)), 1e-8)
+        << "reward critic " << k;
+  }
+  const Eigen::VectorXd moved = learner.cost_critic(0).parameters() - probe.cost_critic(0).parameters();
+  EXPECT_LT(relative_error(moved, first_adam_step(cost_scale * cost_gradient, config.critic_lr)), 1e-8);
+}
+
+}  // namespace
+}  // namespace bsg::algos
