@@ -2,6 +2,7 @@
 """Learning curves of a run or of a sweep, in the style of the report's Figure 2.
 
     scripts/plot_curves.py RUN_DIR [--out DIR] [--smooth N]
+    scripts/plot_curves.py RUN_DIR RUN_DIR... --out DIR [--smooth N]
     scripts/plot_curves.py SWEEP_DIR [--out DIR] [--smooth N] [--all-configs]
     scripts/plot_curves.py SWEEP_DIR --ci [--out DIR]
 
@@ -12,6 +13,10 @@ window of --smooth epochs (default 9) drawn over them, and the cost limit d;
 then one summary line: return and cost at the start and at the end of training
 (means over the first and last tenth of the epochs), and the final
 deterministic policy's J and H from evaluation.json.
+
+Several run directories (seeds of one run file, say): one PNG,
+OUT/learning_curves.png, with each run's curves in its own colour, labelled
+by its directory's name, and one summary line per run.
 
 A sweep directory: for each environment, one PNG with two panels, the mean
 episode return and the mean episode cost per epoch (training episodes, as
@@ -64,7 +69,9 @@ RETURN_COLUMNS = ("episode_return_mean", "EpRet/Mean")
 COST_COLUMNS = ("episode_cost_mean", "EpCosts/Mean")
 
 ALGORITHM_LABELS = {"trpo": "TRPO", "lag-trpo": "TRPO-L", "cpo": "CPO", "pdo": "PDO", "pcpo": "PCPO",
-                    "ppo": "PPO", "ppo-lag": "PPO-Lag", "focops": "FOCOPS", "cup": "CUP"}
+                    "ppo": "PPO", "ppo-lag": "PPO-Lag", "focops": "FOCOPS", "cup": "CUP",
+                    "sac": "SAC", "td3": "TD3", "ddpg": "DDPG", "sac-lag": "SAC-Lag", "td3-lag": "TD3-Lag",
+                    "ddpg-lag": "DDPG-Lag"}
 ALGORITHM_ORDER = ["trpo", "lag-trpo", "cpo", "pdo", "pcpo", "ppo", "ppo-lag", "focops", "cup"]
 ALGORITHM_COLORS = {"trpo": "tab:blue", "lag-trpo": "tab:orange", "cpo": "tab:green",
                     "pdo": "tab:red", "pcpo": "tab:purple", "ppo": "tab:gray", "ppo-lag": "tab:brown",
@@ -545,29 +552,51 @@ def start_and_end_means(values):
         return float(np.nanmean(values[:count])), float(np.nanmean(values[-count:])), count
 
 
-def plot_run(run_dir, out_dir, window):
-    """RUN_DIR's learning curve as one PNG; returns (path, summary line)."""
+def run_name(run_dir):
+    return os.path.basename(os.path.normpath(run_dir))
+
+
+def plot_runs(run_dirs, out_dir, window):
+    """The learning curves of RUN_DIRs as one PNG; returns (path, summary lines)."""
+    runs = []
+    for run_dir in run_dirs:
+        progress = os.path.join(run_dir, "progress.csv")
+        epochs, returns, costs = read_progress(progress)
+        if not len(epochs):
+            raise PlotError(f"{progress}: no epoch logged yet")
+        runs.append((run_dir, epochs, returns, costs))
+    env_ids = {read_run_config_value(run_dir, "env_id") or "run" for run_dir in run_dirs}
+    algs = {read_run_config_value(run_dir, "alg") or "" for run_dir in run_dirs}
+    limits = {read_run_config_value(run_dir, "cost_limit") for run_dir in run_dirs}
+    cost_limit = float(next(iter(limits))) if len(limits) == 1 and next(iter(limits)) else None
+    what = ", ".join(sorted(env_label(env_id) for env_id in env_ids))
+    label = ", ".join(sorted(ALGORITHM_LABELS.get(alg, alg) for alg in algs))
+    single = len(runs) == 1
+    title = f"{what}, {label}: {run_name(run_dirs[0])}" if single else f"{what}, {label}: {len(runs)} runs"
+    figure, axes_pair = new_figure(title, cost_limit)
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    smoothing = f" (Hann window of {window} epochs)" if window > 1 else ""
+    for index, (run_dir, epochs, returns, costs) in enumerate(runs):
+        alg = read_run_config_value(run_dir, "alg") or ""
+        color = ALGORITHM_COLORS.get(alg, "tab:blue") if single else colors[index % len(colors)]
+        for axes, values in zip(axes_pair, (returns, costs)):
+            axes.plot(epochs, values, color=color, alpha=0.3, linewidth=1.0)
+        line_label = (label if single else run_name(run_dir)) + smoothing
+        draw_line(axes_pair, epochs, np.array([smooth(returns, window)]), np.array([smooth(costs, window)]),
+                  line_label, color, False)
+    path = os.path.join(out_dir, "learning_curve.png" if single else "learning_curves.png")
+    finish_figure(figure, axes_pair, path)
+    return path, [run_summary(run_dir, epochs, returns, costs) for run_dir, epochs, returns, costs in runs]
+
+
+def run_summary(run_dir, epochs, returns, costs):
+    """One line: the run's return and cost at the start and at the end, its time and evaluation."""
     progress = os.path.join(run_dir, "progress.csv")
-    epochs, returns, costs = read_progress(progress)
-    if not len(epochs):
-        raise PlotError(f"{progress}: no epoch logged yet")
     env_id = read_run_config_value(run_dir, "env_id") or "run"
     alg = read_run_config_value(run_dir, "alg") or ""
     label = ALGORITHM_LABELS.get(alg, alg)
     cost_limit_text = read_run_config_value(run_dir, "cost_limit")
     cost_limit = float(cost_limit_text) if cost_limit_text else None
-    color = ALGORITHM_COLORS.get(alg, "tab:blue")
-
-    figure, axes_pair = new_figure(f"{env_label(env_id)}, {label}: {os.path.basename(os.path.normpath(run_dir))}",
-                                   cost_limit)
-    for axes, values in zip(axes_pair, (returns, costs)):
-        axes.plot(epochs, values, color=color, alpha=0.3, linewidth=1.0)
-    smoothed = f"{label} (Hann window of {window} epochs)" if window > 1 else label
-    draw_line(axes_pair, epochs, np.array([smooth(returns, window)]), np.array([smooth(costs, window)]),
-              smoothed, color, False)
-    path = os.path.join(out_dir, "learning_curve.png")
-    finish_figure(figure, axes_pair, path)
-
     return_start, return_end, count = start_and_end_means(returns)
     cost_start, cost_end, _ = start_and_end_means(costs)
     limit = f" (limit {cost_limit:g})" if cost_limit is not None else ""
@@ -581,12 +610,14 @@ def plot_run(run_dir, out_dir, window):
             evaluation = json.load(file)
         summary += (f"; final policy J {evaluation['mean_return']:.1f}, H {evaluation['mean_cost']:.1f} "
                     f"over {evaluation['episodes']} episodes")
-    return path, summary
+    return summary
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("directory", help="a run directory (bsg train) or a sweep directory (bsg sweep, then bsg table)")
+    parser.add_argument("directories", nargs="+", metavar="directory",
+                        help="a run directory (bsg train), several run directories, or a sweep directory "
+                             "(bsg sweep, then bsg table)")
     parser.add_argument("--out", help="directory for the PNG files (default: RUN_DIR, or SWEEP_DIR/plots)")
     parser.add_argument("--smooth", type=int, help="Hann window in epochs (default: 9 for a run, 1 for a sweep)")
     parser.add_argument("--all-configs", action="store_true",
@@ -598,6 +629,16 @@ def main(argv=None):
     args = parser.parse_args(argv)
     if args.smooth is not None and args.smooth < 1:
         parser.error("--smooth must be at least 1")
+    if len(args.directories) > 1:
+        for directory in args.directories:
+            if not os.path.exists(os.path.join(directory, "progress.csv")):
+                parser.error(f"{directory} is not a run directory (no progress.csv): several directories must "
+                             "all be runs")
+        if not args.out:
+            parser.error("several run directories need --out DIR for their one PNG")
+        if args.all_configs or args.ci:
+            parser.error("--all-configs and --ci apply to a sweep directory, not to run directories")
+    args.directory = args.directories[0]
     is_run = os.path.exists(os.path.join(args.directory, "progress.csv"))
     if is_run and args.all_configs:
         parser.error("--all-configs applies to a sweep directory, not to a run directory")
@@ -612,8 +653,9 @@ def main(argv=None):
             raise PlotError(f"directory {args.directory} does not exist")
         os.makedirs(out_dir, exist_ok=True)
         if is_run:
-            path, summary = plot_run(args.directory, out_dir, window)
-            print(f"summary: {summary}; curves: {path}")
+            path, summaries = plot_runs(args.directories, out_dir, window)
+            for summary in summaries:
+                print(f"summary: {summary}; curves: {path}")
             return 0
         plot = plot_intervals if args.ci else plot_all_configurations if args.all_configs else plot_selected
         written = plot(args.directory, out_dir, window)

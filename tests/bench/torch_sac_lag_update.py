@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The off-policy benchmark's comparison (docs/algorithms.md#off-policy-learners): one SAC-Lag
 gradient step in PyTorch on one thread, with the shapes and the arithmetic of
-bsg_off_policy_update_bench: SafetyBallCircle-v0's 8 observations and 2 actions, batch 256, tanh
-networks of 64, 128 and 256 units, twin reward critics, one cost critic, the squashed Gaussian
+bsg_off_policy_update_bench: SafetyBallCircle-v0's 8 observations and 2 actions, batch 256, ReLU
+networks of 64, 128 and 256 units (FSRL's), twin reward critics, one cost critic, the squashed Gaussian
 actor and the temperature, Adam on each, Polyak targets. Prints milliseconds per step (wall and
 process CPU time). Optional: torch is not a dependency of bsg; where it is missing this prints
 SKIPPED and exits 0.
@@ -29,7 +29,7 @@ OBSERVATIONS, ACTIONS, BATCH = 8, 2, 256
 
 
 def mlp(inputs, hidden, outputs):
-    return nn.Sequential(nn.Linear(inputs, hidden), nn.Tanh(), nn.Linear(hidden, hidden), nn.Tanh(),
+    return nn.Sequential(nn.Linear(inputs, hidden), nn.ReLU(), nn.Linear(hidden, hidden), nn.ReLU(),
                          nn.Linear(hidden, outputs))
 
 

@@ -120,3 +120,32 @@ def test_ci_without_bsg_table_ci_says_what_to_run(tmp_path):
     result = plot(sweep, "--ci")
     assert result.returncode == 1
     assert "curves.csv not found: run 'bsg table" in result.stderr and "--ci' first" in result.stderr
+
+
+def test_several_run_directories_share_one_png_with_a_summary_line_each(tmp_path):
+    first, second = tmp_path / "seed_0", tmp_path / "seed_1"
+    write_run(first, 20)
+    write_run(second, 10)
+    (second / "evaluation.json").unlink()
+    result = plot(first, second, "--out", tmp_path / "png")
+    assert result.returncode == 0, result.stderr
+    path = tmp_path / "png" / "learning_curves.png"
+    # seed_1: 10 epochs, first and last tenth are epochs 0 and 9: return 0 -> 9, cost 20 -> 11, 20 s.
+    assert result.stdout.splitlines() == [
+        "summary: SafetyBallCircle-v0 TRPO-L, 20 epochs in 40 s: return 0.5 -> 18.5, cost 19.5 -> 1.5 (limit 25) "
+        f"(means of the first and last 2 epochs); final policy J 17.2, H 3.5 over 4 episodes; curves: {path}",
+        "summary: SafetyBallCircle-v0 TRPO-L, 10 epochs in 20 s: return 0.0 -> 9.0, cost 20.0 -> 11.0 (limit 25) "
+        f"(means of the first and last 1 epochs); curves: {path}"]
+    assert path.read_bytes()[:8] == PNG_MAGIC
+
+
+def test_several_directories_need_out_and_must_all_be_runs(tmp_path):
+    first, second = tmp_path / "seed_0", tmp_path / "seed_1"
+    write_run(first, 5)
+    write_run(second, 5)
+    result = plot(first, second)
+    assert result.returncode == 2
+    assert "several run directories need --out DIR" in result.stderr
+    result = plot(first, tmp_path, "--out", tmp_path / "png")
+    assert result.returncode == 2
+    assert f"{tmp_path} is not a run directory (no progress.csv)" in result.stderr
