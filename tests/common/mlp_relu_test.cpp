@@ -8,12 +8,14 @@
 
 #include "common/mlp.h"
 #include "finite_differences.h"
+#include "reference_mlp.h"
 
 namespace bsg {
 namespace {
 
 using testing::finite_difference_directional;
 using testing::finite_difference_gradient;
+using testing::reference_forward;
 using testing::relative_error;
 
 constexpr MlpOptions kRelu64{.dtype = Dtype::float64, .activation = Activation::relu};
@@ -22,26 +24,6 @@ Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
   Eigen::MatrixXd m(rows, cols);
   for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = uniform(rng, -2.0, 2.0);
   return m;
-}
-
-// y = W_L relu(... relu(W_1 x + b_1) ...) + b_L with explicit loops over the flat, row-major layout.
-Eigen::VectorXd reference_relu_forward(const std::vector<int>& sizes, const Eigen::VectorXd& theta,
-                                       const Eigen::VectorXd& input) {
-  Eigen::VectorXd x = input;
-  Eigen::Index offset = 0;
-  for (std::size_t layer = 0; layer + 1 < sizes.size(); ++layer) {
-    const int in = sizes[layer];
-    const int out = sizes[layer + 1];
-    Eigen::VectorXd y(out);
-    for (int o = 0; o < out; ++o) {
-      double sum = theta[offset + out * in + o];
-      for (int i = 0; i < in; ++i) sum += theta[offset + o * in + i] * x[i];
-      y[o] = layer + 2 < sizes.size() ? std::max(0.0, sum) : sum;
-    }
-    offset += out * in + out;
-    x = y;
-  }
-  return x;
 }
 
 // Rows of inputs with every hidden pre-activation at least `margin` away from the kink, so that
@@ -77,7 +59,7 @@ TEST(MlpRelu, ForwardMatchesTheLoopForSampleAndBatchInBothDtypes) {
     MlpSampleWorkspace sample_workspace;
     Eigen::VectorXd output(3);
     for (Eigen::Index i = 0; i < inputs.rows(); ++i) {
-      const Eigen::VectorXd expected = reference_relu_forward(sizes, net.parameters(), inputs.row(i).transpose());
+      const Eigen::VectorXd expected = reference_forward(sizes, net.parameters(), inputs.row(i).transpose(), Activation::relu);
       EXPECT_LT(relative_error(outputs.row(i).transpose(), expected), tolerance) << "row " << i;
       net.forward(inputs.row(i).transpose(), output, sample_workspace);
       EXPECT_LT(relative_error(output, expected), 1e-13) << "row " << i;

@@ -8,12 +8,14 @@
 #include <stdexcept>
 
 #include "finite_differences.h"
+#include "reference_mlp.h"
 
 namespace bsg {
 namespace {
 
 using testing::finite_difference_directional;
 using testing::finite_difference_gradient;
+using testing::reference_forward;
 using testing::relative_error;
 
 Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
@@ -23,26 +25,6 @@ Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
 }
 
 Eigen::VectorXd random_vector(Eigen::Index size, Rng& rng) { return random_matrix(size, 1, rng); }
-
-// Forward pass written from docs/algorithms.md#networks with explicit loops over the flat vector.
-Eigen::VectorXd reference_forward(const std::vector<int>& sizes, const Eigen::VectorXd& theta,
-                                  const Eigen::VectorXd& input) {
-  Eigen::VectorXd x = input;
-  Eigen::Index offset = 0;
-  for (std::size_t layer = 0; layer + 1 < sizes.size(); ++layer) {
-    const int in = sizes[layer];
-    const int out = sizes[layer + 1];
-    Eigen::VectorXd y(out);
-    for (int o = 0; o < out; ++o) {
-      double sum = theta[offset + out * in + o];  // b_o after the row-major W
-      for (int i = 0; i < in; ++i) sum += theta[offset + o * in + i] * x[i];
-      y[o] = layer + 2 < sizes.size() ? std::tanh(sum) : sum;
-    }
-    offset += out * in + out;
-    x = y;
-  }
-  return x;
-}
 
 TEST(Mlp, ParameterCountMatchesSpecFormula) {
   Rng rng(1);
