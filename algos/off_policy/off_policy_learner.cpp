@@ -346,7 +346,7 @@ void OffPolicyLearner::update(const ReplayBatch& batch, std::span<const double> 
     if (k == 0) stats.reward_q_mean = critic_workspace_.outputs.mean();
     mpi.average_in_place(reward_gradients_[k]);
   }
-  clip_gradient_norm(reward_gradient_views_, options_.max_grad_norm);
+  if (options_.max_grad_norm > 0.0) clip_gradient_norm(reward_gradient_views_, options_.max_grad_norm);
   for (std::size_t k = 0; k < reward_critics_.size(); ++k) {
     reward_critic_adams_[k].step(reward_critics_[k].mutable_parameters(), reward_gradients_[k]);
   }
@@ -358,7 +358,7 @@ void OffPolicyLearner::update(const ReplayBatch& batch, std::span<const double> 
         critic_loss(cost_critics_[i], batch, cost_targets_.col(static_cast<Eigen::Index>(i)), gradient_);
     stats.cost_q_means[i] = critic_workspace_.outputs.mean();
     mpi.average_in_place(gradient_);
-    clip_gradient_norm(gradient_, options_.max_grad_norm);
+    if (options_.max_grad_norm > 0.0) clip_gradient_norm(gradient_, options_.max_grad_norm);
     cost_critic_adams_[i].step(cost_critics_[i].mutable_parameters(), gradient_);
   }
   // 3. actor, temperature and targets every policy_delay critic steps
@@ -372,7 +372,7 @@ void OffPolicyLearner::update(const ReplayBatch& batch, std::span<const double> 
     stats.actor_loss = actor_loss(batch, noise_, lambdas, actor_gradient_, &log_prob_mean);
     stats.log_prob_mean = log_prob_mean;
     mpi.average_in_place(actor_gradient_);
-    clip_gradient_norm(actor_gradient_, options_.max_grad_norm);
+    if (options_.max_grad_norm > 0.0) clip_gradient_norm(actor_gradient_, options_.max_grad_norm);
     actor_adam_.step(actor_.mutable_parameters(), actor_gradient_);
     if (squashed && options_.auto_alpha) {
       double alpha_gradient = 0.0;

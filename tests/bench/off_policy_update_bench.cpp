@@ -1,16 +1,18 @@
 // Speed of one off-policy gradient step (printed, never asserted): SAC-Lag with one constraint on
 // SafetyBallCircle-v0's shapes (8 observations, 2 actions), batch 256, twin reward critics, one
-// cost critic, the actor and the temperature, for 64 x 64, 128 x 128 and 256 x 256 ReLU networks
-// (the shipped activation) in float32 (the shipped dtype) and float64. Milliseconds per step: wall time and this process's CPU
+// cost critic, the actor and the temperature, for 64 x 64, 128 x 128 and 256 x 256 networks: ReLU
+// (the off-policy learners' shipped activation) and tanh in float32 (the shipped dtype), ReLU in
+// float64. Milliseconds per step: wall time and this process's CPU
 // time (on a machine shared with other jobs the CPU time is the fairer figure).
 //   bsg_off_policy_update_bench [--torch]
-// --torch also runs tests/bench/torch_sac_lag_update.py (the same step in PyTorch on one thread)
+// --torch also runs tests/bench/torch_sac_lag_update.py (the same steps in PyTorch on one thread)
 // with /usr/bin/python3 and prints its lines after these; it says SKIPPED where torch is missing.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "algos/off_policy/off_policy_learner.h"
@@ -43,15 +45,18 @@ bsg::algos::ReplayBatch random_batch(int rows, int observations, int actions, bs
 int main(int argc, char** argv) {
   const bool torch = argc > 1 && std::string(argv[1]) == "--torch";
   constexpr int kObservations = 8, kActions = 2, kBatch = 256;
-  std::printf("off-policy update: SAC-Lag, 1 constraint, ReLU, obs %d, act %d, batch %d (ms per gradient step)\n",
+  std::printf("off-policy update: SAC-Lag, 1 constraint, obs %d, act %d, batch %d (ms per gradient step)\n",
               kObservations, kActions, kBatch);
-  for (const bsg::Dtype dtype : {bsg::Dtype::float32, bsg::Dtype::float64}) {
+  const std::pair<bsg::Dtype, bsg::Activation> kinds[] = {{bsg::Dtype::float32, bsg::Activation::relu},
+                                                          {bsg::Dtype::float32, bsg::Activation::tanh},
+                                                          {bsg::Dtype::float64, bsg::Activation::relu}};
+  for (const auto& [dtype, activation] : kinds) {
     for (const int hidden : {64, 128, 256}) {
       bsg::RunConfig config;
       config.alg = bsg::Algorithm::sac_lag;
       config.hidden_sizes = {hidden, hidden};
       config.dtype = dtype;
-      config.activation = bsg::Activation::relu;
+      config.activation = activation;
       config.max_grad_norm = 0.0;  // FSRL's: no rescaling
       config.auto_alpha = true;
       config.policy_delay = 1;  // actor and temperature at every step, as the PyTorch script
@@ -72,8 +77,8 @@ int main(int argc, char** argv) {
         elapsed = std::chrono::duration<double>(Clock::now() - start).count();
       } while (elapsed < 2.0);
       const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-      std::printf("  bsg %-7s %3d x %-3d  %7.3f ms wall  %7.3f ms cpu  (%d steps)\n", std::string(to_string(dtype)).c_str(),
-                  hidden, hidden, 1e3 * elapsed / steps, 1e3 * cpu / steps, steps);
+      std::printf("  bsg %-7s %-4s %3d x %-3d  %7.3f ms wall  %7.3f ms cpu  (%d steps)\n",
+                  std::string(to_string(dtype)).c_str(), std::string(to_string(activation)).c_str(), hidden, hidden, 1e3 * elapsed / steps, 1e3 * cpu / steps, steps);
       std::fflush(stdout);
     }
   }

@@ -2,7 +2,7 @@
 """The off-policy benchmark's comparison (docs/algorithms.md#off-policy-learners): one SAC-Lag
 gradient step in PyTorch on one thread, with the shapes and the arithmetic of
 bsg_off_policy_update_bench: SafetyBallCircle-v0's 8 observations and 2 actions, batch 256, ReLU
-networks of 64, 128 and 256 units (FSRL's), twin reward critics, one cost critic, the squashed Gaussian
+(FSRL's) and tanh networks of 64, 128 and 256 units, twin reward critics, one cost critic, the squashed Gaussian
 actor and the temperature, Adam on each, Polyak targets. Prints milliseconds per step (wall and
 process CPU time). Optional: torch is not a dependency of bsg; where it is missing this prints
 SKIPPED and exits 0.
@@ -28,16 +28,16 @@ except ImportError:  # torch is an optional comparison
 OBSERVATIONS, ACTIONS, BATCH = 8, 2, 256
 
 
-def mlp(inputs, hidden, outputs):
-    return nn.Sequential(nn.Linear(inputs, hidden), nn.ReLU(), nn.Linear(hidden, hidden), nn.ReLU(),
+def mlp(inputs, hidden, outputs, activation):
+    return nn.Sequential(nn.Linear(inputs, hidden), activation(), nn.Linear(hidden, hidden), activation(),
                          nn.Linear(hidden, outputs))
 
 
 class SacLag:
-    def __init__(self, hidden):
-        self.actor = mlp(OBSERVATIONS, hidden, 2 * ACTIONS)
-        self.critics = [mlp(OBSERVATIONS + ACTIONS, hidden, 1) for _ in range(3)]  # Q1, Q2, Q_C
-        self.targets = [mlp(OBSERVATIONS + ACTIONS, hidden, 1) for _ in range(3)]
+    def __init__(self, hidden, activation):
+        self.actor = mlp(OBSERVATIONS, hidden, 2 * ACTIONS, activation)
+        self.critics = [mlp(OBSERVATIONS + ACTIONS, hidden, 1, activation) for _ in range(3)]  # Q1, Q2, Q_C
+        self.targets = [mlp(OBSERVATIONS + ACTIONS, hidden, 1, activation) for _ in range(3)]
         for target, critic in zip(self.targets, self.critics):
             target.load_state_dict(critic.state_dict())
             for p in target.parameters():
@@ -103,8 +103,9 @@ def main():
     except OSError:
         pass
     print(f"  torch {torch.__version__}, {torch.get_num_threads()} thread, BLAS loaded: {blas}")
-    for hidden in (64, 128, 256):
-        learner = SacLag(hidden)
+    for name, activation, hidden in [(n, a, h) for n, a in (("relu", nn.ReLU), ("tanh", nn.Tanh))
+                                     for h in (64, 128, 256)]:
+        learner = SacLag(hidden, activation)
         batch = (torch.rand(BATCH, OBSERVATIONS) * 2 - 1, torch.rand(BATCH, ACTIONS) * 2 - 1, torch.rand(BATCH),
                  torch.rand(BATCH), torch.rand(BATCH, OBSERVATIONS) * 2 - 1, torch.full((BATCH,), 0.99),
                  torch.zeros(BATCH))
@@ -116,7 +117,7 @@ def main():
                 learner.update(batch)
             steps += 10
         wall, cpu = time.perf_counter() - start, time.process_time() - cpu_start
-        print(f"  torch float32 {hidden:3d} x {hidden:<3d}  {1e3 * wall / steps:7.3f} ms wall  "
+        print(f"  torch float32 {name:<4} {hidden:3d} x {hidden:<3d}  {1e3 * wall / steps:7.3f} ms wall  "
               f"{1e3 * cpu / steps:7.3f} ms cpu  ({steps} steps)", flush=True)
 
 
