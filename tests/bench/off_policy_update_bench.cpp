@@ -2,15 +2,25 @@
 // SafetyBallCircle-v0's shapes (8 observations, 2 actions), batch 256, twin reward critics, one
 // cost critic, the actor and the temperature, for 64 x 64, 128 x 128 and 256 x 256 networks: ReLU
 // (the off-policy learners' shipped activation) and tanh in float32 (the shipped dtype), ReLU in
-// float64. Milliseconds per step: wall time and this process's CPU
-// time (on a machine shared with other jobs the CPU time is the fairer figure).
-//   bsg_off_policy_update_bench [--torch]
-// --torch also runs tests/bench/torch_sac_lag_update.py (the same steps in PyTorch on one thread)
-// with /usr/bin/python3 and prints its lines after these; it says SKIPPED where torch is missing.
+// float64. Milliseconds per step: wall time and this process's CPU time (on a machine shared with
+// other jobs the CPU time is the fairer figure).
+//   bsg_off_policy_update_bench [--torch] [--rounds R]
+// --torch also runs the same steps in PyTorch on one thread (tests/bench/torch_sac_lag_update.py
+// --serve, with /usr/bin/python3; it says SKIPPED where torch is missing). The two sides then
+// alternate in R rounds (default 5) of about a second each per float32 network, and each round's
+// ratio bsg / PyTorch of CPU times is printed with their median: a virtual machine's speed drifts
+// over minutes, so a ratio of two timings taken seconds apart is fairer than one of two taken
+// a minute apart.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,52 +50,210 @@ bsg::algos::ReplayBatch random_batch(int rows, int observations, int actions, bs
   return batch;
 }
 
+struct Timing {
+  double wall_ms = 0.0;
+  double cpu_ms = 0.0;
+  int steps = 0;
+};
+
+class BenchLearner {
+ public:
+  BenchLearner(bsg::Dtype dtype, bsg::Activation activation, int hidden)
+      : rng_(1), learner_(options(dtype, activation, hidden), kObservations, kActions, 1, rng_),
+        batch_(random_batch(kBatch, kObservations, kActions, rng_)) {
+    for (int i = 0; i < 20; ++i) step();  // warm-up
+  }
+  Timing time_steps(double seconds) {
+    int steps = 0;
+    const auto start = Clock::now();
+    const std::clock_t cpu_start = std::clock();
+    double elapsed = 0.0;
+    do {
+      for (int i = 0; i < 10; ++i) step();
+      steps += 10;
+      elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    } while (elapsed < seconds);
+    const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    return {1e3 * elapsed / steps, 1e3 * cpu / steps, steps};
+  }
+
+  static constexpr int kObservations = 8, kActions = 2, kBatch = 256;
+
+ private:
+  static bsg::algos::OffPolicyOptions options(bsg::Dtype dtype, bsg::Activation activation, int hidden) {
+    bsg::RunConfig config;
+    config.alg = bsg::Algorithm::sac_lag;
+    config.hidden_sizes = {hidden, hidden};
+    config.dtype = dtype;
+    config.activation = activation;
+    config.max_grad_norm = 0.0;  // FSRL's: no rescaling
+    config.auto_alpha = true;
+    config.policy_delay = 1;  // actor and temperature at every step, as the PyTorch script
+    return bsg::algos::OffPolicyOptions::from_config(config, kActions);
+  }
+  void step() { learner_.update(batch_, lambdas_, rng_, mpi_); }
+
+  bsg::Rng rng_;
+  bsg::algos::OffPolicyLearner learner_;
+  bsg::algos::ReplayBatch batch_;
+  std::vector<double> lambdas_{0.5};
+  bsg::MpiContext mpi_ = bsg::MpiContext::single_process();
+};
+
+// tests/bench/torch_sac_lag_update.py --serve as a child process: one request line in, one
+// answer line out.
+class TorchServer {
+ public:
+  TorchServer() {
+    int to_child[2], from_child[2];
+    if (pipe(to_child) != 0 || pipe(from_child) != 0) return;
+    pid_ = fork();
+    if (pid_ == 0) {
+      dup2(to_child[0], STDIN_FILENO);
+      dup2(from_child[1], STDOUT_FILENO);
+      close(to_child[0]), close(to_child[1]), close(from_child[0]), close(from_child[1]);
+      const std::string script = std::string(BSG_SOURCE_DIR) + "/tests/bench/torch_sac_lag_update.py";
+      execl("/usr/bin/python3", "python3", script.c_str(), "--serve", static_cast<char*>(nullptr));
+      std::perror("bsg_off_policy_update_bench: cannot run /usr/bin/python3");
+      _exit(127);
+    }
+    close(to_child[0]), close(from_child[1]);
+    if (pid_ < 0) {
+      close(to_child[1]), close(from_child[0]);
+      return;
+    }
+    requests_ = fdopen(to_child[1], "w");
+    answers_ = fdopen(from_child[0], "r");
+    banner_ = read_line().value_or("  torch SKIPPED: tests/bench/torch_sac_lag_update.py printed nothing");
+    available_ = banner_.find("SKIPPED") == std::string::npos;
+  }
+  ~TorchServer() {
+    if (requests_) std::fclose(requests_);  // end of input: the server exits
+    if (answers_) std::fclose(answers_);
+    if (pid_ > 0) waitpid(pid_, nullptr, 0);
+  }
+  TorchServer(const TorchServer&) = delete;
+  TorchServer& operator=(const TorchServer&) = delete;
+
+  bool available() const { return available_; }
+  const std::string& banner() const { return banner_; }
+
+  std::optional<Timing> time_steps(const char* activation, int hidden, double seconds) {
+    std::fprintf(requests_, "%s %d %.3f\n", activation, hidden, seconds);
+    std::fflush(requests_);
+    const std::optional<std::string> line = read_line();
+    Timing timing;
+    if (!line || std::sscanf(line->c_str(), "%lf %lf %d", &timing.wall_ms, &timing.cpu_ms, &timing.steps) != 3) {
+      std::fprintf(stderr, "bsg_off_policy_update_bench: PyTorch answered %s\n",
+                   line ? ("'" + *line + "'").c_str() : "nothing");
+      return std::nullopt;
+    }
+    return timing;
+  }
+
+ private:
+  std::optional<std::string> read_line() {
+    if (!answers_) return std::nullopt;
+    char buffer[512];
+    if (!std::fgets(buffer, sizeof buffer, answers_)) return std::nullopt;
+    std::string line(buffer);
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    return line;
+  }
+
+  pid_t pid_ = -1;
+  FILE* requests_ = nullptr;
+  FILE* answers_ = nullptr;
+  std::string banner_;
+  bool available_ = false;
+};
+
+void print_timing(const char* side, bsg::Dtype dtype, bsg::Activation activation, int hidden, const Timing& t,
+                  const char* suffix = "") {
+  std::printf("  %-5s %-7s %-4s %3d x %-3d  %7.3f ms wall  %7.3f ms cpu  (%d steps)%s\n", side,
+              std::string(to_string(dtype)).c_str(), std::string(to_string(activation)).c_str(), hidden, hidden,
+              t.wall_ms, t.cpu_ms, t.steps, suffix);
+  std::fflush(stdout);
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+int usage_error(const std::string& problem) {
+  std::fprintf(stderr, "bsg_off_policy_update_bench: %s\nusage: bsg_off_policy_update_bench [--torch] [--rounds R]\n",
+               problem.c_str());
+  return 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool torch = argc > 1 && std::string(argv[1]) == "--torch";
-  constexpr int kObservations = 8, kActions = 2, kBatch = 256;
+  bool torch = false;
+  int rounds = 5;
+  for (int i = 1; i < argc; ++i) {
+    const std::string argument = argv[i];
+    if (argument == "--torch") {
+      torch = true;
+    } else if (argument == "--rounds") {
+      if (i + 1 >= argc) return usage_error("--rounds needs a value");
+      char* end = nullptr;
+      const long value = std::strtol(argv[++i], &end, 10);
+      if (*end != '\0' || value < 1 || value > 1000) {
+        return usage_error(std::string("--rounds must be a whole number from 1 to 1000, got '") + argv[i] + "'");
+      }
+      rounds = static_cast<int>(value);
+    } else {
+      return usage_error("unknown argument '" + argument + "'");
+    }
+  }
   std::printf("off-policy update: SAC-Lag, 1 constraint, obs %d, act %d, batch %d (ms per gradient step)\n",
-              kObservations, kActions, kBatch);
+              BenchLearner::kObservations, BenchLearner::kActions, BenchLearner::kBatch);
+  std::optional<TorchServer> server;
+  if (torch) {
+    server.emplace();
+    std::printf("%s\n", server->banner().c_str());
+    if (server->available()) {
+      std::printf("  %d alternating rounds per float32 network; ratio = bsg cpu / torch cpu of the same round\n",
+                  rounds);
+    }
+  }
   const std::pair<bsg::Dtype, bsg::Activation> kinds[] = {{bsg::Dtype::float32, bsg::Activation::relu},
                                                           {bsg::Dtype::float32, bsg::Activation::tanh},
                                                           {bsg::Dtype::float64, bsg::Activation::relu}};
+  bool torch_failed = false;
   for (const auto& [dtype, activation] : kinds) {
     for (const int hidden : {64, 128, 256}) {
-      bsg::RunConfig config;
-      config.alg = bsg::Algorithm::sac_lag;
-      config.hidden_sizes = {hidden, hidden};
-      config.dtype = dtype;
-      config.activation = activation;
-      config.max_grad_norm = 0.0;  // FSRL's: no rescaling
-      config.auto_alpha = true;
-      config.policy_delay = 1;  // actor and temperature at every step, as the PyTorch script
-      bsg::Rng rng(1);
-      bsg::algos::OffPolicyLearner learner(bsg::algos::OffPolicyOptions::from_config(config, kActions), kObservations,
-                                           kActions, 1, rng);
-      const bsg::algos::ReplayBatch batch = random_batch(kBatch, kObservations, kActions, rng);
-      const std::vector<double> lambdas{0.5};
-      const bsg::MpiContext mpi = bsg::MpiContext::single_process();
-      for (int i = 0; i < 20; ++i) learner.update(batch, lambdas, rng, mpi);  // warm-up
-      int steps = 0;
-      const auto start = Clock::now();
-      const std::clock_t cpu_start = std::clock();
-      double elapsed = 0.0;
-      do {
-        for (int i = 0; i < 10; ++i) learner.update(batch, lambdas, rng, mpi);
-        steps += 10;
-        elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-      } while (elapsed < 2.0);
-      const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-      std::printf("  bsg %-7s %-4s %3d x %-3d  %7.3f ms wall  %7.3f ms cpu  (%d steps)\n",
-                  std::string(to_string(dtype)).c_str(), std::string(to_string(activation)).c_str(), hidden, hidden, 1e3 * elapsed / steps, 1e3 * cpu / steps, steps);
-      std::fflush(stdout);
+      BenchLearner learner(dtype, activation, hidden);
+      const bool compare = server && server->available() && !torch_failed && dtype == bsg::Dtype::float32;
+      if (!compare) {
+        print_timing("bsg", dtype, activation, hidden, learner.time_steps(2.0));
+        continue;
+      }
+      const std::string activation_name(to_string(activation));
+      std::vector<double> ratios;
+      for (int round = 0; round < rounds && !torch_failed; ++round) {
+        const Timing ours = learner.time_steps(1.0);
+        const std::optional<Timing> theirs = server->time_steps(activation_name.c_str(), hidden, 1.0);
+        if (!theirs) {
+          torch_failed = true;
+          break;
+        }
+        ratios.push_back(ours.cpu_ms / theirs->cpu_ms);
+        char ratio[64];
+        std::snprintf(ratio, sizeof ratio, "   round %d ratio %.2f", round + 1, ratios.back());
+        print_timing("bsg", dtype, activation, hidden, ours);
+        print_timing("torch", dtype, activation, hidden, *theirs, ratio);
+      }
+      if (!ratios.empty()) {
+        const auto [low, high] = std::minmax_element(ratios.begin(), ratios.end());
+        std::printf("  ratio bsg / torch, float32 %s %d x %d: median %.2f (%.2f to %.2f over %zu rounds)\n",
+                    activation_name.c_str(), hidden, hidden, median(ratios), *low, *high, ratios.size());
+        std::fflush(stdout);
+      }
     }
   }
-  if (torch) {
-    const std::string command = "/usr/bin/python3 " + std::string(BSG_SOURCE_DIR) + "/tests/bench/torch_sac_lag_update.py";
-    std::fflush(stdout);
-    return std::system(command.c_str()) == 0 ? 0 : 1;
-  }
-  return 0;
+  return torch_failed ? 1 : 0;
 }

@@ -7,10 +7,14 @@ actor and the temperature, Adam on each, Polyak targets. Prints milliseconds per
 process CPU time). Optional: torch is not a dependency of bsg; where it is missing this prints
 SKIPPED and exits 0.
 
-Usage: /usr/bin/python3 tests/bench/torch_sac_lag_update.py
+Usage: /usr/bin/python3 tests/bench/torch_sac_lag_update.py [--serve]
+--serve: after the banner line, read requests "ACTIVATION HIDDEN SECONDS" (e.g. "relu 128 1.0") one per
+line on standard input and answer each with one line "WALL_MS CPU_MS STEPS", so that
+bsg_off_policy_update_bench --torch can alternate its own rounds with PyTorch's.
 """
 import math
 import os
+import sys
 import time
 
 # One thread everywhere: Debian's torch calls the system BLAS (OpenBLAS with libopenblas0-pthread),
@@ -92,6 +96,46 @@ class SacLag:
                     pt.mul_(0.995).add_(0.005 * p)
 
 
+ACTIVATIONS = {"relu": nn.ReLU, "tanh": nn.Tanh}
+
+
+def make_learner(name, hidden):
+    learner = SacLag(hidden, ACTIVATIONS[name])
+    batch = (torch.rand(BATCH, OBSERVATIONS) * 2 - 1, torch.rand(BATCH, ACTIONS) * 2 - 1, torch.rand(BATCH),
+             torch.rand(BATCH), torch.rand(BATCH, OBSERVATIONS) * 2 - 1, torch.full((BATCH,), 0.99),
+             torch.zeros(BATCH))
+    for _ in range(20):  # warm-up
+        learner.update(batch)
+    return learner, batch
+
+
+def time_steps(learner, batch, seconds):
+    """(wall ms, process CPU ms, steps) per step over at least `seconds`."""
+    steps, start, cpu_start = 0, time.perf_counter(), time.process_time()
+    while time.perf_counter() - start < seconds:
+        for _ in range(10):
+            learner.update(batch)
+        steps += 10
+    wall, cpu = time.perf_counter() - start, time.process_time() - cpu_start
+    return 1e3 * wall / steps, 1e3 * cpu / steps, steps
+
+
+def serve():
+    learners = {}
+    for line in sys.stdin:
+        fields = line.split()
+        if not fields:
+            continue
+        if len(fields) != 3 or fields[0] not in ACTIVATIONS or not fields[1].isdigit():
+            print(f"error: bad request {line.strip()!r}, expected ACTIVATION HIDDEN SECONDS", flush=True)
+            continue
+        key = (fields[0], int(fields[1]))
+        if key not in learners:
+            learners[key] = make_learner(*key)
+        wall, cpu, steps = time_steps(*learners[key], float(fields[2]))
+        print(f"{wall:.6f} {cpu:.6f} {steps}", flush=True)
+
+
 def main():
     torch.set_num_threads(1)
     torch.manual_seed(1)
@@ -102,23 +146,15 @@ def main():
         blas = "OpenBLAS" if "openblas" in loaded else ("netlib (generic)" if "libblas" in loaded else blas)
     except OSError:
         pass
-    print(f"  torch {torch.__version__}, {torch.get_num_threads()} thread, BLAS loaded: {blas}")
-    for name, activation, hidden in [(n, a, h) for n, a in (("relu", nn.ReLU), ("tanh", nn.Tanh))
-                                     for h in (64, 128, 256)]:
-        learner = SacLag(hidden, activation)
-        batch = (torch.rand(BATCH, OBSERVATIONS) * 2 - 1, torch.rand(BATCH, ACTIONS) * 2 - 1, torch.rand(BATCH),
-                 torch.rand(BATCH), torch.rand(BATCH, OBSERVATIONS) * 2 - 1, torch.full((BATCH,), 0.99),
-                 torch.zeros(BATCH))
-        for _ in range(20):
-            learner.update(batch)
-        steps, start, cpu_start = 0, time.perf_counter(), time.process_time()
-        while time.perf_counter() - start < 2.0:
-            for _ in range(10):
-                learner.update(batch)
-            steps += 10
-        wall, cpu = time.perf_counter() - start, time.process_time() - cpu_start
-        print(f"  torch float32 {name:<4} {hidden:3d} x {hidden:<3d}  {1e3 * wall / steps:7.3f} ms wall  "
-              f"{1e3 * cpu / steps:7.3f} ms cpu  ({steps} steps)", flush=True)
+    print(f"  torch {torch.__version__}, {torch.get_num_threads()} thread, BLAS loaded: {blas}", flush=True)
+    if "--serve" in sys.argv[1:]:
+        serve()
+        return
+    for name in ACTIVATIONS:
+        for hidden in (64, 128, 256):
+            wall, cpu, steps = time_steps(*make_learner(name, hidden), 2.0)
+            print(f"  torch float32 {name:<4} {hidden:3d} x {hidden:<3d}  {wall:7.3f} ms wall  "
+                  f"{cpu:7.3f} ms cpu  ({steps} steps)", flush=True)
 
 
 if __name__ == "__main__":
