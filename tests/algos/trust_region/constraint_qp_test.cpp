@@ -301,7 +301,11 @@ TEST(PcpoProjection, MatchesBruteForceInTheFisherMetric) {
       for (int j = 0; j <= kPoints; ++j) {
         const Eigen::VectorXd z = dvec({-1.5 + 3.0 * i / kPoints, -1.5 + 3.0 * j / kPoints});
         if (((B.transpose() * z + c).array() > 0).any()) continue;
-        const double distance = 0.5 * (z - y).dot(H * (z - y));
+        // Named vectors: GCC 12 misreads Eigen's SSE2 dot of an inline product as reading past a
+        // 16-byte temporary (a false -Warray-bounds in BSG_NATIVE=OFF builds).
+        const Eigen::VectorXd step = z - y;
+        const Eigen::VectorXd curvature = H * step;
+        const double distance = 0.5 * step.dot(curvature);
         if (distance < best) {
           best = distance;
           best_x = z;
