@@ -6,11 +6,13 @@
 // episode cost down towards the limit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <numeric>
 #include <string>
+#include <vector>
 
 #include "../../test_support.h"
 #include "algos/training/trainer.h"
@@ -80,44 +82,82 @@ double mean_over(const std::vector<double>& column, std::size_t first, std::size
          static_cast<double>(last - first);
 }
 
-// 40 epochs of 5000 steps, seed 1, the shipped defaults except PPO-Lag's
-// multiplier step size: at OmniSafe's lambda_lr 0.035 its Adam multiplier
-// moves about 0.035 per epoch and is still rising after 40 epochs (cost about
-// 2.5 d there, measured with the annealed sigma; the 150-epoch figures of
-// docs/algorithms.md use the default),
-// so the test gives it lambda_lr 0.2. The longer runs' figures are in
-// docs/algorithms.md#first-order-updates.
-TEST(FirstOrderLearning, EachAlgorithmLearnsBallCircleOnAShortBudget) {
+// A short learning run: 40 epochs of 5000 steps on SafetyBallCircle-v0, d = 25, the shipped
+// defaults except PPO-Lag's multiplier step size: at OmniSafe's lambda_lr 0.035 its Adam multiplier
+// moves about 0.035 per epoch and is still rising after 40 epochs (cost about 2.5 d there, measured
+// with the annealed sigma; the 150-epoch figures of docs/algorithms.md use the default), so these
+// tests give it lambda_lr 0.2. The longer runs' figures are in docs/algorithms.md#first-order-updates.
+struct ShortRun {
+  double first_return;  // mean episode return of the first 5 epochs
+  double last_return;   // ... of the last 10
+  double last_cost;     // mean episode cost of the last 10 epochs
+};
+
+constexpr int kEpochs = 40;
+constexpr double kCostLimit = 25.0;
+
+ShortRun short_run(const std::string& alg, int seed) {
+  bsg::RunConfigRequest request;
+  request.configs_dir = fs::path(BSG_SOURCE_DIR) / "configs";
+  request.set_arguments = {"env_id=SafetyBallCircle-v0", "alg=" + alg, "seed=" + std::to_string(seed),
+                           "epochs=" + std::to_string(kEpochs), "steps_per_epoch=5000", "eval_episodes=0"};
+  if (alg == "ppo-lag") request.set_arguments.push_back("lambda_lr=0.2");
+  const bsg::RunConfig config = bsg::resolve_run_config(request).config;
+  const TemporaryDirectory directory;
+  bsg::algos::OnPolicyTrainer trainer(config, bsg::algos::RunDirectory(directory.path() / "run"),
+                                      bsg::MpiContext::single_process(), {});
+  EXPECT_TRUE(trainer.run().finished);
+  auto progress = bsg::testing::read_csv_columns(directory.path() / "run" / "progress.csv");
+  const ShortRun run{mean_over(progress["episode_return_mean"], 0, 5),
+                     mean_over(progress["episode_return_mean"], kEpochs - 10, kEpochs),
+                     mean_over(progress["episode_cost_mean"], kEpochs - 10, kEpochs)};
+  std::printf("  %s, seed %d: return %.1f -> %.1f, cost over the last 10 epochs %.1f\n", alg.c_str(), seed,
+              run.first_return, run.last_return, run.last_cost);
+  return run;
+}
+
+double median_of_three(double a, double b, double c) { return std::max(std::min(a, b), std::min(std::max(a, b), c)); }
+
+TEST(FirstOrderLearning, PpoRaisesTheReturnOnBallCircleOnAShortBudget) {
 #if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "four training runs are too slow under the sanitizers; the updates run under them above";
+  GTEST_SKIP() << "training runs are too slow under the sanitizers; the updates run under them above";
 #endif
-  constexpr int kEpochs = 40;
-  constexpr double kCostLimit = 25.0;
-  for (const char* alg : {"ppo", "ppo-lag", "focops", "cup"}) {
-    SCOPED_TRACE(alg);
-    bsg::RunConfigRequest request;
-    request.configs_dir = fs::path(BSG_SOURCE_DIR) / "configs";
-    request.set_arguments = {"env_id=SafetyBallCircle-v0", std::string("alg=") + alg, "seed=1",
-                             "epochs=" + std::to_string(kEpochs), "steps_per_epoch=5000", "eval_episodes=0"};
-    if (std::string(alg) == "ppo-lag") request.set_arguments.push_back("lambda_lr=0.2");
-    const bsg::RunConfig config = bsg::resolve_run_config(request).config;
-    const TemporaryDirectory directory;
-    bsg::algos::OnPolicyTrainer trainer(config, bsg::algos::RunDirectory(directory.path() / "run"),
-                                 bsg::MpiContext::single_process(), {});
-    ASSERT_TRUE(trainer.run().finished);
-    auto progress = bsg::testing::read_csv_columns(directory.path() / "run" / "progress.csv");
-    const std::vector<double>& returns = progress["episode_return_mean"];
-    const std::vector<double>& costs = progress["episode_cost_mean"];
-    const double first_return = mean_over(returns, 0, 5);
-    const double last_return = mean_over(returns, kEpochs - 10, kEpochs);
-    const double last_cost = mean_over(costs, kEpochs - 10, kEpochs);
-    std::printf("  %s: return %.1f -> %.1f, cost over the last 10 epochs %.1f\n", alg, first_return, last_return,
-                last_cost);
-    EXPECT_GT(last_return, first_return + 50.0);
-    if (std::string(alg) != "ppo") {
-      EXPECT_LT(last_cost, 1.5 * kCostLimit);
-    }
-  }
+  const ShortRun run = short_run("ppo", 1);
+  EXPECT_GT(run.last_return, run.first_return + 50.0);
+}
+
+// A constrained algorithm over seeds 1-3: the median run raises the return and keeps the cost
+// under 1.5 d. One 40-epoch run is a single draw: a multiplier still catching up with a late rise
+// of the cost leaves single runs of FOCOPS and CUP at 2-2.5 d on some seeds (FOCOPS seed 3 on an
+// AVX2 and an SSE2 build alike; CUP seed 1 on the SSE2 build, whose rounding makes it another draw,
+// docs/reproducibility.md), while the median of three stayed under 0.8 d on both builds.
+void expect_median_run_learns_within_the_limit(const std::string& alg) {
+  std::vector<ShortRun> runs;
+  for (const int seed : {1, 2, 3}) runs.push_back(short_run(alg, seed));
+  const auto median = [&](auto field) { return median_of_three(field(runs[0]), field(runs[1]), field(runs[2])); };
+  EXPECT_GT(median([](const ShortRun& r) { return r.last_return - r.first_return; }), 50.0);
+  EXPECT_LT(median([](const ShortRun& r) { return r.last_cost; }), 1.5 * kCostLimit);
+}
+
+TEST(FirstOrderLearning, PpoLagLearnsBallCircleWithinTheLimitOnAShortBudget) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "training runs are too slow under the sanitizers; the updates run under them above";
+#endif
+  expect_median_run_learns_within_the_limit("ppo-lag");
+}
+
+TEST(FirstOrderLearning, FocopsLearnsBallCircleWithinTheLimitOnAShortBudget) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "training runs are too slow under the sanitizers; the updates run under them above";
+#endif
+  expect_median_run_learns_within_the_limit("focops");
+}
+
+TEST(FirstOrderLearning, CupLearnsBallCircleWithinTheLimitOnAShortBudget) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "training runs are too slow under the sanitizers; the updates run under them above";
+#endif
+  expect_median_run_learns_within_the_limit("cup");
 }
 
 }  // namespace

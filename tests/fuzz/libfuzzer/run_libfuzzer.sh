@@ -28,9 +28,21 @@ work="$build_dir/libfuzzer"
 mkdir -p "$work"
 launcher=()
 command -v ccache >/dev/null && launcher=(ccache)
-# -march as the project's build (CMakeLists.txt): Eigen's inline allocation
-# must align the same in the clang objects and the libraries.
-flags=(-std=c++20 -g -O1 -march=native -mno-avx512f -DBT_USE_DOUBLE_PRECISION -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
+# The instruction set of the project's build (CMakeLists.txt: BSG_NATIVE, and any -m option of
+# CMAKE_CXX_FLAGS): Eigen's inline allocation must align the same in the clang objects and the
+# libraries, or the fuzzer crashes on its first input.
+if [ ! -f "$build_dir/CMakeCache.txt" ]; then
+  echo "run_libfuzzer.sh: $build_dir is not a configured build directory (no CMakeCache.txt)" >&2
+  exit 2
+fi
+instruction_set=()
+if grep -q '^BSG_NATIVE:BOOL=ON$' "$build_dir/CMakeCache.txt"; then
+  instruction_set=(-march=native -mno-avx512f)
+fi
+for flag in $(sed -n 's/^CMAKE_CXX_FLAGS:STRING=//p' "$build_dir/CMakeCache.txt"); do
+  case "$flag" in -m*) instruction_set+=("$flag") ;; esac
+done
+flags=(-std=c++20 -g -O1 "${instruction_set[@]}" -DBT_USE_DOUBLE_PRECISION -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
        -I"$source_dir" -isystem /usr/include/eigen3 $(mpicxx --showme:compile) $(pkg-config --cflags bullet)
        -DBSG_CONFIGS_DIR="\"$source_dir/configs\"")
 # The readers, instrumented for coverage; the rest comes from the libraries.
