@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -118,6 +119,9 @@ class TorchServer {
       _exit(127);
     }
     close(to_child[0]), close(from_child[1]);
+    // A server that dies mid-run must make the next request fail with a message, not kill the
+    // bench by SIGPIPE.
+    std::signal(SIGPIPE, SIG_IGN);
     if (pid_ < 0) {
       close(to_child[1]), close(from_child[0]);
       return;
