@@ -20,10 +20,9 @@
 #include <utility>
 #include <vector>
 
-#include "algos/training/off_policy_trainer.h"
 #include "algos/training/run_environment.h"
 #include "algos/training/run_directory.h"
-#include "algos/training/trainer.h"
+#include "algos/training/make_trainer.h"
 #include "commands.h"
 #include "common/config_error.h"
 #include "common/mpi_context.h"
@@ -86,10 +85,10 @@ void check_before_training(const RunConfig& config, int num_ranks) {
 
 // The trainer allocates its networks and buffers up front: running out of
 // memory there is reported with what was being allocated and the estimate.
-std::unique_ptr<algos::OnPolicyTrainer> make_trainer(const RunConfig& config, const algos::RunDirectory& directory,
-                                              const MpiContext& mpi, const algos::TrainerOptions& options) {
+std::unique_ptr<algos::Trainer> allocate_trainer(const RunConfig& config, const algos::RunDirectory& directory,
+                                                 const MpiContext& mpi, const algos::TrainerOptions& options) {
   try {
-    return std::make_unique<algos::OnPolicyTrainer>(config, directory, mpi, options);
+    return algos::make_trainer(config, directory, mpi, options);
   } catch (const std::bad_alloc&) {
     const std::unique_ptr<envs::Env> env =
         envs::make(config.env_id, {.physics = config.physics});
@@ -149,10 +148,7 @@ int train(const TrainArguments& args) {
                 << directory->root.string() << std::endl;
       if (configs) std::cout << describe_configs(*configs) << std::endl;
     }
-    // The off-policy learners (SAC, TD3, DDPG and their -lag forms) have a loop of their own.
-    const algos::TrainingOutcome outcome =
-        is_off_policy(config.alg) ? algos::OffPolicyTrainer(config, *directory, mpi, options).run()
-                                  : make_trainer(config, *directory, mpi, options)->run();
+    const algos::TrainingOutcome outcome = allocate_trainer(config, *directory, mpi, options)->run();
     if (mpi.is_root() && !outcome.finished) {
       (outcome.stop_requested ? std::cerr : std::cout)
           << (outcome.stop_requested ? "bsg train: stop signal received: " : "") << "stopped after "

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "algos/training/trainer.h"
+#include "algos/training/make_trainer.h"
 #include "common/config_error.h"
 #include "common/mpi_context.h"
 #include "common/run_config_resolve.h"
@@ -84,9 +84,9 @@ int run_train_benchmark(const TrainBenchArguments& args) {
     std::vector<algos::EpochTimings> epochs;
     algos::TrainerOptions options;
     options.on_epoch_timed = [&epochs](const algos::EpochTimings& timings) { epochs.push_back(timings); };
-    algos::OnPolicyTrainer trainer(config, algos::RunDirectory(directory ? directory->path / "run" : std::filesystem::path()), mpi,
-                            options);
-    trainer.run();
+    algos::make_trainer(config, algos::RunDirectory(directory ? directory->path / "run" : std::filesystem::path()), mpi,
+                        options)
+        ->run();
     if (!mpi.is_root()) return 0;
 
     const double collect = median(column(epochs, &algos::EpochTimings::collect_seconds));

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "../test_support.h"
-#include "algos/training/trainer.h"
+#include "algos/training/on_policy_trainer.h"
 #include "common/mpi_context.h"
 #include "common/run_config_resolve.h"
 

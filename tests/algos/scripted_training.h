@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "../test_support.h"
-#include "algos/training/trainer.h"
+#include "algos/training/on_policy_trainer.h"
 #include "scripted_env.h"
 
 namespace bsg::testing {

@@ -20,7 +20,7 @@
 #include "algos/first_order/first_order_update.h"
 #include "algos/first_order/focops.h"
 #include "algos/first_order/ppo.h"
-#include "algos/training/trainer.h"
+#include "algos/training/on_policy_trainer.h"
 #include "../scripted_env.h"
 
 namespace bsg::algos {

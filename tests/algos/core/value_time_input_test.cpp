@@ -11,7 +11,7 @@
 #include "algos/core/actor_critic.h"
 #include "algos/core/buffer.h"
 #include "algos/training/rollout.h"
-#include "algos/training/trainer.h"
+#include "algos/training/on_policy_trainer.h"
 #include "common/run_config.h"
 #include "../scripted_env.h"
 

@@ -13,7 +13,7 @@
 #include "algos/training/evaluation.h"
 #include "algos/training/evaluation_files.h"
 #include "algos/training/exploration_noise.h"
-#include "algos/training/trainer.h"
+#include "algos/training/on_policy_trainer.h"
 #include "common/random.h"
 #include "common/seeding.h"
 #include "../scripted_env.h"

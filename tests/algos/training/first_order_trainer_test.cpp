@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "../../test_support.h"
-#include "algos/training/trainer.h"
+#include "algos/training/on_policy_trainer.h"
 #include "common/run_config_resolve.h"
 #include "../scripted_env.h"
 

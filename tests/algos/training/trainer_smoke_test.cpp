@@ -20,7 +20,7 @@
 
 #include "../../test_support.h"
 #include "algos/training/progress_csv.h"
-#include "algos/training/trainer.h"
+#include "algos/training/on_policy_trainer.h"
 #include "common/mpi_context.h"
 #include "common/run_config_resolve.h"
 

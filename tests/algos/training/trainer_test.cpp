@@ -11,7 +11,7 @@
 
 #include "../../test_support.h"
 #include "algos/training/make_algorithm.h"
-#include "algos/training/trainer.h"
+#include "algos/training/on_policy_trainer.h"
 #include "algos/training/training_checkpoint.h"
 #include "common/atomic_file.h"
 #include "common/build_identity.h"

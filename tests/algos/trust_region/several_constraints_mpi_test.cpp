@@ -11,7 +11,7 @@
 #include "../algorithm_test_support.h"
 #include "algos/training/epoch_log.h"
 #include "algos/trust_region/trust_region_steps.h"
-#include "algos/training/trainer.h"
+#include "algos/training/on_policy_trainer.h"
 #include "common/mpi_context.h"
 
 namespace bsg::algos {

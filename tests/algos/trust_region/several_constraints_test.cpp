@@ -19,7 +19,7 @@
 #include "algos/core/constraint_costs.h"
 #include "algos/trust_region/lag_trpo.h"
 #include "algos/lagrange/constraint_multipliers.h"
-#include "algos/training/trainer.h"
+#include "algos/training/on_policy_trainer.h"
 #include "common/config_error.h"
 
 namespace bsg::algos {
