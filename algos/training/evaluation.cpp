@@ -9,40 +9,32 @@
 
 namespace bsg::algos {
 
-std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, const ActorCritic& actor_critic,
-                                                       int num_episodes, std::uint64_t env_seed, int max_ep_len,
+std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, ActingPolicy& policy, int num_episodes,
+                                                       std::uint64_t env_seed, int max_ep_len,
                                                        const StepCostSelector& costs, std::size_t term_count,
-                                                       Rng* action_noise) {
+                                                       ActionMode mode, Rng& noise) {
   Eigen::VectorXd step_costs(costs.count());
-  const Eigen::Index observation_size = actor_critic.observation_size();
-  Eigen::VectorXd raw(observation_size);
-  Eigen::VectorXd normalized(observation_size);
-  Eigen::VectorXd action(actor_critic.action_size());
-  MlpSampleWorkspace workspace;
-  const std::span<const double> action_view(action.data(), static_cast<std::size_t>(action.size()));
-  const auto copy = [&](std::span<const double> observation) {
-    if (static_cast<Eigen::Index>(observation.size()) != observation_size) {
+  const int observation_size = policy.observation_size();
+  std::vector<double> action(static_cast<std::size_t>(policy.action_size()));
+  std::span<const double> observation;
+  const auto check = [&](std::span<const double> given) {
+    if (static_cast<int>(given.size()) != observation_size) {
       throw std::runtime_error("evaluation: the environment returned an observation of size " +
-                               std::to_string(observation.size()) + ", expected " + std::to_string(observation_size));
+                               std::to_string(given.size()) + ", expected " + std::to_string(observation_size));
     }
-    raw = Eigen::Map<const Eigen::VectorXd>(observation.data(), observation_size);
+    return given;
   };
 
   std::vector<EvaluationEpisode> episodes;
   episodes.reserve(static_cast<std::size_t>(std::max(0, num_episodes)));
   for (int episode = 0; episode < num_episodes; ++episode) {
-    copy(episode == 0 ? env.reset(env_seed) : env.reset());
+    observation = check(episode == 0 ? env.reset(env_seed) : env.reset());
     EvaluationEpisode result;
     result.constraint_costs.assign(static_cast<std::size_t>(costs.count()), 0.0);
     result.term_costs.assign(term_count, 0.0);
     while (true) {
-      actor_critic.normalize_observation(raw, normalized);
-      if (action_noise == nullptr) {
-        actor_critic.policy.mean_action(normalized, action, workspace);  // a = mu_theta(s_hat)
-      } else {
-        actor_critic.policy.sample_action(normalized, action, *action_noise, workspace);  // a = mu + sigma eps
-      }
-      const envs::StepResult step = env.step(action_view);
+      policy.act(observation, mode, noise, action);
+      const envs::StepResult step = env.step(action);
       result.episode_return += step.reward;
       result.episode_cost += step.cost;
       costs.select(step, step_costs);
@@ -56,17 +48,16 @@ std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, const Act
       }
       ++result.episode_length;
       if (step.terminated || step.truncated || result.episode_length >= max_ep_len) break;
-      copy(step.observation);
+      observation = check(step.observation);
     }
     episodes.push_back(result);
   }
   return episodes;
 }
 
-EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_critic, int total_episodes,
-                                  std::int64_t run_seed, int max_ep_len, const MpiContext& mpi,
-                                  const StepCostSelector& costs, const std::vector<std::string>& term_names,
-                                  EvaluationActions actions) {
+EvaluationSummary evaluate_policy(envs::Env& env, ActingPolicy& policy, int total_episodes, std::int64_t run_seed,
+                                  int max_ep_len, const MpiContext& mpi, const StepCostSelector& costs,
+                                  const std::vector<std::string>& term_names, ActionMode mode) {
   if (total_episodes < 0) {
     throw std::invalid_argument("evaluation: the number of episodes must be >= 0, got " +
                                 std::to_string(total_episodes));
@@ -76,10 +67,8 @@ EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_criti
                                              static_cast<std::uint64_t>(mpi.rank()));
   Rng action_noise(derive_seed(static_cast<std::uint64_t>(run_seed), SeedStream::evaluation_action_noise,
                                static_cast<std::uint64_t>(mpi.rank())));
-  const bool sampled = actions == EvaluationActions::sampled;
-  const std::vector<EvaluationEpisode> local =
-      run_evaluation_episodes(env, actor_critic, local_episodes, env_seed, max_ep_len, costs, term_names.size(),
-                              sampled ? &action_noise : nullptr);
+  const std::vector<EvaluationEpisode> local = run_evaluation_episodes(
+      env, policy, local_episodes, env_seed, max_ep_len, costs, term_names.size(), mode, action_noise);
 
   // Per episode: J, H, length, then H_1..H_m, then the k term sums.
   const std::size_t m = static_cast<std::size_t>(costs.count());
@@ -105,7 +94,6 @@ EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_criti
                                                     gathered.begin() + static_cast<std::ptrdiff_t>(i + stride))});
   }
   summary.term_names = term_names;
-  summary.action_std = sampled ? actor_critic.policy.std() : 0.0;
   summary.mean_term_costs.assign(k, summary.episodes.empty() ? std::nan("") : 0.0);
   for (const EvaluationEpisode& e : summary.episodes) {
     for (std::size_t j = 0; j < k; ++j) summary.mean_term_costs[j] += e.term_costs[j];

@@ -1,21 +1,21 @@
-// Evaluation after training (docs/reproducing.md#evaluation): by default the deterministic
-// mean action mu_theta(s_hat) without noise (the original's); with EvaluationActions::sampled
-// a = mu_theta(s_hat) + sigma eps at the policy's current sigma, eps from a stream of its own
-// (derive_seed(run seed, evaluation_action_noise, rank)). Observations are normalised with
-// the frozen statistics, each episode runs until the environment terminates or truncates
-// (or max_ep_len steps). J and H are the undiscounted raw sums of reward and cost per episode.
+// Evaluation (docs/reproducing.md#evaluation) of any family's acting policy (algos/core/
+// acting_policy.h): by default its mean action (the on-policy mu_theta(s_hat), the off-policy
+// actor's tanh(mu(s)): the original's evaluation); with ActionMode::sampled the actions it explores
+// with, drawn from a stream of their own (derive_seed(run seed, evaluation_action_noise, rank)).
+// Each episode runs until the environment terminates or truncates (or max_ep_len steps). J and H
+// are the undiscounted raw sums of reward and cost per episode, H_i each constraint's.
 //
-// With R ranks, each rank runs floor(episodes / R) episodes on its own
-// environment, seeded with derive_seed(run seed, evaluation_environment,
-// rank) once and then reset from its own stream; rank 0 gathers them in rank
-// order.
+// With R ranks, each rank runs floor(episodes / R) episodes on its own environment, seeded with
+// derive_seed(run seed, evaluation_environment, rank) once and then reset from its own stream;
+// rank 0 gathers them in rank order. The training's final evaluation, `bsg eval` and
+// `bsg collect`'s policies all act through this one loop.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "algos/core/actor_critic.h"
+#include "algos/core/acting_policy.h"
 #include "algos/core/constraint_costs.h"
 #include "algos/training/evaluation_actions.h"
 #include "common/mpi_context.h"
@@ -40,24 +40,24 @@ struct EvaluationSummary {
   std::vector<double> mean_constraint_costs{};  // H_i, one per constraint (NaN without episodes)
   std::vector<std::string> term_names{};        // the environment's cost terms, when asked for
   std::vector<double> mean_term_costs{};        // each term's mean episode sum
-  double action_std = 0.0;                      // sigma of sampled actions (the policy's std()); 0 = mean actions
+  double action_std = 0.0;                      // sigma of sampled Gaussian actions; 0 = mean actions
 };
 
 // The episodes of this rank.
 // `costs` gives each episode's constraint costs (default: the one constraint on the environment's cost);
 // with term_count > 0 every episode also sums each of the environment's term_count cost terms;
-// with `action_noise` the actions are sampled from the policy with that stream, else the mean.
-std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, const ActorCritic& actor_critic,
-                                                       int num_episodes, std::uint64_t env_seed, int max_ep_len,
-                                                       const StepCostSelector& costs = StepCostSelector(),
-                                                       std::size_t term_count = 0, Rng* action_noise = nullptr);
+// sampled actions draw from `noise`.
+std::vector<EvaluationEpisode> run_evaluation_episodes(envs::Env& env, ActingPolicy& policy, int num_episodes,
+                                                       std::uint64_t env_seed, int max_ep_len,
+                                                       const StepCostSelector& costs, std::size_t term_count,
+                                                       ActionMode mode, Rng& noise);
 
 // floor(total_episodes / R) episodes per rank, gathered to rank 0 (others get
-// an empty summary). Collective.
-EvaluationSummary evaluate_policy(envs::Env& env, const ActorCritic& actor_critic, int total_episodes,
-                                  std::int64_t run_seed, int max_ep_len, const MpiContext& mpi,
+// an empty summary). Collective. The summary's action_std is the caller's to set.
+EvaluationSummary evaluate_policy(envs::Env& env, ActingPolicy& policy, int total_episodes, std::int64_t run_seed,
+                                  int max_ep_len, const MpiContext& mpi,
                                   const StepCostSelector& costs = StepCostSelector(),
                                   const std::vector<std::string>& term_names = {},
-                                  EvaluationActions actions = EvaluationActions::mean);
+                                  ActionMode mode = ActionMode::mean);
 
 }  // namespace bsg::algos

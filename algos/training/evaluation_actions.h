@@ -1,9 +1,12 @@
-// How the evaluation acts (docs/reproducing.md#evaluation): with the policy's
-// mean, as the report does, or sampling a = mu + sigma eps (sampled_evaluation).
+// How the evaluation acts (docs/reproducing.md#evaluation): with the policy's mean, as the report
+// does, or sampling the actions it explores with (sampled_evaluation). The acting policy's own
+// choice (algos/core/acting_policy.h), named as the configs name it.
 #pragma once
+
+#include "algos/core/acting_policy.h"
 
 namespace bsg::algos {
 
-enum class EvaluationActions { mean, sampled };
+using EvaluationActions = ActionMode;
 
 }  // namespace bsg::algos

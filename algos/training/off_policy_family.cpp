@@ -7,7 +7,8 @@
 
 #include "algos/core/epoch_statistics.h"
 #include "algos/training/off_policy_checkpoint.h"
-#include "algos/training/off_policy_evaluation.h"
+#include "algos/off_policy/off_policy_acting.h"
+#include "algos/training/evaluation.h"
 #include "common/checkpoint_file.h"
 #include "common/run_config_checks.h"
 #include "common/seeding.h"
@@ -256,10 +257,13 @@ std::vector<NamedScalar> OffPolicyFamily::progress_row(const EpochAccounts& acco
   return make_off_policy_log_row(log_layout_, inputs, mpi_);
 }
 
-// Deterministic evaluation: floor(eval_episodes / R) episodes per rank of a = tanh(mu(s)).
+// Deterministic evaluation (evaluation.h): floor(eval_episodes / R) episodes per rank of a = tanh(mu(s)).
+// The term names label evaluation.json's per-term costs.
 EvaluationSummary OffPolicyFamily::evaluate(int /*epochs_completed: the actor acts without noise*/) {
-  return evaluate_off_policy(collector_.env(0), *learner_, config_.eval_episodes, config_.seed, config_.max_ep_len,
-                             mpi_, collector_.cost_selector());
+  OffPolicyActing acting(*learner_);
+  envs::Env& env = collector_.env(0);
+  return evaluate_policy(env, acting, config_.eval_episodes, config_.seed, config_.max_ep_len, mpi_,
+                         collector_.cost_selector(), env.spec().cost_term_names, ActionMode::mean);
 }
 
 }  // namespace bsg::algos

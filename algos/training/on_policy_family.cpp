@@ -5,6 +5,7 @@
 #include <ctime>
 #include <stdexcept>
 
+#include "algos/core/actor_critic_acting.h"
 #include "algos/core/advantage_normalization.h"
 #include "algos/core/constraint_costs.h"
 #include "algos/core/epoch_statistics.h"
@@ -279,8 +280,12 @@ std::vector<NamedScalar> OnPolicyFamily::progress_row(const EpochAccounts& accou
 // not set it). The term names label evaluation.json's per-term costs.
 EvaluationSummary OnPolicyFamily::evaluate(int epochs_completed) {
   if (config_.sampled_evaluation) set_last_epoch_std(config_, epochs_completed, actor_critic_->policy);
-  return evaluate_policy(*env_, *actor_critic_, config_.eval_episodes, config_.seed, config_.max_ep_len, mpi_,
-                         collector_.cost_selector(), env_->spec().cost_term_names, evaluation_actions(config_));
+  ActorCriticActing acting(*actor_critic_);
+  const ActionMode mode = evaluation_actions(config_);
+  EvaluationSummary summary = evaluate_policy(*env_, acting, config_.eval_episodes, config_.seed, config_.max_ep_len,
+                                              mpi_, collector_.cost_selector(), env_->spec().cost_term_names, mode);
+  summary.action_std = mode == ActionMode::sampled ? actor_critic_->policy.std() : 0.0;
+  return summary;
 }
 
 }  // namespace bsg::algos

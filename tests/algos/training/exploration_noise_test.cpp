@@ -13,6 +13,7 @@
 #include "algos/training/evaluation.h"
 #include "algos/training/evaluation_files.h"
 #include "algos/training/exploration_noise.h"
+#include "algos/core/actor_critic_acting.h"
 #include "algos/training/on_policy_trainer.h"
 #include "common/random.h"
 #include "common/seeding.h"
@@ -109,18 +110,19 @@ TEST(SampledEvaluation, ActionsAreSigmaTimesTheEvaluationStreamsNormalsAroundAZe
   ac.policy.set_std(0.3);
   const std::int64_t seed = 11;
 
+  bsg::algos::ActorCriticActing acting(ac);
   ActionRecordingEnv mean_env(100);
   const bsg::algos::EvaluationSummary mean =
-      bsg::algos::evaluate_policy(mean_env, ac, 2, seed, 100, bsg::MpiContext::single_process());
+      bsg::algos::evaluate_policy(mean_env, acting, 2, seed, 100, bsg::MpiContext::single_process());
   ASSERT_EQ(mean_env.actions.size(), 400u);  // 2 episodes x 100 steps x 2 dimensions
   for (double a : mean_env.actions) ASSERT_EQ(a, 0.0);
   EXPECT_EQ(mean.action_std, 0.0);
   EXPECT_EQ(bsg::algos::evaluation_json(mean, false).find("action_std"), std::string::npos);
 
   ActionRecordingEnv sampled_env(100);
-  const bsg::algos::EvaluationSummary sampled = bsg::algos::evaluate_policy(sampled_env, ac, 2, seed, 100,
-                                                              bsg::MpiContext::single_process(), {}, {},
-                                                              bsg::algos::EvaluationActions::sampled);
+  bsg::algos::EvaluationSummary sampled = bsg::algos::evaluate_policy(sampled_env, acting, 2, seed, 100,
+                                                                        bsg::MpiContext::single_process(), {}, {},
+                                                                        bsg::algos::EvaluationActions::sampled);
   ASSERT_EQ(sampled_env.actions.size(), 400u);
   bsg::Rng expected_noise(bsg::derive_seed(static_cast<std::uint64_t>(seed), bsg::SeedStream::evaluation_action_noise, 0));
   double sum_of_squares = 0.0;
@@ -130,7 +132,8 @@ TEST(SampledEvaluation, ActionsAreSigmaTimesTheEvaluationStreamsNormalsAroundAZe
   }
   // 400 draws of N(0, 0.3^2): the sample RMS lies within 0.3 (1 +- 0.15) with overwhelming probability.
   EXPECT_NEAR(std::sqrt(sum_of_squares / 400.0), 0.3, 0.045);
-  EXPECT_EQ(sampled.action_std, 0.3);
+  EXPECT_EQ(sampled.action_std, 0.0);  // the acting policy's sigma is the caller's to report (on_policy_family.cpp)
+  sampled.action_std = ac.policy.std();
   EXPECT_NE(bsg::algos::evaluation_json(sampled, false).find("\"action_std\": 0.3"), std::string::npos)
       << bsg::algos::evaluation_json(sampled, false);
   // The scripted reward ignores actions, so J is the same either way; the environment stream too.

@@ -165,6 +165,11 @@ TEST(OffPolicyTrainer, EvaluatingTheRunDirectoryRepeatsTheFinalEvaluation) {
   EXPECT_EQ(again.summary.mean_cost, outcome.evaluation->mean_cost);
   const std::string json = bsg::testing::read_text_file(run.evaluation());
   EXPECT_TRUE(bsg::testing::contains(json, "\"mean_return\": " + bsg::algos::format_csv_number(again.summary.mean_return)));
+  // The final evaluation sums the environment's cost terms, as an on-policy run's does: BallCircle's
+  // one term is its cost, so its mean is H.
+  ASSERT_EQ(outcome.evaluation->term_names, (std::vector<std::string>{"cost_outside_bounds"}));
+  EXPECT_EQ(outcome.evaluation->mean_term_costs.at(0), outcome.evaluation->mean_cost);
+  EXPECT_TRUE(bsg::testing::contains(json, "\"cost_terms\": {\"cost_outside_bounds\": "));
 }
 
 TEST(OffPolicyTrainer, TakesUpdatesPerStepGradientStepsPerRoundAfterStartSteps) {
