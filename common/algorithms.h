@@ -2,8 +2,8 @@
 // spelling in configs, the label in tables, the family of update and what the
 // algorithm constrains. One row per algorithm: the run configuration's schema
 // (which keys apply to which algorithms), the run checks and the experiments'
-// tables read this table, so adding an algorithm is one row here plus its
-// update in algos/ (docs/architecture.md#adding-things).
+// tables and plots read this table, so adding an algorithm is one value and one row here
+// plus its update in algos/ (docs/architecture.md#adding-things).
 #pragma once
 
 #include <array>
@@ -15,14 +15,19 @@ namespace bsg {
 // The five trust-region algorithms spelled in configs as the original code
 // spells them (plus "pcpo", which the original lacks), then the first-order
 // baselines spelled as OmniSafe spells them (docs/algorithms.md#first-order-updates), then the
-// off-policy learners with a replay buffer (docs/algorithms.md#off-policy-learners).
-enum class Algorithm { trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag };
+// off-policy learners with a replay buffer (docs/algorithms.md#off-policy-learners), then
+// later additions. New values go last: the order of the value list in messages
+// (`trpo | lag-trpo | ...`) and of the key table's algorithm column follows the enum.
+enum class Algorithm { trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag, crpo };
 
 // Which update the policy takes: the natural-gradient step with a line search
 // (algos/trust_region), minibatch Adam passes (algos/first_order), or gradient
 // steps on batches from a replay buffer with critics of Q (algos/off_policy).
 enum class AlgorithmFamily { trust_region, first_order, off_policy };
 
+// Everything outside the algorithm's own files needs to know of it: the run checks, the
+// key table's families, Table 1's labels and PID columns, and the plots (`bsg table`
+// writes this table as algorithms.csv beside table1.csv; scripts/plot_curves.py reads it).
 struct AlgorithmInfo {
   Algorithm alg;
   std::string_view name;       // in configs and on the command line: "lag-trpo"
@@ -32,28 +37,30 @@ struct AlgorithmInfo {
   bool constrained;            // false: maximises the return alone, its cost only judges it
   bool lagrange_multiplier;    // keeps multipliers (lambda_lr, lambda_optimizer, pid_*)
   bool clipped_surrogate;      // PPO's clipped ratio (the clip key)
+  std::string_view plot_colour;  // a Matplotlib colour name for its curves
 };
 
-inline constexpr std::array<AlgorithmInfo, 15> kAlgorithms = {{
-    // alg                 name        label      pid_label     family                        constr lagr  clip
-    {Algorithm::trpo,     "trpo",     "TRPO",    "",           AlgorithmFamily::trust_region, false, false, false},
-    {Algorithm::lag_trpo, "lag-trpo", "TRPO-L",  "TRPO-PID",   AlgorithmFamily::trust_region, true,  true,  false},
-    {Algorithm::cpo,      "cpo",      "CPO",     "",           AlgorithmFamily::trust_region, true,  false, false},
-    {Algorithm::pdo,      "pdo",      "PDO",     "PDO-PID",    AlgorithmFamily::trust_region, true,  true,  false},
-    {Algorithm::pcpo,     "pcpo",     "PCPO",    "",           AlgorithmFamily::trust_region, true,  false, false},
-    {Algorithm::ppo,      "ppo",      "PPO",     "",           AlgorithmFamily::first_order,  false, false, true},
+inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
+    // alg                 name        label       pid_label     family                        constr lagr  clip   colour
+    {Algorithm::trpo,     "trpo",     "TRPO",     "",           AlgorithmFamily::trust_region, false, false, false, "tab:blue"},
+    {Algorithm::lag_trpo, "lag-trpo", "TRPO-L",   "TRPO-PID",   AlgorithmFamily::trust_region, true,  true,  false, "tab:orange"},
+    {Algorithm::cpo,      "cpo",      "CPO",      "",           AlgorithmFamily::trust_region, true,  false, false, "tab:green"},
+    {Algorithm::pdo,      "pdo",      "PDO",      "PDO-PID",    AlgorithmFamily::trust_region, true,  true,  false, "tab:red"},
+    {Algorithm::pcpo,     "pcpo",     "PCPO",     "",           AlgorithmFamily::trust_region, true,  false, false, "tab:purple"},
+    {Algorithm::ppo,      "ppo",      "PPO",      "",           AlgorithmFamily::first_order,  false, false, true,  "tab:gray"},
     // CPPO-PID: Stooke, Achiam and Abbeel's name for PPO with the PID multiplier.
-    {Algorithm::ppo_lag,  "ppo-lag",  "PPO-Lag", "CPPO-PID",   AlgorithmFamily::first_order,  true,  true,  true},
-    {Algorithm::focops,   "focops",   "FOCOPS",  "FOCOPS-PID", AlgorithmFamily::first_order,  true,  true,  false},
-    {Algorithm::cup,      "cup",      "CUP",     "CUP-PID",    AlgorithmFamily::first_order,  true,  true,  true},
-    {Algorithm::sac,      "sac",      "SAC",     "",           AlgorithmFamily::off_policy,   false, false, false},
-    {Algorithm::td3,      "td3",      "TD3",     "",           AlgorithmFamily::off_policy,   false, false, false},
-    {Algorithm::ddpg,     "ddpg",     "DDPG",    "",           AlgorithmFamily::off_policy,   false, false, false},
+    {Algorithm::ppo_lag,  "ppo-lag",  "PPO-Lag",  "CPPO-PID",   AlgorithmFamily::first_order,  true,  true,  true,  "tab:brown"},
+    {Algorithm::focops,   "focops",   "FOCOPS",   "FOCOPS-PID", AlgorithmFamily::first_order,  true,  true,  false, "tab:pink"},
+    {Algorithm::cup,      "cup",      "CUP",      "CUP-PID",    AlgorithmFamily::first_order,  true,  true,  true,  "tab:olive"},
+    {Algorithm::sac,      "sac",      "SAC",      "",           AlgorithmFamily::off_policy,   false, false, false, "tab:cyan"},
+    {Algorithm::td3,      "td3",      "TD3",      "",           AlgorithmFamily::off_policy,   false, false, false, "navy"},
+    {Algorithm::ddpg,     "ddpg",     "DDPG",     "",           AlgorithmFamily::off_policy,   false, false, false, "goldenrod"},
     // SAC-PID, TD3-PID, DDPG-PID: OmniSafe's names for the PID multiplier forms.
-    {Algorithm::sac_lag,  "sac-lag",  "SAC-Lag", "SAC-PID",    AlgorithmFamily::off_policy,   true,  true,  false},
-    {Algorithm::td3_lag,  "td3-lag",  "TD3-Lag", "TD3-PID",    AlgorithmFamily::off_policy,   true,  true,  false},
-    {Algorithm::ddpg_lag, "ddpg-lag", "DDPG-Lag", "DDPG-PID",  AlgorithmFamily::off_policy,   true,  true,  false},
-}};
+    {Algorithm::sac_lag,  "sac-lag",  "SAC-Lag",  "SAC-PID",    AlgorithmFamily::off_policy,   true,  true,  false, "teal"},
+    {Algorithm::td3_lag,  "td3-lag",  "TD3-Lag",  "TD3-PID",    AlgorithmFamily::off_policy,   true,  true,  false, "crimson"},
+    {Algorithm::ddpg_lag, "ddpg-lag", "DDPG-Lag", "DDPG-PID",   AlgorithmFamily::off_policy,   true,  true,  false, "darkkhaki"},
+    {Algorithm::crpo,     "crpo",     "CRPO",     "",           AlgorithmFamily::trust_region, true,  false, false, "darkviolet"},
+});
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }
 

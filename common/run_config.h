@@ -129,6 +129,7 @@ struct RunConfig {
   PcpoProjection pcpo_projection = PcpoProjection::kl;
   bool pcpo_line_search = true;
   bool pdo_line_search = true;               // Q14
+  double crpo_tolerance = 2.0;               // CRPO's eta: a cost step once J_C > d + eta
 
   // --- first-order updates (PPO, PPO-Lag, FOCOPS, CUP; docs/algorithms.md#first-order-updates) ---
   double actor_lr = 3e-4;          // Adam step size on the policy

@@ -252,6 +252,8 @@ const std::vector<SchemaRow>& schema_rows() {
             "run the constrained line search on PCPO's step (false: apply it directly)"),
     boolean("pdo_line_search", &R::pdo_line_search, L::algorithm, algorithm_bit(Algorithm::pdo),
             "Q14: run the TRPO line search on PDO's reward loss (original); false: apply step"),
+    real("crpo_tolerance", &R::crpo_tolerance, L::algorithm, N::at_least(0), algorithm_bit(Algorithm::crpo),
+         "CRPO's eta (OmniSafe's distance): the step minimises a constraint's cost once J_C > d + eta"),
     // --- first-order updates (docs/algorithms.md#first-order-updates) ---
     real("actor_lr", &R::actor_lr, L::algorithm, N::above(0), kFirstOrder | kOffPolicy,
          "Adam step size on the policy (first-order and off-policy updates)"),

@@ -54,6 +54,7 @@ import glob
 import json
 import math
 import os
+import re
 import sys
 import warnings
 
@@ -68,14 +69,25 @@ EPOCH_COLUMNS = ("epoch", "Epoch")
 RETURN_COLUMNS = ("episode_return_mean", "EpRet/Mean")
 COST_COLUMNS = ("episode_cost_mean", "EpCosts/Mean")
 
-ALGORITHM_LABELS = {"trpo": "TRPO", "lag-trpo": "TRPO-L", "cpo": "CPO", "pdo": "PDO", "pcpo": "PCPO",
-                    "ppo": "PPO", "ppo-lag": "PPO-Lag", "focops": "FOCOPS", "cup": "CUP",
-                    "sac": "SAC", "td3": "TD3", "ddpg": "DDPG", "sac-lag": "SAC-Lag", "td3-lag": "TD3-Lag",
-                    "ddpg-lag": "DDPG-Lag"}
-ALGORITHM_ORDER = ["trpo", "lag-trpo", "cpo", "pdo", "pcpo", "ppo", "ppo-lag", "focops", "cup"]
-ALGORITHM_COLORS = {"trpo": "tab:blue", "lag-trpo": "tab:orange", "cpo": "tab:green",
-                    "pdo": "tab:red", "pcpo": "tab:purple", "ppo": "tab:gray", "ppo-lag": "tab:brown",
-                    "focops": "tab:pink", "cup": "tab:olive"}
+# The table of algorithms is common/algorithms.h's kAlgorithms, the one source of the program's
+# labels too: each row {Algorithm::x, "name", "label", "pid_label", family, flags..., "colour"},
+# read here by its four string literals in order.
+ALGORITHM_TABLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common", "algorithms.h")
+ALGORITHM_ROW = re.compile(r'\{Algorithm::\w+,\s*"([^"]*)",\s*"([^"]*)",\s*"([^"]*)",[^"{}]*"([^"]*)"\}')
+
+
+def read_algorithm_table(path=ALGORITHM_TABLE):
+    """(labels, order, colours) of the algorithms, from the rows of kAlgorithms in `path`."""
+    with open(path) as file:
+        rows = ALGORITHM_ROW.findall(file.read())
+    if not rows:
+        raise SystemExit(f"plot_curves: no rows of kAlgorithms found in {path}")
+    labels = {name: label for name, label, _pid_label, _colour in rows}
+    colours = {name: colour for name, _label, _pid_label, colour in rows}
+    return labels, [name for name, *_ in rows], colours
+
+
+ALGORITHM_LABELS, ALGORITHM_ORDER, ALGORITHM_COLORS = read_algorithm_table()
 
 
 class PlotError(Exception):
@@ -288,7 +300,8 @@ def column_color(column, columns):
             return ALGORITHM_COLORS[alg]
     # Columns of their own (CPPO-PID, TRPO-PID, "... corrected"): colours no algorithm uses.
     others = [c for c in columns if c not in ALGORITHM_LABELS.values()]
-    extra = ["tab:cyan", "black", "gold", "navy", "lime", "teal", "maroon", "darkviolet"]
+    extra = [c for c in ("black", "gold", "lime", "maroon", "sienna", "deeppink", "slategray", "olivedrab")
+             if c not in ALGORITHM_COLORS.values()]
     return extra[others.index(column) % len(extra)]
 
 

@@ -18,7 +18,7 @@ std::vector<std::string> FirstOrderAlgorithm::diagnostic_names() const {
   for (std::string& name : first_order_diagnostic_names()) names.push_back(std::move(name));
   names.insert(names.end(), own_columns_.begin(), own_columns_.end());
   if (constrained_) {
-    for (std::string& name : multipliers_.diagnostic_names()) names.push_back(std::move(name));
+    multipliers_.append_diagnostic_names(names);
   }
   return names;
 }
@@ -42,8 +42,7 @@ void FirstOrderAlgorithm::restore_state(std::span<const NamedScalar> saved) {
 }
 
 std::vector<double> FirstOrderAlgorithm::update_multipliers(const PolicyUpdateInputs& inputs) {
-  check_mean_episode_cost(inputs, name());
-  return multipliers_.update(constraint_estimates(inputs, config()));
+  return multipliers_.update(inputs, config(), name());
 }
 
 PolicyUpdateResult FirstOrderAlgorithm::make_result(std::vector<NamedScalar> common,

@@ -2,6 +2,7 @@
 
 #include <map>
 #include <stdexcept>
+#include <utility>
 
 #include "algos/core/constraint_costs.h"
 
@@ -35,6 +36,16 @@ std::vector<double> LagrangeMultipliers::update(std::span<const ConstraintEstima
     lambdas.push_back(multipliers_[i].update(constraints[i].mean_episode_cost, constraints[i].limit));
   }
   return lambdas;
+}
+
+std::vector<double> LagrangeMultipliers::update(const PolicyUpdateInputs& inputs, const RunConfig& config,
+                                                std::string_view algorithm) {
+  check_mean_episode_cost(inputs, algorithm);
+  return update(constraint_estimates(inputs, config));
+}
+
+void LagrangeMultipliers::append_diagnostic_names(std::vector<std::string>& names) const {
+  for (std::string& name : diagnostic_names()) names.push_back(std::move(name));
 }
 
 std::vector<std::string> LagrangeMultipliers::diagnostic_names() const {

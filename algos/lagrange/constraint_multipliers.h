@@ -12,6 +12,7 @@
 
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "algos/core/algorithm.h"
@@ -31,8 +32,13 @@ class LagrangeMultipliers {
   // One step of every multiplier on its constraint; returns lambda_1..lambda_m.
   // Throws std::invalid_argument if the number of constraints differs from count().
   std::vector<double> update(std::span<const ConstraintEstimate> constraints);
+  // The epoch's step of a Lagrangian update, before its policy step: checks J_C (naming the
+  // algorithm), reads the constraints of the inputs (constraint_estimates) and steps on them.
+  std::vector<double> update(const PolicyUpdateInputs& inputs, const RunConfig& config, std::string_view algorithm);
 
   std::vector<std::string> diagnostic_names() const;
+  // Appends diagnostic_names() to an algorithm's column names (the multipliers' columns come last).
+  void append_diagnostic_names(std::vector<std::string>& names) const;
   std::vector<NamedScalar> diagnostics() const;
   // Appends diagnostics() to an update's result and, with one constraint,
   // sets its lagrange_multiplier (what the progress line shows).

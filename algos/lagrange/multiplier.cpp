@@ -8,12 +8,6 @@
 namespace bsg::algos {
 namespace {
 
-AdamOptions lambda_adam_options(double learning_rate) {
-  AdamOptions options;
-  options.learning_rate = learning_rate;  // beta (0.9, 0.999), eps 1e-8 as PyTorch's defaults
-  return options;
-}
-
 double checked_initial_value(double initial_value) {
   if (!std::isfinite(initial_value) || initial_value < 0.0) {
     throw std::invalid_argument("LagrangeMultiplier: lagrangian_multiplier_init must be finite and >= 0, got " +
@@ -22,20 +16,21 @@ double checked_initial_value(double initial_value) {
   return std::max(initial_value, 1e-5);  // the original's max(init, 1e-5)
 }
 
+double checked_learning_rate(double learning_rate) {
+  if (!std::isfinite(learning_rate) || !(learning_rate > 0.0)) {
+    throw std::invalid_argument("LagrangeMultiplier: lambda_lr must be positive, got " +
+                                std::to_string(learning_rate));
+  }
+  return learning_rate;
+}
+
 }  // namespace
 
 LagrangeMultiplier::LagrangeMultiplier(double initial_value, LambdaOptimizer optimizer, double learning_rate,
                                        const PidLagrangianOptions& pid)
     : lambda_(checked_initial_value(initial_value)),
       optimizer_(optimizer),
-      learning_rate_(learning_rate),
-      adam_(1, lambda_adam_options(learning_rate)),
-      pid_(lambda_, pid) {
-  if (!std::isfinite(learning_rate) || !(learning_rate > 0.0)) {
-    throw std::invalid_argument("LagrangeMultiplier: lambda_lr must be positive, got " +
-                                std::to_string(learning_rate));
-  }
-}
+      rule_(make_multiplier_rule(optimizer, checked_learning_rate(learning_rate), lambda_, pid)) {}
 
 LagrangeMultiplier::LagrangeMultiplier(const RunConfig& config)
     : LagrangeMultiplier(config.lagrangian_multiplier_init, config.lambda_optimizer, config.lambda_lr,
@@ -43,25 +38,28 @@ LagrangeMultiplier::LagrangeMultiplier(const RunConfig& config)
   upper_bound_ = config.lagrangian_upper_bound;
 }
 
+LagrangeMultiplier::LagrangeMultiplier(const LagrangeMultiplier& other)
+    : lambda_(other.lambda_),
+      optimizer_(other.optimizer_),
+      rule_(other.rule_->clone()),
+      upper_bound_(other.upper_bound_) {}
+
+LagrangeMultiplier& LagrangeMultiplier::operator=(const LagrangeMultiplier& other) {
+  if (this != &other) {
+    lambda_ = other.lambda_;
+    optimizer_ = other.optimizer_;
+    rule_ = other.rule_->clone();
+    upper_bound_ = other.upper_bound_;
+  }
+  return *this;
+}
+
 double LagrangeMultiplier::update(double mean_episode_cost, double cost_limit) {
   if (!std::isfinite(mean_episode_cost)) {
     throw std::invalid_argument("LagrangeMultiplier::update: mean_episode_cost (J_C) is not finite: " +
                                 std::to_string(mean_episode_cost));
   }
-  if (optimizer_ == LambdaOptimizer::pid) {
-    lambda_ = pid_.update(mean_episode_cost, cost_limit).lambda;  // max(0, P + I + D), at most lambda_max
-    if (upper_bound_ > 0.0) lambda_ = std::min(lambda_, upper_bound_);
-    return lambda_;
-  }
-  const double violation = mean_episode_cost - cost_limit;  // J_C - d
-  if (optimizer_ == LambdaOptimizer::sgd) {
-    lambda_ = lambda_ + learning_rate_ * violation;  // lambda - lr * d/dlambda[-lambda (J_C - d)]
-  } else {
-    Eigen::VectorXd parameter = Eigen::VectorXd::Constant(1, lambda_);
-    adam_.step(parameter, Eigen::VectorXd::Constant(1, -violation));  // gradient -(J_C - d)
-    lambda_ = parameter[0];
-  }
-  lambda_ = std::max(lambda_, 0.0);  // projection onto lambda >= 0, after the step
+  lambda_ = rule_->step(lambda_, mean_episode_cost, cost_limit);     // lambda >= 0
   if (upper_bound_ > 0.0) lambda_ = std::min(lambda_, upper_bound_);  // FOCOPS: onto [0, nu_max]
   return lambda_;
 }
@@ -74,24 +72,13 @@ std::vector<std::string> LagrangeMultiplier::diagnostic_names() const {
 
 std::vector<NamedScalar> LagrangeMultiplier::diagnostics() const {
   std::vector<NamedScalar> values = {{"LagrangeMultiplier", lambda_}};
-  if (optimizer_ == LambdaOptimizer::pid) {
-    const PidTerms& terms = pid_.last_terms();
-    values.insert(values.end(),
-                  {{"PID/P", terms.proportional}, {"PID/I", terms.integral}, {"PID/D", terms.derivative}});
-  }
+  for (NamedScalar& entry : rule_->diagnostics()) values.push_back(std::move(entry));
   return values;
 }
 
 std::vector<NamedScalar> LagrangeMultiplier::state() const {
   std::vector<NamedScalar> saved = {{"lagrange_multiplier", lambda_}};
-  if (optimizer_ == LambdaOptimizer::pid) {
-    for (NamedScalar& entry : pid_.state()) saved.push_back(std::move(entry));
-  }
-  if (optimizer_ == LambdaOptimizer::adam) {
-    saved.push_back({"lagrange_multiplier_adam_m", adam_.first_moment()[0]});
-    saved.push_back({"lagrange_multiplier_adam_v", adam_.second_moment()[0]});
-    saved.push_back({"lagrange_multiplier_adam_t", static_cast<double>(adam_.step_count())});
-  }
+  for (NamedScalar& entry : rule_->state()) saved.push_back(std::move(entry));
   return saved;
 }
 
@@ -112,17 +99,8 @@ void LagrangeMultiplier::restore_state(std::span<const NamedScalar> saved) {
     throw std::invalid_argument("LagrangeMultiplier::restore_state: lagrange_multiplier must be finite and >= 0, got " +
                                 std::to_string(saved[0].value));
   }
-  if (optimizer_ == LambdaOptimizer::pid) pid_.restore_state(saved.subspan(1));  // validates before any change
+  rule_->restore_state(saved.subspan(1));  // validates before any change
   lambda_ = saved[0].value;
-  if (optimizer_ == LambdaOptimizer::adam) {
-    const double step_count = saved[3].value;
-    if (!(step_count >= 0.0) || step_count != std::floor(step_count)) {
-      throw std::invalid_argument("LagrangeMultiplier::restore_state: lagrange_multiplier_adam_t must be a "
-                                  "non-negative integer, got " + std::to_string(step_count));
-    }
-    adam_.set_state(Eigen::VectorXd::Constant(1, saved[1].value), Eigen::VectorXd::Constant(1, saved[2].value),
-                    static_cast<long long>(step_count));
-  }
 }
 
 }  // namespace bsg::algos

@@ -18,13 +18,14 @@
 //                   after the update; 0 (every other algorithm): none
 #pragma once
 
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "algos/core/algorithm.h"
+#include "algos/lagrange/multiplier_rule.h"
 #include "algos/lagrange/pid_lagrangian.h"
-#include "common/adam.h"
 #include "common/run_config.h"
 
 namespace bsg::algos {
@@ -35,20 +36,27 @@ class LagrangeMultiplier {
                      const PidLagrangianOptions& pid = {});
   // From lagrangian_multiplier_init, lambda_optimizer, lambda_lr and the pid_* keys.
   explicit LagrangeMultiplier(const RunConfig& config);
+  // A copy has its own rule state (LagrangeMultipliers validates a restore on copies).
+  LagrangeMultiplier(const LagrangeMultiplier& other);
+  LagrangeMultiplier& operator=(const LagrangeMultiplier& other);
+  LagrangeMultiplier(LagrangeMultiplier&&) noexcept = default;
+  LagrangeMultiplier& operator=(LagrangeMultiplier&&) noexcept = default;
+  ~LagrangeMultiplier() = default;
 
   double value() const { return lambda_; }
   LambdaOptimizer optimizer() const { return optimizer_; }
 
-  // One step on the loss -lambda (J_C - d), then clamp at 0; returns the new lambda.
+  // One step of the rule on the loss -lambda (J_C - d) (lambda >= 0 after it), then the
+  // upper bound if any; returns the new lambda.
   double update(double mean_episode_cost, double cost_limit);
 
-  // The progress columns of the multiplier: "LagrangeMultiplier" and, for
-  // PID, its terms after the last update "PID/P", "PID/I", "PID/D".
+  // The progress columns of the multiplier: "LagrangeMultiplier", then the rule's
+  // (PID: its terms after the last update "PID/P", "PID/I", "PID/D").
   std::vector<std::string> diagnostic_names() const;
   std::vector<NamedScalar> diagnostics() const;
 
-  // "lagrange_multiplier" and, for Adam, "lagrange_multiplier_adam_m", "..._v",
-  // "..._t"; for PID, PidLagrangian::state()'s entries.
+  // "lagrange_multiplier", then the rule's entries (Adam: "lagrange_multiplier_adam_m",
+  // "..._v", "..._t"; PID: PidLagrangian::state()'s entries).
   std::vector<NamedScalar> state() const;
   // Throws std::invalid_argument if the names differ from state()'s or lambda < 0.
   void restore_state(std::span<const NamedScalar> saved);
@@ -56,9 +64,7 @@ class LagrangeMultiplier {
  private:
   double lambda_;
   LambdaOptimizer optimizer_;
-  double learning_rate_;
-  Adam adam_;          // used only with LambdaOptimizer::adam
-  PidLagrangian pid_;  // used only with LambdaOptimizer::pid
+  std::unique_ptr<MultiplierRule> rule_;  // the lambda_optimizer's step and its state
   double upper_bound_ = 0.0;  // lagrangian_upper_bound (FOCOPS's nu_max); 0: none
 };
 

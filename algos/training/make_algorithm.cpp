@@ -4,6 +4,7 @@
 #include <string>
 
 #include "algos/trust_region/cpo.h"
+#include "algos/trust_region/crpo.h"
 #include "algos/first_order/cup.h"
 #include "algos/first_order/focops.h"
 #include "algos/trust_region/lag_trpo.h"
@@ -21,6 +22,7 @@ std::unique_ptr<OnPolicyAlgorithm> make_algorithm(const RunConfig& config) {
     case Algorithm::cpo: return std::make_unique<Cpo>(config);
     case Algorithm::pdo: return std::make_unique<Pdo>(config);
     case Algorithm::pcpo: return std::make_unique<Pcpo>(config);
+    case Algorithm::crpo: return std::make_unique<Crpo>(config);
     case Algorithm::ppo:
     case Algorithm::ppo_lag: return std::make_unique<Ppo>(config);
     case Algorithm::focops: return std::make_unique<Focops>(config);

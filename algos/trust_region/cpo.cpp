@@ -9,7 +9,7 @@
 #include "algos/core/constraint_costs.h"
 #include "algos/trust_region/constraint_qp.h"
 #include "algos/trust_region/natural_gradient.h"
-#include "algos/trust_region/trpo.h"
+#include "algos/trust_region/trust_region_algorithm.h"
 
 namespace bsg::algos {
 namespace {

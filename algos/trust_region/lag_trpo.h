@@ -15,29 +15,19 @@
 // lambda_optimizer PID and the pid_* keys: algos/lagrange/pid_lagrangian.h).
 #pragma once
 
-#include "algos/core/algorithm.h"
-#include "algos/trust_region/trust_region_steps.h"
-#include "algos/lagrange/constraint_multipliers.h"
-#include "algos/lagrange/lagrangian_weights.h"
+#include "algos/trust_region/lagrangian_trust_region.h"
 #include "common/run_config.h"
 
 namespace bsg::algos {
 
-class LagTrpo final : public OnPolicyAlgorithm {
+class LagTrpo final : public LagrangianTrustRegion {
  public:
-  explicit LagTrpo(const RunConfig& config);
+  explicit LagTrpo(const RunConfig& config) : LagrangianTrustRegion(config) {}
 
   std::string_view name() const override { return "lag-trpo"; }
-  PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
-  std::vector<std::string> diagnostic_names() const override;
-  std::vector<NamedScalar> state() const override { return multiplier_.state(); }
-  void restore_state(std::span<const NamedScalar> saved) override { multiplier_.restore_state(saved); }
-
-  double lagrange_multiplier() const { return multiplier_.value(0); }
-  const LagrangeMultipliers& multipliers() const { return multiplier_; }
 
  private:
-  LagrangeMultipliers multiplier_;
+  TrustRegionPlan plan_step(const PolicyUpdateInputs& inputs) override;
 };
 
 }  // namespace bsg::algos

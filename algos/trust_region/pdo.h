@@ -17,9 +17,7 @@
 
 #include <Eigen/Core>
 
-#include "algos/core/algorithm.h"
-#include "algos/trust_region/trust_region_steps.h"
-#include "algos/lagrange/constraint_multipliers.h"
+#include "algos/trust_region/lagrangian_trust_region.h"
 #include "common/run_config.h"
 
 namespace bsg::algos {
@@ -29,21 +27,18 @@ Eigen::VectorXd pdo_search_direction(const Eigen::Ref<const Eigen::VectorXd>& re
                                      const Eigen::Ref<const Eigen::VectorXd>& cost_gradient,
                                      double lagrange_multiplier);
 
-class Pdo final : public OnPolicyAlgorithm {
+class Pdo final : public LagrangianTrustRegion {
  public:
-  explicit Pdo(const RunConfig& config);
+  explicit Pdo(const RunConfig& config) : LagrangianTrustRegion(config) {}
 
   std::string_view name() const override { return "pdo"; }
-  PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
-  std::vector<std::string> diagnostic_names() const override;
-  std::vector<NamedScalar> state() const override { return multiplier_.state(); }
-  void restore_state(std::span<const NamedScalar> saved) override { multiplier_.restore_state(saved); }
-
-  double lagrange_multiplier() const { return multiplier_.value(0); }
-  const LagrangeMultipliers& multipliers() const { return multiplier_; }
 
  private:
-  LagrangeMultipliers multiplier_;
+  // The multipliers' step, then l_R for the line search (or the full step).
+  TrustRegionPlan plan_step(const PolicyUpdateInputs& inputs) override;
+  // p = g - sum_j lambda_j b_j with this epoch's lambdas; logs |g| and Misc/cost_gradient_norm.
+  SearchDirection search_direction(const PolicyUpdateInputs& inputs, const TrustRegionPlan& plan) override;
+  std::vector<std::string> own_diagnostic_names() const override;
 };
 
 }  // namespace bsg::algos

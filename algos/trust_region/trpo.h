@@ -1,5 +1,5 @@
 // TRPO (docs/algorithms.md#trpo; Schulman et al. 2015, as the original's algs/trpo/trpo.py
-// on top of NPG):
+// on top of NPG): the trust-region base (trust_region_algorithm.h) on the reward alone,
 //   1. l_old = l_R(theta_old), g = avg grad L_R
 //   2. x = CG(F, g), q = x^T F x, alpha = sqrt(2 delta / (q + 1e-8)), Delta = alpha x
 //   3. line search A on l_R (budget 15, decay 0.8, KL <= 1.5 delta)
@@ -10,28 +10,19 @@
 // fvp_subsample 4, backtrack_budget 15, backtrack_decay 0.8, kl_accept_factor 1.5.
 #pragma once
 
-#include "algos/core/algorithm.h"
-#include "algos/trust_region/trust_region_steps.h"
+#include "algos/trust_region/trust_region_algorithm.h"
 #include "common/run_config.h"
 
 namespace bsg::algos {
 
-class Trpo final : public OnPolicyAlgorithm {
+class Trpo final : public TrustRegionAlgorithm {
  public:
-  explicit Trpo(const RunConfig& config);
+  explicit Trpo(const RunConfig& config) : TrustRegionAlgorithm(config) {}
 
   std::string_view name() const override { return "trpo"; }
-  PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
-  std::vector<std::string> diagnostic_names() const override;
+
+ private:
+  TrustRegionPlan plan_step(const PolicyUpdateInputs& /*inputs*/) override { return {}; }  // l_R, line search
 };
-
-// The six TRPO columns shared by all five algorithms (docs/algorithms.md#logged-columns), in order.
-std::vector<std::string> trpo_diagnostic_names();
-
-// Appends the values of those six columns, in that order: the line search's
-// acceptance step and final step norm, alpha, |gradient|, x^T F x and |x|.
-void append_trpo_diagnostics(std::vector<NamedScalar>& diagnostics, const LineSearchResult& search,
-                             double alpha, double gradient_norm, double x_fisher_x,
-                             double direction_norm);
 
 }  // namespace bsg::algos

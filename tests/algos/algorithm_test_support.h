@@ -152,6 +152,16 @@ inline algos::PolicyUpdateInputs inputs_for(SyntheticBatch& batch, algos::Policy
   return algos::PolicyUpdateInputs{batch.policy, surrogate, mean_episode_cost, mean_episode_length, mpi};
 }
 
+// Every on-policy algorithm of the table (common/algorithms.h) in its order, so that tests
+// looping over the algorithms cover a new row without an edit.
+inline std::vector<Algorithm> on_policy_algorithms() {
+  std::vector<Algorithm> algorithms;
+  for (const AlgorithmInfo& info : kAlgorithms) {
+    if (info.family != AlgorithmFamily::off_policy) algorithms.push_back(info.alg);
+  }
+  return algorithms;
+}
+
 // A RunConfig for `alg` with the algorithm's shipped defaults that matter here.
 inline RunConfig config_for(Algorithm alg) {
   RunConfig config;
@@ -179,12 +189,7 @@ inline RunConfig config_for(Algorithm alg) {
       config.lambda_optimizer = LambdaOptimizer::adam;
       config.lambda_lr = 0.035;
       break;
-    case Algorithm::sac:
-    case Algorithm::td3:
-    case Algorithm::ddpg:
-    case Algorithm::sac_lag:
-    case Algorithm::td3_lag:
-    case Algorithm::ddpg_lag: break;  // off-policy: no on-policy update (algos/off_policy)
+    default: break;  // the RunConfig defaults (TRPO's, crpo_tolerance 2); off-policy: no on-policy update
   }
   return config;
 }

@@ -149,3 +149,25 @@ def test_several_directories_need_out_and_must_all_be_runs(tmp_path):
     result = plot(first, tmp_path, "--out", tmp_path / "png")
     assert result.returncode == 2
     assert f"{tmp_path} is not a run directory (no progress.csv)" in result.stderr
+
+
+def test_labels_and_colours_are_read_from_the_program_table(tmp_path):
+    """The plots' labels come from common/algorithms.h's rows, checked against a table written here."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("plot_curves", SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    table = tmp_path / "algorithms.h"
+    table.write_text(
+        '    {Algorithm::trpo,     "trpo",     "TRPO",     "",           AlgorithmFamily::trust_region, false, false,'
+        ' false, "tab:blue"},\n'
+        '    // a comment between rows\n'
+        '    {Algorithm::sac_lag,  "sac-lag",  "SAC-Lag",  "SAC-PID",    AlgorithmFamily::off_policy,   true,  true,'
+        '  false, "teal"},\n')
+    labels, order, colours = module.read_algorithm_table(table)
+    assert labels == {"trpo": "TRPO", "sac-lag": "SAC-Lag"}
+    assert order == ["trpo", "sac-lag"]
+    assert colours == {"trpo": "tab:blue", "sac-lag": "teal"}
+    # The shipped table: every algorithm has a label and its own colour, the off-policy ones included.
+    assert module.ALGORITHM_LABELS["ddpg-lag"] == "DDPG-Lag"
+    assert len(set(module.ALGORITHM_COLORS.values())) == len(module.ALGORITHM_COLORS)

@@ -25,8 +25,7 @@ bool same_on_all_ranks(const MpiContext& mpi, const Eigen::VectorXd& values) {
 TEST(AlgorithmsUnderMpi, DifferentLocalBatchesGiveIdenticalParametersOnAllRanks) {
   const MpiContext mpi = MpiContext::world();
   ASSERT_EQ(mpi.size(), 2);
-  for (Algorithm alg : {Algorithm::trpo, Algorithm::lag_trpo, Algorithm::cpo, Algorithm::pdo, Algorithm::pcpo,
-                        Algorithm::ppo, Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup}) {
+  for (Algorithm alg : testing::on_policy_algorithms()) {
     for (double mean_episode_cost : {10.0, 40.0}) {
       // Same policy seed on both ranks (the loop broadcasts rank 0's parameters),
       // different batch seeds.

@@ -1,4 +1,4 @@
-// The factory and the interface contract shared by the nine algorithms: the
+// The factory and the interface contract shared by the on-policy algorithms: the
 // right class per `alg`, the docs/algorithms.md#logged-columns column sets in order, a column set
 // that does not change between epochs, and the state round trip.
 #include "algos/training/make_algorithm.h"
@@ -34,9 +34,7 @@ std::vector<std::string> first_order_with(std::vector<std::string> specific) {
   return names;
 }
 
-constexpr Algorithm kAllAlgorithmsInOrder[] = {Algorithm::trpo, Algorithm::lag_trpo, Algorithm::cpo,
-                                               Algorithm::pdo,  Algorithm::pcpo,     Algorithm::ppo,
-                                               Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup};
+const std::vector<Algorithm> kAllAlgorithmsInOrder = testing::on_policy_algorithms();
 
 TEST(MakeAlgorithm, BuildsEachAlgorithmWithTheSpecColumns) {
   const struct {

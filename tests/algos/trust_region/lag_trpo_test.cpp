@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "../algorithm_test_support.h"
+#include "algos/lagrange/lagrangian_weights.h"
 #include "algos/trust_region/trpo.h"
 
 namespace bsg::algos {
