@@ -23,7 +23,7 @@
 #include "commands.h"
 #include "env_set_arguments.h"
 #include "envs/env.h"
-#include "envs/assembly/env_benchmark.h"
+#include "envs/env_benchmark.h"
 #include "train_benchmark.h"
 
 namespace bsg::cli {

@@ -17,7 +17,7 @@
 #include "commands.h"
 #include "env_set_arguments.h"
 #include "envs/env.h"
-#include "envs/description/standard_descriptions.h"
+#include "envs/standard_envs.h"
 #include "render/env_renderer.h"
 #include "render/image_grid.h"
 #include "render/png_file.h"

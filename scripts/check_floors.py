@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """The floors of the building (docs/architecture.md#rooms-and-floors): every
-project include in the library folders must point at the including room
-itself or at a room below it. Run by every build (CMake target bsg_floors)
-and by ctest (build.floors, which also checks that the check fails on an
-upward include).
+project include in the library folders and in the two programs (cli/, the
+`bsg` program; python/src/, the Python module) must point at the including
+room itself or at a room below it, and from above envs/ only at its face.
+Run by every build (CMake target bsg_floors) and by ctest (build.floors,
+which also checks that the check fails on an upward include).
 
 Usage: check_floors.py SOURCE_DIR
 Exit 0 when every include keeps to its floor; 1, listing every include that
@@ -13,10 +14,14 @@ import os
 import re
 import sys
 
-# Room -> the rooms it may include besides itself. A room is a folder
-# holding a library; the deepest listed folder that contains a file is its
-# room. "envs" and "algos" are the folders' faces: env.h and vector_env for
-# the environments; the algos face is only its rooms (nothing at algos/).
+# Room -> the rooms (or single files) it may include besides itself. A room
+# is a folder holding a library or a program; the deepest listed folder that
+# contains a file is its room. "envs" is the environments' face, the files
+# directly in envs/ (env.h, vector_env, env_benchmark, standard_envs); from
+# above envs/, only algos/ also sees envs/description (the value types of
+# env.h). algos/ has no face of its own: above it, its top rooms (training,
+# and offline for the program) are seen. docs/architecture.md#rooms-and-floors
+# shows this table; tests/docs/test_room_map.py holds the two equal.
 ENVS_BELOW_FACE = ["envs/description", "envs/physics", "envs/agents", "envs/sensors", "envs/tasks",
                    "envs/assembly"]
 FLOORS = {
@@ -49,8 +54,20 @@ FLOORS = {
     # numbers in, numbers out, nothing of runs or sweeps.
     "experiments/statistics": ["common"],
     # Only the training room of algos/ is seen from above it.
-    "experiments": ["experiments/statistics", "algos/training", "algos/core", "envs", "envs/description", "common"],
+    "experiments": ["experiments/statistics", "algos/training", "envs", "common"],
+    # The `bsg` program: every face. algos/offline is a top room of algos/
+    # that only the program links. The one file below a face: the run's
+    # constraints (algos/core/constraint_costs.h), which `bsg collect` and
+    # `bsg dataset make` hand to a collection (algos/offline/collection.h
+    # takes a StepCostSelector).
+    "cli": ["experiments", "algos/offline", "algos/training", "render", "envs", "common",
+            "algos/core/constraint_costs.h"],
+    # The Python module binds the environments and the renderer, nothing else.
+    "python/src": ["render", "envs", "common"],
 }
+# A program's own headers are seen by no other room, so its files include
+# them by their bare name ("commands.h", beside the including file).
+PROGRAM_ROOMS = ("cli", "python/src")
 INCLUDE = re.compile(r'^[ \t]*#[ \t]*include\s+"([^"]+)"', re.M)
 SOURCE_SUFFIXES = (".h", ".cpp")
 
@@ -72,9 +89,20 @@ def allowed(room, included):
     return target_room in permitted or included in permitted
 
 
+def top_folders():
+    """The top folders holding rooms: each is walked whole, so a source file
+    in a folder of its own (not a room) is reported."""
+    return sorted({room.split("/")[0] for room in FLOORS})
+
+
+def is_beside(source_dir, path, included):
+    """A bare name of a file in the including file's own folder."""
+    return "/" not in included and os.path.isfile(os.path.join(source_dir, os.path.dirname(path), included))
+
+
 def check(source_dir):
     problems = []
-    for top in ("common", "envs", "algos", "render", "experiments"):
+    for top in top_folders():
         for folder, _, files in os.walk(os.path.join(source_dir, top)):
             for name in sorted(files):
                 if not name.endswith(SOURCE_SUFFIXES):
@@ -88,6 +116,8 @@ def check(source_dir):
                     text = source.read()
                 for match in INCLUDE.finditer(text):
                     included = match.group(1)
+                    if room in PROGRAM_ROOMS and is_beside(source_dir, path, included):
+                        continue
                     if "/" not in included:
                         problems.append(f"{path}:{text.count(chr(10), 0, match.start()) + 1}: include "
                                         f'"{included}" by its full path ("<folder>/{included}")')
@@ -95,7 +125,7 @@ def check(source_dir):
                     if not allowed(room, included):
                         line = text.count("\n", 0, match.start()) + 1
                         problems.append(f"{path}:{line}: room {room} includes {included}, "
-                                        f"which is not below it (it may include: {', '.join(FLOORS[room]) or 'nothing'})")
+                                        f"which is not on a floor it may include (it may include: {', '.join(FLOORS[room]) or 'nothing'})")
     return problems
 
 

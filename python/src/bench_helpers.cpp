@@ -4,7 +4,7 @@
 
 #include <time.h>
 
-#include "envs/assembly/env_benchmark.h"
+#include "envs/env_benchmark.h"
 #include "exclusive_use.h"
 #include "python_env.h"
 

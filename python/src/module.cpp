@@ -7,7 +7,7 @@
 #include "arguments.h"
 #include "bench_helpers.h"
 #include "envs/env.h"
-#include "envs/physics/world.h"
+#include "envs/standard_envs.h"
 #include "python_env.h"
 #include "python_render.h"
 #include "python_vector_env.h"
@@ -15,7 +15,7 @@
 PYBIND11_MODULE(_core, module) {
   module.doc() = "bsg environments (C++ core of the bsg package)";
   // Simulated seconds per environment step (every id): render_fps = 1 / this.
-  module.attr("env_step_seconds") = bsg::envs::World::kEnvStepSeconds;
+  module.attr("env_step_seconds") = bsg::envs::kStandardEnvStepSeconds;
   module.def("env_ids", &bsg::envs::registered_ids, "Every registered environment id, sorted.");
   module.def(
       "describe",

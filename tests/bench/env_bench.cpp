@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "envs/env.h"
-#include "envs/assembly/env_benchmark.h"
+#include "envs/env_benchmark.h"
 
 int main(int argc, char** argv) {
   const long steps = argc > 1 ? std::atol(argv[1]) : 20000;

@@ -1,6 +1,7 @@
 """scripts/check_floors.py: the real tree keeps its floors; an include that
-runs upward, an include without its folder and a file in no room are each
-refused with the file, the line and what the room may include."""
+runs upward, one from a program (cli/, python/src/) below the environments'
+face, an include without its folder and a file in no room are each refused
+with the file, the line and what the room may include."""
 import os
 import pathlib
 import subprocess
@@ -32,8 +33,8 @@ def test_an_upward_include_is_refused_with_file_line_and_the_rooms_allowed(tmp_p
     write(tmp_path, "algos/core/buffer.cpp", '#include "algos/training/trainer.h"\n')
     result = run(tmp_path)
     assert result.returncode == 1
-    assert ("envs/physics/ray_fan.cpp:3: room envs/physics includes envs/agents/agent.h, which is not below it "
-            "(it may include: envs/description, common)") in result.stderr
+    assert ("envs/physics/ray_fan.cpp:3: room envs/physics includes envs/agents/agent.h, which is not on a floor it may "
+            "include (it may include: envs/description, common)") in result.stderr
     assert "algos/core/buffer.cpp:1: room algos/core includes algos/training/trainer.h" in result.stderr
     assert "2 include(s) break the floors" in result.stderr  # the downward includes pass
 
@@ -54,3 +55,35 @@ def test_the_face_may_be_included_by_the_assembly_only(tmp_path):
     assert result.returncode == 1
     assert "envs/tasks/task.h:2: room envs/tasks includes envs/env.h" in result.stderr
     assert "assembled_env.h" not in result.stderr
+
+
+def test_the_program_includes_faces_only(tmp_path):
+    write(tmp_path, "cli/commands.h", '#pragma once\n#include "envs/env.h"\n')
+    write(tmp_path, "cli/cmd_envs.cpp", '#include "commands.h"\n#include "envs/standard_envs.h"\n'
+                                         '#include "envs/description/standard_descriptions.h"\n')
+    write(tmp_path, "cli/cmd_collect.cpp", '#include "algos/offline/collection.h"\n'
+                                            '#include "algos/core/constraint_costs.h"\n#include "algos/core/buffer.h"\n')
+    write(tmp_path, "cli/cmd_bench.cpp", '#include "envs/physics/world.h"\n#include "missing.h"\n')
+    result = run(tmp_path)
+    assert result.returncode == 1
+    assert ("cli/cmd_envs.cpp:3: room cli includes envs/description/standard_descriptions.h, which is not on a "
+            "floor it may include") in result.stderr
+    assert "cli/cmd_collect.cpp:3: room cli includes algos/core/buffer.h" in result.stderr
+    assert "cli/cmd_bench.cpp:1: room cli includes envs/physics/world.h" in result.stderr
+    assert 'cli/cmd_bench.cpp:2: include "missing.h" by its full path' in result.stderr
+    assert "4 include(s) break the floors" in result.stderr  # the faces, the one named file, a header beside
+
+
+def test_a_library_may_not_include_the_program_nor_the_python_module(tmp_path):
+    write(tmp_path, "cli/recording.h", '#pragma once\n')
+    write(tmp_path, "python/src/arguments.h", '#pragma once\n#include "render/camera.h"\n#include "algos/training/trainer.h"\n')
+    write(tmp_path, "experiments/sweep_plan.cpp", '#include "cli/recording.h"\n')
+    write(tmp_path, "python/src/extra/binding.cpp", '#include "envs/env.h"\n')
+    write(tmp_path, "python/src/module.cpp", '#include "arguments.h"\n#include "envs/physics/world.h"\n')
+    result = run(tmp_path)
+    assert result.returncode == 1
+    assert "experiments/sweep_plan.cpp:1: room experiments includes cli/recording.h" in result.stderr
+    assert "python/src/arguments.h:3: room python/src includes algos/training/trainer.h" in result.stderr
+    assert "python/src/module.cpp:2: room python/src includes envs/physics/world.h" in result.stderr
+    assert "python/src/extra/binding.cpp" not in result.stderr  # the deepest room holding it is python/src
+    assert "3 include(s) break the floors" in result.stderr

@@ -1,7 +1,8 @@
 // Speed of an environment on one core, beside the raw physics rate of the same
 // scene (agent actions and engine steps only: no task, sensor or observation
 // work), so that the framework's overhead is visible (`bsg bench`,
-// tests/bench/env_bench.cpp).
+// tests/bench/env_bench.cpp, the Python module's _benchmark_env). Part of the
+// face: the programs above envs/ reach the raw physics rate through it alone.
 #pragma once
 
 #include <cstdint>

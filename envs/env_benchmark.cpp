@@ -1,11 +1,11 @@
-#include "envs/assembly/env_benchmark.h"
+#include "envs/env_benchmark.h"
 
 #include <chrono>
 #include <stdexcept>
 #include <vector>
 
-#include "envs/assembly/assembled_env.h"
 #include "common/random.h"
+#include "envs/assembly/assembled_env.h"
 #include "envs/assembly/env_builder.h"
 #include "envs/assembly/registry.h"
 
