@@ -5,8 +5,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "algos/core/adam_state.h"
+
 namespace bsg::algos {
 namespace {
+
+// The Adam rule's state entries (adam_state.h): lagrange_multiplier_adam_m, _v, _t.
+constexpr std::string_view kAdamPrefix = "lagrange_multiplier_adam_";
 
 AdamOptions lambda_adam_options(double learning_rate) {
   AdamOptions options;
@@ -88,9 +93,9 @@ std::vector<NamedScalar> LagrangeMultiplier::state() const {
     for (NamedScalar& entry : pid_.state()) saved.push_back(std::move(entry));
   }
   if (optimizer_ == LambdaOptimizer::adam) {
-    saved.push_back({"lagrange_multiplier_adam_m", adam_.first_moment()[0]});
-    saved.push_back({"lagrange_multiplier_adam_v", adam_.second_moment()[0]});
-    saved.push_back({"lagrange_multiplier_adam_t", static_cast<double>(adam_.step_count())});
+    for (NamedScalar& entry : adam_state_entries(adam_, kAdamPrefix, AdamEntryLayout::moments_then_step)) {
+      saved.push_back(std::move(entry));
+    }
   }
   return saved;
 }
@@ -115,13 +120,7 @@ void LagrangeMultiplier::restore_state(std::span<const NamedScalar> saved) {
   if (optimizer_ == LambdaOptimizer::pid) pid_.restore_state(saved.subspan(1));  // validates before any change
   lambda_ = saved[0].value;
   if (optimizer_ == LambdaOptimizer::adam) {
-    const double step_count = saved[3].value;
-    if (!(step_count >= 0.0) || step_count != std::floor(step_count)) {
-      throw std::invalid_argument("LagrangeMultiplier::restore_state: lagrange_multiplier_adam_t must be a "
-                                  "non-negative integer, got " + std::to_string(step_count));
-    }
-    adam_.set_state(Eigen::VectorXd::Constant(1, saved[1].value), Eigen::VectorXd::Constant(1, saved[2].value),
-                    static_cast<long long>(step_count));
+    restore_adam_state_entries(adam_, saved.subspan(1), kAdamPrefix, AdamEntryLayout::moments_then_step);
   }
 }
 

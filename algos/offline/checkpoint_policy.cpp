@@ -5,6 +5,7 @@
 
 #include "algos/core/actor_critic.h"
 #include "algos/core/constraint_costs.h"
+#include "algos/off_policy/make_off_policy_learner.h"
 #include "algos/off_policy/off_policy_learner.h"
 #include "algos/training/off_policy_checkpoint.h"
 #include "algos/training/exploration_noise.h"
@@ -100,13 +101,13 @@ class LoadedOffPolicyCheckpointPolicy final : public CheckpointPolicy {
         description_(run_env_description(config_)),
         actions_(actions),
         learner_(make_learner(config_)) {
-    const OffPolicyCheckpoint saved = load_off_policy_checkpoint(directory_.checkpoint(), config_, learner_);
+    const OffPolicyCheckpoint saved = load_off_policy_checkpoint(directory_.checkpoint(), config_, *learner_);
     description_text_ = "checkpoint " + root.string() + " (" + std::string(to_string(config_.alg)) + ", " +
                         config_.env_id + ", epoch " + std::to_string(saved.progress.epochs_completed) + " of " +
                         std::to_string(config_.epochs) + ", seed " + std::to_string(config_.seed) + ", " +
                         (actions_ == EvaluationActions::sampled ? "exploring actions" : "deterministic actions") +
                         ")";
-    action_.resize(learner_.action_size());
+    action_.resize(learner_->action_size());
   }
 
   std::string description() const override { return description_text_; }
@@ -115,31 +116,31 @@ class LoadedOffPolicyCheckpointPolicy final : public CheckpointPolicy {
   void start_episode(std::uint64_t seed) override { noise_ = Rng(seed); }
 
   void act(std::span<const double> observation, std::span<double> action) override {
-    if (static_cast<int>(observation.size()) != learner_.observation_size() ||
-        static_cast<int>(action.size()) != learner_.action_size()) {
+    if (static_cast<int>(observation.size()) != learner_->observation_size() ||
+        static_cast<int>(action.size()) != learner_->action_size()) {
       throw std::invalid_argument("checkpoint " + directory_.root.string() + ": its policy takes " +
-                                  std::to_string(learner_.observation_size()) + " observations and gives " +
-                                  std::to_string(learner_.action_size()) + " actions, the environment has " +
+                                  std::to_string(learner_->observation_size()) + " observations and gives " +
+                                  std::to_string(learner_->action_size()) + " actions, the environment has " +
                                   std::to_string(observation.size()) + " and " + std::to_string(action.size()));
     }
-    learner_.act(observation, actions_ == EvaluationActions::mean, noise_, action_);
+    learner_->act(observation, actions_ == EvaluationActions::mean, noise_, action_);
     Eigen::Map<Eigen::VectorXd>(action.data(), action_.size()) = action_;
   }
 
  private:
-  static OffPolicyLearner make_learner(const RunConfig& config) {
+  static std::unique_ptr<OffPolicyLearner> make_learner(const RunConfig& config) {
     const std::unique_ptr<envs::Env> env = make_run_env(config);
     const int cost_critics = ignores_cost(config.alg) ? 0 : constraint_count(config);
     Rng unused_init(0);  // the checkpoint overwrites every parameter
-    return OffPolicyLearner(OffPolicyOptions::from_config(config, env->spec().action_dim),
-                            env->spec().observation_dim, env->spec().action_dim, cost_critics, unused_init);
+    return make_off_policy_learner(config, env->spec().observation_dim, env->spec().action_dim, cost_critics,
+                                   unused_init);
   }
 
   RunDirectory directory_;
   RunConfig config_;
   envs::EnvDescription description_;
   EvaluationActions actions_;
-  OffPolicyLearner learner_;
+  std::unique_ptr<OffPolicyLearner> learner_;
   std::string description_text_;
   Rng noise_{0};
   Eigen::VectorXd action_;

@@ -9,6 +9,7 @@
 #include <ostream>
 
 #include "algos/core/epoch_statistics.h"
+#include "algos/off_policy/make_off_policy_learner.h"
 #include "algos/training/epoch_log.h"
 #include "algos/training/evaluation_files.h"
 #include "algos/training/off_policy_checkpoint.h"
@@ -103,8 +104,7 @@ OffPolicyTrainer::OffPolicyTrainer(const RunConfig& config, RunDirectory directo
     throw std::invalid_argument("OffPolicyTrainer: " + std::string(to_string(config.alg)) + " is not off-policy");
   }
   Rng init_rng(stream_seed(config_, SeedStream::network_init, 0, 0));  // the same nets on every rank
-  learner_ = std::make_unique<OffPolicyLearner>(OffPolicyOptions::from_config(config_, action_size_),
-                                                observation_size_, action_size_, critic_cost_count_, init_rng);
+  learner_ = make_off_policy_learner(config_, observation_size_, action_size_, critic_cost_count_, init_rng);
   if (has_lagrange_multiplier(config_.alg)) multipliers_.emplace(config_);
   for (int j = 0; j < config_.num_envs; ++j) {
     accumulators_.emplace_back(config_.n_step, config_.gamma, observation_size_, action_size_, critic_cost_count_);
@@ -260,7 +260,7 @@ void OffPolicyTrainer::run_epoch(int epoch) {
   accounts.epoch_constraint_costs = Eigen::VectorXd::Zero(constraint_count_);
   accounts.cost_critic_losses = Eigen::VectorXd::Zero(critic_cost_count_);
   accounts.cost_qs = Eigen::VectorXd::Zero(critic_cost_count_);
-  accounts.alpha = learner_->options().actor == ActorKind::squashed_gaussian ? learner_->alpha() : 0.0;
+  accounts.alpha = learner_->actor_kind() == ActorKind::squashed_gaussian ? learner_->alpha() : 0.0;
   noise_rng_.seed(stream_seed(config_, SeedStream::action_noise, mpi_.rank(), static_cast<std::uint64_t>(epoch)));
   sample_rng_.seed(stream_seed(config_, SeedStream::minibatch_shuffle, mpi_.rank(), static_cast<std::uint64_t>(epoch)));
   // Episodes run on across epochs; the environments start afresh only after a checkpoint (and at
@@ -323,7 +323,7 @@ void OffPolicyTrainer::run_epoch(int epoch) {
     for (int i = 0; i < critic_cost_count_; ++i) lambdas_[static_cast<std::size_t>(i)] = updated[static_cast<std::size_t>(i)];
   }
   if (!learner_->actor().parameters().allFinite()) check_finite(epoch, "actor parameter", std::nan(""));
-  for (int k = 0; k < learner_->options().reward_critics; ++k) {
+  for (int k = 0; k < learner_->reward_critic_count(); ++k) {
     if (!learner_->reward_critic(k).parameters().allFinite()) {
       check_finite(epoch, "reward critic parameter", std::nan(""));
     }
@@ -380,7 +380,7 @@ void OffPolicyTrainer::run_epoch(int epoch) {
     row.push_back({prefix + "q_cost_mean", accounts.updates ? mpi_.average(accounts.cost_qs(i) / updates) : none});
   }
   row.push_back({"actor_loss", accounts.actor_updates ? mpi_.average(accounts.actor_loss / actor_updates) : none});
-  if (learner_->options().actor == ActorKind::squashed_gaussian) row.push_back({"alpha", learner_->alpha()});
+  if (learner_->actor_kind() == ActorKind::squashed_gaussian) row.push_back({"alpha", learner_->alpha()});
   if (multipliers_) {
     for (const NamedScalar& entry : multipliers_->diagnostics()) {
       row.push_back({progress_column_name(entry.name), entry.value});

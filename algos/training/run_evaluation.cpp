@@ -6,6 +6,7 @@
 #include "algos/core/actor_critic.h"
 #include "algos/training/exploration_noise.h"
 #include "algos/training/make_algorithm.h"
+#include "algos/off_policy/make_off_policy_learner.h"
 #include "algos/training/off_policy_checkpoint.h"
 #include "algos/training/off_policy_evaluation.h"
 #include "algos/training/run_environment.h"
@@ -35,14 +36,14 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
     if (costs.needs_terms()) costs.bind(env->spec().cost_term_names, env->spec().id);
     const int cost_critics = ignores_cost(config.alg) ? 0 : constraint_count(config);
     Rng unused_init(0);  // the checkpoint overwrites every parameter
-    OffPolicyLearner learner(OffPolicyOptions::from_config(config, env->spec().action_dim),
-                             env->spec().observation_dim, env->spec().action_dim, cost_critics, unused_init);
-    const OffPolicyCheckpoint saved = load_off_policy_checkpoint(directory.checkpoint(), config, learner);
+    const std::unique_ptr<OffPolicyLearner> learner = make_off_policy_learner(
+        config, env->spec().observation_dim, env->spec().action_dim, cost_critics, unused_init);
+    const OffPolicyCheckpoint saved = load_off_policy_checkpoint(directory.checkpoint(), config, *learner);
     RunEvaluation result;
     result.epochs_completed = saved.progress.epochs_completed;
     result.epochs = config.epochs;
     if (decorate) env = decorate(std::move(env));
-    result.summary = evaluate_off_policy(*env, learner, episodes.value_or(config.eval_episodes), config.seed,
+    result.summary = evaluate_off_policy(*env, *learner, episodes.value_or(config.eval_episodes), config.seed,
                                          config.max_ep_len, mpi, costs);
     return result;
   }
