@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "algos/core/adam_state.h"
+
 namespace bsg::algos {
 namespace {
 
@@ -32,20 +34,13 @@ RunningMeanStdOptions return_normalizer_options(const RunConfig& config) {
 
 void save_value_function(const ValueFunction& value, BinaryWriter& writer) {
   writer.write_vector(value.net().parameters());
-  const Adam& adam = value.optimizer();
-  writer.write_vector(adam.first_moment());
-  writer.write_vector(adam.second_moment());
-  writer.write_i64(adam.step_count());
+  save_adam_state(value.optimizer(), writer);
 }
 
 void load_value_function(ValueFunction& value, BinaryReader& reader, const std::string& name) {
   const Eigen::Index size = value.net().num_parameters();
   value.net().set_parameters(reader.read_vector(name + " parameters", size));
-  const Eigen::VectorXd first = reader.read_vector(name + " Adam first moment", size);
-  const Eigen::VectorXd second = reader.read_vector(name + " Adam second moment", size);
-  const std::int64_t steps = reader.read_i64(name + " Adam step count");
-  if (steps < 0) reader.fail(name + " Adam step count is negative");
-  value.optimizer().set_state(first, second, steps);
+  load_adam_state(value.optimizer(), reader, name);
 }
 
 void save_normalizer(const RunningMeanStd& normalizer, BinaryWriter& writer) {

@@ -5,15 +5,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "algos/core/adam_state.h"
 #include "algos/core/gradient_norm_clipping.h"
 #include "algos/core/shuffle.h"
 
 namespace bsg::algos {
 namespace {
 
-constexpr const char* kAdamStep = "policy_adam/t";
-constexpr const char* kAdamFirstMoment = "policy_adam/m/";
-constexpr const char* kAdamSecondMoment = "policy_adam/v/";
+constexpr std::string_view kAdamPrefix = "policy_adam/";  // adam_state.h's step-then-moments entries
+constexpr std::string_view kAdamStep = "policy_adam/t";
 
 }  // namespace
 
@@ -222,14 +222,8 @@ void PolicyAdam::step(GaussianPolicy& policy, const Eigen::VectorXd& gradient) {
 }
 
 std::vector<NamedScalar> PolicyAdam::state() const {
-  std::vector<NamedScalar> entries;
-  entries.push_back({kAdamStep, adam_ ? static_cast<double>(adam_->step_count()) : 0.0});
-  if (!adam_ || adam_->step_count() == 0) return entries;
-  const Eigen::Index p = adam_->num_parameters();
-  entries.reserve(static_cast<std::size_t>(1 + 2 * p));
-  for (Eigen::Index i = 0; i < p; ++i) entries.push_back({kAdamFirstMoment + std::to_string(i), adam_->first_moment()[i]});
-  for (Eigen::Index i = 0; i < p; ++i) entries.push_back({kAdamSecondMoment + std::to_string(i), adam_->second_moment()[i]});
-  return entries;
+  if (!adam_) return {{std::string(kAdamStep), 0.0}};
+  return adam_state_entries(*adam_, kAdamPrefix, AdamEntryLayout::step_then_moments);
 }
 
 std::size_t PolicyAdam::saved_size(std::span<const NamedScalar> saved) {
@@ -240,37 +234,14 @@ std::size_t PolicyAdam::saved_size(std::span<const NamedScalar> saved) {
 }
 
 void PolicyAdam::restore_state(std::span<const NamedScalar> saved) {
-  if (saved.empty() || saved.front().name != kAdamStep) {
-    throw std::invalid_argument(std::string("policy Adam state: expected '") + kAdamStep + "' first, got " +
-                                (saved.empty() ? std::string("nothing") : "'" + saved.front().name + "'"));
-  }
-  const double t = saved.front().value;
-  if (!(t >= 0.0) || t != std::floor(t) || t > 9e15) {
-    throw std::invalid_argument("policy Adam state: step count " + std::to_string(t) + " is not a count");
-  }
-  if (t == 0.0) {
-    if (saved.size() != 1) throw std::invalid_argument("policy Adam state: moments saved before any step");
+  const Eigen::Index parameters = saved_adam_parameters(saved, kAdamPrefix);
+  if (parameters == 0) {
     adam_.reset();
     return;
   }
-  if (saved.size() < 3 || (saved.size() - 1) % 2 != 0) {
-    throw std::invalid_argument("policy Adam state: " + std::to_string(saved.size() - 1) +
-                                " moment entries, expected two per parameter");
-  }
-  const auto p = static_cast<Eigen::Index>((saved.size() - 1) / 2);
-  Eigen::VectorXd first(p);
-  Eigen::VectorXd second(p);
-  for (Eigen::Index i = 0; i < p; ++i) {
-    const NamedScalar& m = saved[static_cast<std::size_t>(1 + i)];
-    const NamedScalar& v = saved[static_cast<std::size_t>(1 + p + i)];
-    if (m.name != kAdamFirstMoment + std::to_string(i) || v.name != kAdamSecondMoment + std::to_string(i)) {
-      throw std::invalid_argument("policy Adam state: unexpected entries '" + m.name + "', '" + v.name + "'");
-    }
-    first[i] = m.value;
-    second[i] = v.value;
-  }
-  adam_.emplace(p, options_);
-  adam_->set_state(first, second, static_cast<long long>(t));
+  Adam restored(parameters, options_);
+  restore_adam_state_entries(restored, saved, kAdamPrefix, AdamEntryLayout::step_then_moments);
+  adam_ = std::move(restored);
 }
 
 MinibatchPassesResult minibatch_passes(const PolicyUpdateInputs& inputs, const FirstOrderOptions& options,

@@ -4,9 +4,15 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+
+#include "algos/core/adam_state.h"
 
 namespace bsg::algos {
 namespace {
+
+// The rule's state entries (algos/core/adam_state.h): lagrange_multiplier_adam_m, _v, _t.
+constexpr std::string_view kAdamPrefix = "lagrange_multiplier_adam_";
 
 AdamOptions lambda_adam_options(double learning_rate) {
   AdamOptions options;
@@ -26,19 +32,11 @@ double AdamMultiplierRule::step(double lambda, double mean_episode_cost, double 
 }
 
 std::vector<NamedScalar> AdamMultiplierRule::state() const {
-  return {{"lagrange_multiplier_adam_m", adam_.first_moment()[0]},
-          {"lagrange_multiplier_adam_v", adam_.second_moment()[0]},
-          {"lagrange_multiplier_adam_t", static_cast<double>(adam_.step_count())}};
+  return adam_state_entries(adam_, kAdamPrefix, AdamEntryLayout::moments_then_step);
 }
 
 void AdamMultiplierRule::restore_state(std::span<const NamedScalar> saved) {
-  const double step_count = saved[2].value;
-  if (!(step_count >= 0.0) || step_count != std::floor(step_count)) {
-    throw std::invalid_argument("LagrangeMultiplier::restore_state: lagrange_multiplier_adam_t must be a "
-                                "non-negative integer, got " + std::to_string(step_count));
-  }
-  adam_.set_state(Eigen::VectorXd::Constant(1, saved[0].value), Eigen::VectorXd::Constant(1, saved[1].value),
-                  static_cast<long long>(step_count));
+  restore_adam_state_entries(adam_, saved, kAdamPrefix, AdamEntryLayout::moments_then_step);
 }
 
 }  // namespace bsg::algos

@@ -1,14 +1,12 @@
 #include "algos/off_policy/off_policy_learner.h"
 
-#include <algorithm>
-#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 
+#include "algos/core/adam_state.h"
 #include "algos/core/gradient_norm_clipping.h"
 #include "algos/off_policy/polyak.h"
-#include "algos/off_policy/target_smoothing.h"
 
 namespace bsg::algos {
 namespace {
@@ -33,83 +31,21 @@ void fill_standard_normal(Eigen::MatrixXd& matrix, Rng& rng) {
   }
 }
 
-void save_adam(const Adam& adam, BinaryWriter& writer) {
-  writer.write_vector(adam.first_moment());
-  writer.write_vector(adam.second_moment());
-  writer.write_i64(adam.step_count());
-}
-
-void load_adam(Adam& adam, BinaryReader& reader, const std::string& name) {
-  const Eigen::VectorXd m = reader.read_vector(name + " Adam m", adam.num_parameters());
-  const Eigen::VectorXd v = reader.read_vector(name + " Adam v", adam.num_parameters());
-  const std::int64_t t = reader.read_i64(name + " Adam t");
-  if (t < 0) reader.fail(name + " Adam step count is negative");
-  adam.set_state(m, v, t);
-}
-
 }  // namespace
 
-OffPolicyOptions OffPolicyOptions::from_config(const RunConfig& config, int action_size) {
-  OffPolicyOptions options;
-  switch (config.alg) {
-    case Algorithm::sac:
-    case Algorithm::sac_lag:
-      options.actor = ActorKind::squashed_gaussian;
-      options.reward_critics = 2;
-      break;
-    case Algorithm::td3:
-    case Algorithm::td3_lag:
-      options.actor = ActorKind::deterministic;
-      options.reward_critics = 2;
-      options.target_smoothing = true;
-      options.target_actor = true;
-      break;
-    case Algorithm::ddpg:
-    case Algorithm::ddpg_lag:
-      options.actor = ActorKind::deterministic;
-      options.reward_critics = 1;
-      options.target_actor = true;
-      break;
-    default:
-      throw std::invalid_argument("OffPolicyOptions: " + std::string(to_string(config.alg)) +
-                                  " is not an off-policy algorithm");
-  }
-  options.policy_delay = config.policy_delay;
-  options.gamma = config.gamma;
-  options.polyak = config.polyak;
-  options.actor_lr = config.actor_lr;
-  options.critic_lr = config.critic_lr;
-  options.exploration_noise = config.exploration_noise;
-  options.policy_noise = config.policy_noise;
-  options.noise_clip = config.noise_clip;
-  options.alpha_init = config.alpha_init;
-  options.auto_alpha = config.auto_alpha;
-  options.alpha_lr = config.alpha_lr;
-  options.target_entropy = -static_cast<double>(action_size);  // Haarnoja et al. 2018b: -dim(A)
-  options.max_grad_norm = config.max_grad_norm;
-  options.hidden_sizes = config.hidden_sizes;
-  options.mlp = MlpOptions{.zero_bias_init = config.zero_bias_init, .dtype = config.dtype, .activation = config.activation};
-  return options;
-}
-
 OffPolicyLearner::OffPolicyLearner(OffPolicyOptions options, int observation_size, int action_size, int cost_count,
-                                   Rng& init_rng)
+                                   int actor_output_size, int reward_critics, Rng& init_rng)
     : options_(std::move(options)),
       observation_size_(observation_size),
       action_size_(action_size),
-      actor_(layer_sizes(observation_size,
-                         options_.hidden_sizes,
-                         options_.actor == ActorKind::squashed_gaussian ? 2 * action_size : action_size),
-             init_rng, options_.mlp),
+      actor_(layer_sizes(observation_size, options_.hidden_sizes, actor_output_size), init_rng, options_.mlp),
       target_actor_(actor_),
-      actor_adam_(actor_.num_parameters(), AdamOptions{.learning_rate = options_.actor_lr}),
-      log_alpha_(Eigen::VectorXd::Constant(1, std::log(options_.alpha_init))),
-      alpha_adam_(1, AdamOptions{.learning_rate = options_.alpha_lr}) {
-  if (options_.reward_critics < 1 || options_.reward_critics > 2 || options_.policy_delay < 1 || cost_count < 0) {
+      actor_adam_(actor_.num_parameters(), AdamOptions{.learning_rate = options_.actor_lr}) {
+  if (reward_critics < 1 || reward_critics > 2 || options_.policy_delay < 1 || cost_count < 0) {
     throw std::invalid_argument("OffPolicyLearner: reward_critics must be 1 or 2, policy_delay >= 1, cost_count >= 0");
   }
   const std::vector<int> critic_sizes = layer_sizes(observation_size + action_size, options_.hidden_sizes, 1);
-  for (int k = 0; k < options_.reward_critics; ++k) {
+  for (int k = 0; k < reward_critics; ++k) {
     reward_critics_.emplace_back(critic_sizes, init_rng, options_.mlp);
     reward_critic_adams_.emplace_back(reward_critics_.back().num_parameters(),
                                       AdamOptions{.learning_rate = options_.critic_lr});
@@ -124,7 +60,10 @@ OffPolicyLearner::OffPolicyLearner(OffPolicyOptions options, int observation_siz
   act_outputs_.resize(actor_.output_size());
 }
 
-double OffPolicyLearner::alpha() const { return std::exp(log_alpha_(0)); }
+double OffPolicyLearner::alpha() const {
+  const Temperature* held = temperature();
+  return held != nullptr ? held->alpha() : 0.0;
+}
 
 std::vector<const Mlp*> OffPolicyLearner::all_networks() const {
   std::vector<const Mlp*> networks{&actor_};
@@ -150,20 +89,7 @@ void OffPolicyLearner::act(std::span<const double> observation, bool determinist
                            Eigen::Ref<Eigen::VectorXd> action) {
   const Eigen::Map<const Eigen::VectorXd> input(observation.data(), static_cast<Eigen::Index>(observation.size()));
   actor_.forward(input, act_outputs_, act_workspace_);
-  for (Eigen::Index j = 0; j < action_size_; ++j) {
-    if (options_.actor == ActorKind::squashed_gaussian) {
-      double u = act_outputs_(j);
-      if (!deterministic) {
-        const double log_std = std::clamp(act_outputs_(action_size_ + j), kLogStdMin, kLogStdMax);
-        u += std::exp(log_std) * standard_normal(rng);  // u = mu + sigma eps
-      }
-      action(j) = std::tanh(u);
-    } else {
-      double a = std::tanh(act_outputs_(j));
-      if (!deterministic) a = std::clamp(a + options_.exploration_noise * standard_normal(rng), -1.0, 1.0);
-      action(j) = a;
-    }
-  }
+  action_from_outputs(act_outputs_, deterministic, rng, action);
 }
 
 void OffPolicyLearner::build_critic_inputs(const Eigen::Ref<const Eigen::MatrixXd>& observations,
@@ -179,28 +105,17 @@ void OffPolicyLearner::compute_targets(const ReplayBatch& batch, const Eigen::Re
   resize_if_needed(reward_targets_, rows);
   resize_if_needed(cost_targets_, rows, cost_count());
   resize_if_needed(q_min_, rows, 1);
-  // a' for s'
-  if (options_.actor == ActorKind::squashed_gaussian) {
-    const Eigen::MatrixXd& outputs = actor_.forward_batch(batch.next_observations, actor_workspace_);
-    squashed_gaussian_sample(outputs, next_noise, sample_);
-    next_actions_ = sample_.actions;
-  } else {
-    const Mlp& mu = options_.target_actor ? target_actor_ : actor_;
-    next_actions_ = mu.forward_batch(batch.next_observations, actor_workspace_).array().tanh();
-    if (options_.target_smoothing) {
-      smooth_target_actions(next_actions_, next_noise, options_.policy_noise, options_.noise_clip);
-    }
-  }
+  next_actions(batch.next_observations, next_noise, next_actions_);  // a' for s'
   build_critic_inputs(batch.next_observations, next_actions_);
-  for (int k = 0; k < options_.reward_critics; ++k) {
-    const Eigen::MatrixXd& q = target_reward_critics_[static_cast<std::size_t>(k)].forward_batch(critic_inputs_, critic_workspace_);
+  for (std::size_t k = 0; k < target_reward_critics_.size(); ++k) {
+    const Eigen::MatrixXd& q = target_reward_critics_[k].forward_batch(critic_inputs_, critic_workspace_);
     if (k == 0) {
       q_min_ = q;
     } else {
       q_min_ = q_min_.cwiseMin(q);  // clipped double Q: min_k Q'_k
     }
   }
-  if (options_.actor == ActorKind::squashed_gaussian) q_min_.col(0) -= alpha() * sample_.log_probs;  // soft value
+  add_next_value_terms(q_min_);
   // y = R + discount (1 - terminal) V'(s')
   reward_targets_ = batch.rewards.array() +
                     batch.discounts.array() * (1.0 - batch.terminals.array()) * q_min_.col(0).array();
@@ -235,14 +150,8 @@ double OffPolicyLearner::actor_loss(const ReplayBatch& batch, const Eigen::Ref<c
   const Eigen::Index rows = batch.rows();
   const double lambda_sum = std::accumulate(lambdas.begin(), lambdas.end(), 0.0);
   const double scale = 1.0 / (static_cast<double>(rows) * (1.0 + lambda_sum));  // mean, / (1 + sum lambda)
-  const bool squashed = options_.actor == ActorKind::squashed_gaussian;
   const Eigen::MatrixXd& outputs = actor_.forward_batch(batch.observations, actor_workspace_);
-  if (squashed) {
-    squashed_gaussian_sample(outputs, noise, sample_);
-    policy_actions_ = sample_.actions;
-  } else {
-    policy_actions_ = outputs.array().tanh();
-  }
+  policy_actions(outputs, noise, policy_actions_);
   build_critic_inputs(batch.observations, policy_actions_);
   resize_if_needed(action_gradient_, rows, action_size_);
   resize_if_needed(input_gradient_, rows, observation_size_ + action_size_);
@@ -251,9 +160,8 @@ double OffPolicyLearner::actor_loss(const ReplayBatch& batch, const Eigen::Ref<c
   resize_if_needed(q_argmin_, rows, 1);
   action_gradient_.setZero();
   double loss_sum = 0.0;
-  // - min_k Q_k(s, a) (SAC); - Q_1(s, a) (TD3, DDPG: Fujimoto et al.'s actor uses Q_1)
-  const int critics_in_loss = squashed ? options_.reward_critics : 1;
-  if (critics_in_loss == 2) {
+  // - min_k Q_k(s, a) over the critics of the actor's loss
+  if (critics_in_actor_loss() == 2) {
     // each twin's pass in its own workspace, so that both are cached for their input gradients
     const Eigen::MatrixXd& q0 = reward_critics_[0].forward_batch(critic_inputs_, critic_workspace_);
     const Eigen::MatrixXd& q1 = reward_critics_[1].forward_batch(critic_inputs_, twin_critic_workspace_);
@@ -283,33 +191,15 @@ double OffPolicyLearner::actor_loss(const ReplayBatch& batch, const Eigen::Ref<c
     action_gradient_ += input_gradient_.rightCols(action_size_);
   }
   resize_if_needed(actor_output_gradient_, rows, actor_.output_size());
-  if (squashed) {
-    // + alpha log pi(a|s)
-    const double alpha_value = alpha();
-    loss_sum += alpha_value * sample_.log_probs.sum();
-    if (log_prob_mean != nullptr) *log_prob_mean = sample_.log_probs.mean();
-    resize_if_needed(log_prob_gradient_, rows);
-    log_prob_gradient_.setConstant(alpha_value * scale);
-    squashed_gaussian_backward(outputs, noise, sample_, action_gradient_, log_prob_gradient_, actor_output_gradient_);
-  } else {
-    if (log_prob_mean != nullptr) *log_prob_mean = 0.0;
-    // a = tanh(o): dL/do = dL/da (1 - a^2)
-    actor_output_gradient_ = action_gradient_.array() * (1.0 - policy_actions_.array().square());
-  }
+  actor_output_gradient(outputs, noise, policy_actions_, action_gradient_, scale, loss_sum, log_prob_mean,
+                        actor_output_gradient_);
   actor_.backward_batch(actor_output_gradient_, actor_workspace_, gradient);
   return loss_sum * scale;
 }
 
-double OffPolicyLearner::alpha_loss(double log_prob_mean, double* gradient) const {
-  // L(log alpha) = -log alpha (E[log pi] + H_target)
-  const double shortfall = log_prob_mean + options_.target_entropy;
-  if (gradient != nullptr) *gradient = -shortfall;
-  return -log_alpha_(0) * shortfall;
-}
-
 void OffPolicyLearner::update_targets() {
   const double tau = options_.polyak;
-  if (options_.target_actor) polyak_update(target_actor_.mutable_parameters(), actor_.parameters(), tau);
+  if (uses_target_actor()) polyak_update(target_actor_.mutable_parameters(), actor_.parameters(), tau);
   for (std::size_t k = 0; k < reward_critics_.size(); ++k) {
     polyak_update(target_reward_critics_[k].mutable_parameters(), reward_critics_[k].parameters(), tau);
   }
@@ -328,12 +218,11 @@ OffPolicyStepStats OffPolicyLearner::update(const ReplayBatch& batch, std::span<
 void OffPolicyLearner::update(const ReplayBatch& batch, std::span<const double> lambdas, Rng& rng,
                               const MpiContext& mpi, OffPolicyStepStats& stats) {
   const Eigen::Index rows = batch.rows();
-  const bool squashed = options_.actor == ActorKind::squashed_gaussian;
   stats.reward_critic_loss = stats.reward_q_mean = stats.actor_loss = stats.log_prob_mean = stats.alpha = 0.0;
   stats.actor_updated = false;
   // 1. targets
   resize_if_needed(next_noise_, rows, action_size_);
-  if (squashed || options_.target_smoothing) fill_standard_normal(next_noise_, rng);
+  if (draws_target_noise()) fill_standard_normal(next_noise_, rng);
   compute_targets(batch, next_noise_);
   // 2. critics: the reward critics' gradients (each depends only on its own critic and the targets),
   // rescaled together, then their steps
@@ -361,12 +250,12 @@ void OffPolicyLearner::update(const ReplayBatch& batch, std::span<const double> 
     if (options_.max_grad_norm > 0.0) clip_gradient_norm(gradient_, options_.max_grad_norm);
     cost_critic_adams_[i].step(cost_critics_[i].mutable_parameters(), gradient_);
   }
-  // 3. actor, temperature and targets every policy_delay critic steps
+  // 3. actor, what follows its step (the temperature) and targets every policy_delay critic steps
   ++update_count_;
   if (update_count_ % options_.policy_delay == 0) {
     stats.actor_updated = true;
     resize_if_needed(noise_, rows, action_size_);
-    if (squashed) fill_standard_normal(noise_, rng);
+    if (draws_actor_noise()) fill_standard_normal(noise_, rng);
     resize_if_needed(actor_gradient_, actor_.num_parameters());
     double log_prob_mean = 0.0;
     stats.actor_loss = actor_loss(batch, noise_, lambdas, actor_gradient_, &log_prob_mean);
@@ -374,37 +263,38 @@ void OffPolicyLearner::update(const ReplayBatch& batch, std::span<const double> 
     mpi.average_in_place(actor_gradient_);
     if (options_.max_grad_norm > 0.0) clip_gradient_norm(actor_gradient_, options_.max_grad_norm);
     actor_adam_.step(actor_.mutable_parameters(), actor_gradient_);
-    if (squashed && options_.auto_alpha) {
-      double alpha_gradient = 0.0;
-      alpha_loss(mpi.average(log_prob_mean), &alpha_gradient);
-      alpha_gradient_.setConstant(1, alpha_gradient);
-      alpha_adam_.step(log_alpha_, alpha_gradient_);
-    }
+    after_actor_step(log_prob_mean, mpi);
     update_targets();
   }
-  stats.alpha = squashed ? alpha() : 0.0;
+  stats.alpha = alpha();
 }
 
 void OffPolicyLearner::save(BinaryWriter& writer) const {
   writer.write_section("off-policy networks");
   for (const Mlp* net : all_networks()) writer.write_vector(net->parameters());
-  save_adam(actor_adam_, writer);
-  for (const Adam& adam : reward_critic_adams_) save_adam(adam, writer);
-  for (const Adam& adam : cost_critic_adams_) save_adam(adam, writer);
-  writer.write_f64(log_alpha_(0));
-  save_adam(alpha_adam_, writer);
+  save_adam_state(actor_adam_, writer);
+  for (const Adam& adam : reward_critic_adams_) save_adam_state(adam, writer);
+  for (const Adam& adam : cost_critic_adams_) save_adam_state(adam, writer);
+  if (const Temperature* held = temperature(); held != nullptr) {
+    held->save(writer);
+  } else {
+    Temperature(options_.alpha_init, options_.alpha_lr, options_.target_entropy).save(writer);
+  }
   writer.write_i64(update_count_);
 }
 
 void OffPolicyLearner::load(BinaryReader& reader) {
   reader.expect_section("off-policy networks");
   for (Mlp* net : all_networks()) net->set_parameters(reader.read_vector("network parameters", net->num_parameters()));
-  load_adam(actor_adam_, reader, "actor");
-  for (Adam& adam : reward_critic_adams_) load_adam(adam, reader, "reward critic");
-  for (Adam& adam : cost_critic_adams_) load_adam(adam, reader, "cost critic");
-  log_alpha_(0) = reader.read_f64("log alpha");
-  if (!std::isfinite(log_alpha_(0))) reader.fail("log alpha is not finite");
-  load_adam(alpha_adam_, reader, "alpha");
+  load_adam_state(actor_adam_, reader, "actor");
+  for (Adam& adam : reward_critic_adams_) load_adam_state(adam, reader, "reward critic");
+  for (Adam& adam : cost_critic_adams_) load_adam_state(adam, reader, "cost critic");
+  if (Temperature* held = mutable_temperature(); held != nullptr) {
+    held->load(reader);
+  } else {
+    Temperature unused(options_.alpha_init, options_.alpha_lr, options_.target_entropy);
+    unused.load(reader);  // checked, then dropped: the deterministic actors have no temperature
+  }
   update_count_ = reader.read_i64("update count");
   if (update_count_ < 0) reader.fail("update count is negative");
 }

@@ -3,6 +3,7 @@
 #include "algos/core/actor_critic.h"
 #include "algos/core/actor_critic_acting.h"
 #include "algos/core/constraint_costs.h"
+#include "algos/off_policy/make_off_policy_learner.h"
 #include "algos/off_policy/off_policy_acting.h"
 #include "algos/off_policy/off_policy_learner.h"
 #include "algos/training/exploration_noise.h"
@@ -82,8 +83,7 @@ class LoadedOffPolicy final : public LoadedPolicy {
   static std::unique_ptr<OffPolicyLearner> make_learner(const RunConfig& config, PolicySizes sizes) {
     const int cost_critics = ignores_cost(config.alg) ? 0 : constraint_count(config);
     Rng unused_init(0);  // the checkpoint overwrites every parameter
-    return std::make_unique<OffPolicyLearner>(OffPolicyOptions::from_config(config, sizes.action), sizes.observation,
-                                              sizes.action, cost_critics, unused_init);
+    return make_off_policy_learner(config, sizes.observation, sizes.action, cost_critics, unused_init);
   }
 
   std::unique_ptr<OffPolicyLearner> learner_;

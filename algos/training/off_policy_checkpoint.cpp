@@ -1,28 +1,16 @@
 #include "algos/training/off_policy_checkpoint.h"
 
-#include <cmath>
 #include <string>
 
+#include "algos/training/run_header.h"
 #include "common/checkpoint_file.h"
-#include "common/run_config_yaml.h"
 
 namespace bsg::algos {
-namespace {
-
-constexpr std::string_view kMarker = "off-policy";
-
-}  // namespace
 
 std::string encode_off_policy_checkpoint(const RunConfig& config, const OffPolicyCheckpoint& state,
                                          const OffPolicyLearner& learner) {
   BinaryWriter writer;
-  writer.write_section("off-policy run");
-  writer.write_string(kMarker);
-  writer.write_string(to_yaml(config));
-  writer.write_i64(state.progress.num_ranks);
-  writer.write_i64(state.progress.epochs_completed);
-  writer.write_f64(state.progress.elapsed_seconds);
-  writer.write_string(state.progress.progress_log.value_or(""));
+  write_run_header(writer, RunHeaderLayout::off_policy, config, state.progress);
   save_training_cost(state.progress.training_cost, writer);
   writer.write_i64(state.replay_transitions);
   writer.write_i64(state.steps_since_update);
@@ -39,25 +27,10 @@ std::string encode_off_policy_checkpoint(const RunConfig& config, const OffPolic
 
 OffPolicyCheckpoint load_off_policy_checkpoint(const std::filesystem::path& path, const RunConfig& config,
                                                OffPolicyLearner& learner) {
-  const std::string payload = read_checkpoint_file(path);
-  BinaryReader reader(payload, path.string());
-  reader.expect_section("off-policy run");
-  if (reader.read_string("marker") != kMarker) reader.fail("not an off-policy checkpoint");
-  if (reader.read_string("config") != to_yaml(config)) {
-    reader.fail("written for another configuration than the run directory's config.yaml");
-  }
+  const CheckpointContents contents = read_checkpoint_contents(path);
+  BinaryReader reader(contents.payload, path.string());
   OffPolicyCheckpoint state;
-  const std::int64_t ranks = reader.read_i64("rank count");
-  const std::int64_t epochs = reader.read_i64("epochs completed");
-  if (ranks < 1 || ranks > kMaxCheckpointRanks) reader.fail("rank count out of range");
-  if (epochs < 0 || epochs > config.epochs) reader.fail("epochs completed out of range");
-  state.progress.num_ranks = static_cast<int>(ranks);
-  state.progress.epochs_completed = static_cast<int>(epochs);
-  state.progress.elapsed_seconds = reader.read_f64("elapsed seconds");
-  if (!(state.progress.elapsed_seconds >= 0.0) || !std::isfinite(state.progress.elapsed_seconds)) {
-    reader.fail("elapsed seconds negative or not finite");
-  }
-  state.progress.progress_log = reader.read_string("progress log");
+  state.progress = read_run_header(reader, RunHeaderLayout::off_policy, config, contents.format_version);
   const int constraint_count = config.constraints.empty() ? 1 : static_cast<int>(config.constraints.size());
   state.progress.training_cost = load_training_cost(reader, constraint_count);
   state.replay_transitions = reader.read_i64("replay transitions");

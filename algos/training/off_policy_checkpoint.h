@@ -1,8 +1,9 @@
 // The checkpoint of an off-policy run (docs/reproducing.md#run-directory): checkpoint.bin, written by
 // rank 0 inside common/checkpoint_file.h's container, holds in named sections
-//   "off-policy run"   the marker "off-policy", the resolved config as YAML (must equal the run's),
-//                      the rank count, epochs completed, training seconds, the progress.csv text of
-//                      those epochs, the training cost, the update schedule's carry
+//   "off-policy run"   the run header (run_header.h, its off-policy layout: the marker "off-policy",
+//                      the resolved config as YAML (must equal the run's), the rank count, epochs
+//                      completed, training seconds, the progress.csv text of those epochs), then the
+//                      training cost and the update schedule's carry
 //   "multipliers"      every Lagrange multiplier's named state (none for sac, td3, ddpg)
 //   "off-policy networks"  the learner (off_policy_learner.h: every net, target, Adam state, log alpha)
 // with the number of transitions each rank's replay buffer had taken, whose transitions every rank r
@@ -18,7 +19,7 @@
 
 #include "algos/core/algorithm.h"
 #include "algos/off_policy/off_policy_learner.h"
-#include "algos/training/training_checkpoint.h"
+#include "algos/training/run_header.h"
 #include "common/run_config.h"
 
 namespace bsg::algos {

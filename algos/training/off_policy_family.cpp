@@ -7,6 +7,7 @@
 
 #include "algos/core/epoch_statistics.h"
 #include "algos/training/off_policy_checkpoint.h"
+#include "algos/off_policy/make_off_policy_learner.h"
 #include "algos/off_policy/off_policy_acting.h"
 #include "algos/training/evaluation.h"
 #include "common/checkpoint_file.h"
@@ -52,8 +53,7 @@ OffPolicyFamily::OffPolicyFamily(const RunConfig& config, const RunDirectory& di
   const int observation_size = collector_.spec().observation_dim;
   const int action_size = collector_.spec().action_dim;
   Rng init_rng(stream_seed(config_, SeedStream::network_init, 0, 0));  // the same nets on every rank
-  learner_ = std::make_unique<OffPolicyLearner>(OffPolicyOptions::from_config(config_, action_size), observation_size,
-                                                action_size, critic_cost_count_, init_rng);
+  learner_ = make_off_policy_learner(config_, observation_size, action_size, critic_cost_count_, init_rng);
   if (has_lagrange_multiplier(config_.alg)) multipliers_.emplace(config_);
   lambdas_.assign(static_cast<std::size_t>(critic_cost_count_), 0.0);
   if (multipliers_) {
@@ -62,7 +62,7 @@ OffPolicyFamily::OffPolicyFamily(const RunConfig& config, const RunDirectory& di
   action_.resize(action_size);
   log_layout_.critic_cost_count = critic_cost_count_;
   log_layout_.prefixed_cost_critics = constraint_count_ > 1;
-  log_layout_.alpha = learner_->options().actor == ActorKind::squashed_gaussian;
+  log_layout_.alpha = learner_->actor_kind() == ActorKind::squashed_gaussian;
   if (multipliers_) log_layout_.multiplier_names = multipliers_->diagnostic_names();
   log_layout_.per_constraint = config_.constraints.empty() ? 0 : constraint_count_;
 }
@@ -232,7 +232,7 @@ std::vector<ConstraintEstimate> OffPolicyFamily::update_multipliers(const OffPol
 // 4. Non-finite networks stop the run before the epoch is saved.
 void OffPolicyFamily::check_networks_finite(int epoch) {
   if (!learner_->actor().parameters().allFinite()) check_finite(epoch, "actor parameter", std::nan(""));
-  for (int k = 0; k < learner_->options().reward_critics; ++k) {
+  for (int k = 0; k < learner_->reward_critic_count(); ++k) {
     if (!learner_->reward_critic(k).parameters().allFinite()) {
       check_finite(epoch, "reward critic parameter", std::nan(""));
     }

@@ -1,14 +1,12 @@
 #include "algos/training/training_checkpoint.h"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 
 #include "algos/training/progress_csv.h"
 #include "algos/training/epoch_log.h"
 #include "algos/training/progress_csv_reader.h"
 #include "common/message_text.h"
-#include "common/run_config_yaml.h"
 
 namespace bsg::algos {
 namespace {
@@ -57,13 +55,7 @@ void check_progress_log(const BinaryReader& reader, const std::string& text, con
 std::string encode_training_checkpoint(const RunConfig& config, const TrainingProgress& progress,
                                        const ActorCritic& actor_critic, const OnPolicyAlgorithm& algorithm) {
   BinaryWriter writer;
-  writer.write_section("run");
-  writer.write_string(to_yaml(config));
-  writer.write_i64(progress.num_ranks);
-  writer.write_section("progress");
-  writer.write_i64(progress.epochs_completed);
-  writer.write_f64(progress.elapsed_seconds);
-  writer.write_string(progress.progress_log.value_or(""));
+  write_run_header(writer, RunHeaderLayout::on_policy, config, progress);
   actor_critic.save(writer);
   writer.write_section("algorithm");
   writer.write_string(algorithm.name());
@@ -87,33 +79,8 @@ TrainingProgress decode_training_checkpoint(std::string_view payload, const std:
                                             const RunConfig& config, ActorCritic& actor_critic,
                                             OnPolicyAlgorithm& algorithm, std::uint32_t format_version) {
   BinaryReader reader(payload, source_name);
-  TrainingProgress progress;
-  reader.expect_section("run");
-  if (reader.read_string("config") != to_yaml(config)) {
-    reader.fail("it was written for a different configuration than the run directory's config.yaml");
-  }
-  const std::int64_t num_ranks = reader.read_i64("rank count");
-  if (num_ranks < 1 || num_ranks > kMaxCheckpointRanks) {
-    reader.fail("rank count " + std::to_string(num_ranks) + " lies outside [1, " +
-                std::to_string(kMaxCheckpointRanks) + "]");
-  }
-  progress.num_ranks = static_cast<int>(num_ranks);
-  reader.expect_section("progress");
-  const std::int64_t epochs_completed = reader.read_i64("epochs completed");
-  if (epochs_completed < 0 || epochs_completed > config.epochs) {
-    reader.fail("epochs completed " + std::to_string(epochs_completed) + " lies outside [0, " +
-                std::to_string(config.epochs) + "]");
-  }
-  progress.epochs_completed = static_cast<int>(epochs_completed);
-  progress.elapsed_seconds = reader.read_f64("elapsed seconds");
-  if (!std::isfinite(progress.elapsed_seconds) || progress.elapsed_seconds < 0) {
-    reader.fail("elapsed seconds " + format_csv_number(progress.elapsed_seconds) +
-                " is not a finite non-negative time");
-  }
-  if (format_version >= 2) {
-    progress.progress_log = reader.read_string("progress log");
-    check_progress_log(reader, *progress.progress_log, progress, config, algorithm);
-  }
+  TrainingProgress progress = read_run_header(reader, RunHeaderLayout::on_policy, config, format_version);
+  if (progress.progress_log) check_progress_log(reader, *progress.progress_log, progress, config, algorithm);
   actor_critic.load(reader);
   reader.expect_section("algorithm");
   const std::string name = reader.read_string("algorithm name");

@@ -3,9 +3,10 @@
 //
 // Payload (inside common/checkpoint_file.h's container: magic, version,
 // size, FNV-1a checksum), in order of named sections:
-//   "run"            the resolved config as YAML (must equal the run
-//                    directory's config.yaml when loading), the rank count
-//   "progress"       epochs completed, training seconds so far, and (format
+//   "run", "progress"  the run header (run_header.h, its on-policy layout):
+//                    the resolved config as YAML (must equal the run
+//                    directory's config.yaml when loading), the rank count;
+//                    epochs completed, training seconds so far, and (format
 //                    2 on) the progress.csv text of those epochs: header and
 //                    one row per epoch, so that a resume can tell a foreign
 //                    or damaged log and restore lost rows (progress_csv.h)
@@ -30,22 +31,11 @@
 #include "algos/core/actor_critic.h"
 #include "algos/core/algorithm.h"
 #include "common/checkpoint_file.h"
+#include "algos/training/run_header.h"
 #include "algos/training/training_cost.h"
 #include "common/run_config.h"
 
 namespace bsg::algos {
-
-struct TrainingProgress {
-  int epochs_completed = 0;      // epochs 0 .. epochs_completed - 1 are done
-  double elapsed_seconds = 0.0;  // training wall time so far (progress.csv time_s)
-  int num_ranks = 1;             // MPI ranks of the run that wrote the checkpoint
-  // progress.csv of epochs 0 .. epochs_completed - 1 (none from a format 1 file).
-  std::optional<std::string> progress_log;
-  TrainingCost training_cost{};  // safety during training so far
-};
-
-// Bounds a loaded checkpoint's fields must lie in.
-inline constexpr int kMaxCheckpointRanks = 1 << 20;
 
 // The payload bytes (for tests) and the atomic write of the whole file.
 std::string encode_training_checkpoint(const RunConfig& config, const TrainingProgress& progress,

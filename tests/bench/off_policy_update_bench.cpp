@@ -21,11 +21,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "algos/off_policy/make_off_policy_learner.h"
 #include "algos/off_policy/off_policy_learner.h"
 #include "common/mpi_context.h"
 #include "common/random.h"
@@ -60,7 +62,9 @@ struct Timing {
 class BenchLearner {
  public:
   BenchLearner(bsg::Dtype dtype, bsg::Activation activation, int hidden)
-      : rng_(1), learner_(options(dtype, activation, hidden), kObservations, kActions, 1, rng_),
+      : rng_(1),
+        learner_(bsg::algos::make_off_policy_learner(learner_config(dtype, activation, hidden), kObservations,
+                                                     kActions, 1, rng_)),
         batch_(random_batch(kBatch, kObservations, kActions, rng_)) {
     for (int i = 0; i < 20; ++i) step();  // warm-up
   }
@@ -81,7 +85,7 @@ class BenchLearner {
   static constexpr int kObservations = 8, kActions = 2, kBatch = 256;
 
  private:
-  static bsg::algos::OffPolicyOptions options(bsg::Dtype dtype, bsg::Activation activation, int hidden) {
+  static bsg::RunConfig learner_config(bsg::Dtype dtype, bsg::Activation activation, int hidden) {
     bsg::RunConfig config;
     config.alg = bsg::Algorithm::sac_lag;
     config.hidden_sizes = {hidden, hidden};
@@ -90,12 +94,12 @@ class BenchLearner {
     config.max_grad_norm = 0.0;  // FSRL's: no rescaling
     config.auto_alpha = true;
     config.policy_delay = 1;  // actor and temperature at every step, as the PyTorch script
-    return bsg::algos::OffPolicyOptions::from_config(config, kActions);
+    return config;
   }
-  void step() { learner_.update(batch_, lambdas_, rng_, mpi_); }
+  void step() { learner_->update(batch_, lambdas_, rng_, mpi_); }
 
   bsg::Rng rng_;
-  bsg::algos::OffPolicyLearner learner_;
+  std::unique_ptr<bsg::algos::OffPolicyLearner> learner_;
   bsg::algos::ReplayBatch batch_;
   std::vector<double> lambdas_{0.5};
   bsg::MpiContext mpi_ = bsg::MpiContext::single_process();

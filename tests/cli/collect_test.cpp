@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "../test_support.h"
+#include "algos/off_policy/make_off_policy_learner.h"
 #include "algos/off_policy/off_policy_learner.h"
 #include "algos/offline/dataset_file.h"
 #include "algos/training/off_policy_checkpoint.h"
@@ -91,8 +93,9 @@ TEST(Collect, AnOffPolicyCheckpointActsWithItsDeterministicActor) {
   const bsg::RunConfig config =
       bsg::load_resolved_run_config(fs::path(run) / "config.yaml", bsg::envs::registered_ids());
   bsg::Rng unused(0);
-  bsg::algos::OffPolicyLearner learner(bsg::algos::OffPolicyOptions::from_config(config, d.action_dim),
-                                       d.observation_dim, d.action_dim, 1, unused);
+  const std::unique_ptr<bsg::algos::OffPolicyLearner> owned_learner =
+      bsg::algos::make_off_policy_learner(config, d.observation_dim, d.action_dim, 1, unused);
+  bsg::algos::OffPolicyLearner& learner = *owned_learner;
   bsg::algos::load_off_policy_checkpoint(fs::path(run) / "checkpoint.bin", config, learner);
   double largest_error = 0.0;
   for (std::size_t t = 0; t < d.size(); ++t) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../../common/finite_differences.h"
+#include "algos/off_policy/make_off_policy_learner.h"
 #include "algos/off_policy/off_policy_learner.h"
 #include "common/mpi_context.h"
 
@@ -61,8 +62,11 @@ TEST(OffPolicyGradientClipping, TwinCriticsTogetherAndEachCostCriticAloneBeforeT
   // Small enough that every clipped entry is near Adam's epsilon, where the step shows the scale.
   config.max_grad_norm = 1e-7;
   Rng init_rng(3);
-  OffPolicyLearner learner(OffPolicyOptions::from_config(config, kAct), kObs, kAct, 1, init_rng);
-  OffPolicyLearner probe = learner;
+  Rng probe_init_rng = init_rng;  // the same networks
+  const auto owned_learner = make_off_policy_learner(config, kObs, kAct, 1, init_rng);
+  const auto owned_probe = make_off_policy_learner(config, kObs, kAct, 1, probe_init_rng);
+  OffPolicyLearner& learner = *owned_learner;
+  OffPolicyLearner& probe = *owned_probe;
   Rng batch_rng(4);
   ReplayBatch batch;
   batch.observations = random_matrix(kRows, kObs, batch_rng);

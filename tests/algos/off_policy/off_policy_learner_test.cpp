@@ -12,9 +12,11 @@
 
 #include "../../common/finite_differences.h"
 #include "../../heap_counter.h"
+#include "algos/off_policy/make_off_policy_learner.h"
 #include "algos/off_policy/polyak.h"
 #include "algos/off_policy/squashed_gaussian.h"
 #include "algos/off_policy/target_smoothing.h"
+#include "algos/off_policy/temperature.h"
 
 namespace bsg::algos {
 namespace {
@@ -46,14 +48,14 @@ ReplayBatch random_batch(Rng& rng, int cost_count) {
   return batch;
 }
 
-OffPolicyOptions options_for(Algorithm alg) {
+RunConfig config_for(Algorithm alg) {
   RunConfig config;
   config.alg = alg;
   config.hidden_sizes = {6, 5};
   config.dtype = Dtype::float64;
   config.alpha_init = 0.3;
   config.policy_delay = 1;
-  return OffPolicyOptions::from_config(config, kAct);
+  return config;
 }
 
 // Random (not initial) targets so that they differ from the online nets.
@@ -108,7 +110,8 @@ TEST(SquashedGaussian, BackwardMatchesCentralDifferences) {
 
 void check_critic_loss(Algorithm alg) {
   Rng rng(3);
-  OffPolicyLearner learner(options_for(alg), kObs, kAct, 2, rng);
+  const auto owned_learner = make_off_policy_learner(config_for(alg), kObs, kAct, 2, rng);
+  OffPolicyLearner& learner = *owned_learner;
   const ReplayBatch batch = random_batch(rng, 2);
   const Eigen::VectorXd targets = random_matrix(kRows, 1, rng);
   Mlp& critic = learner.cost_critic(1);
@@ -140,7 +143,8 @@ TEST(OffPolicyLearner, CriticLossGradientMatchesCentralDifferences) {
 void check_actor_loss(Algorithm alg, const std::vector<double>& lambdas) {
   Rng rng(4);
   const int cost_count = static_cast<int>(lambdas.size());
-  OffPolicyLearner learner(options_for(alg), kObs, kAct, cost_count, rng);
+  const auto owned_learner = make_off_policy_learner(config_for(alg), kObs, kAct, cost_count, rng);
+  OffPolicyLearner& learner = *owned_learner;
   const ReplayBatch batch = random_batch(rng, cost_count);
   const Eigen::MatrixXd noise = random_matrix(kRows, kAct, rng, 1.5);
   const Eigen::VectorXd theta = learner.actor().parameters();
@@ -168,7 +172,8 @@ TEST(OffPolicyLearner, DeterministicActorLossGradientThroughDqDaMatchesCentralDi
 
 TEST(OffPolicyLearner, SacActorLossIsTheRescaledLagrangianOfTheSample) {
   Rng rng(5);
-  OffPolicyLearner learner(options_for(Algorithm::sac_lag), kObs, kAct, 1, rng);
+  const auto owned_learner = make_off_policy_learner(config_for(Algorithm::sac_lag), kObs, kAct, 1, rng);
+  OffPolicyLearner& learner = *owned_learner;
   const ReplayBatch batch = random_batch(rng, 1);
   const Eigen::MatrixXd noise = random_matrix(kRows, kAct, rng);
   Eigen::VectorXd gradient(learner.actor().num_parameters());
@@ -198,17 +203,16 @@ TEST(OffPolicyLearner, SacActorLossIsTheRescaledLagrangianOfTheSample) {
   EXPECT_NEAR(log_prob_mean, expected_log_prob, 1e-10);
 }
 
-TEST(OffPolicyLearner, TemperatureLossGradientIsMinusTheEntropyShortfall) {
-  Rng rng(6);
-  OffPolicyLearner learner(options_for(Algorithm::sac), kObs, kAct, 0, rng);
+TEST(Temperature, LossGradientIsMinusTheEntropyShortfall) {
+  const Temperature temperature(/*alpha_init=*/0.3, /*alpha_lr=*/3e-4, /*target_entropy=*/-2.0);
   // L(log alpha) = -log alpha (E log pi + H_target), H_target = -|A| = -2
   double gradient = 0.0;
-  const double loss = learner.alpha_loss(-0.3, &gradient);
+  const double loss = temperature.loss(-0.3, &gradient);
   EXPECT_DOUBLE_EQ(gradient, 2.3);
   EXPECT_DOUBLE_EQ(loss, -std::log(0.3) * (-2.3));
   // central differences in log alpha of the same expression
   const double h = 1e-6;
-  const double la = learner.log_alpha();
+  const double la = temperature.log_alpha();
   const double fd = ((-(la + h) * (-2.3)) - (-(la - h) * (-2.3))) / (2 * h);
   EXPECT_NEAR(gradient, fd, 1e-8);
 }
@@ -222,7 +226,8 @@ TEST(OffPolicyLearner, AutoAlphaLowersTheTemperatureWhenTheEntropyIsAboveTarget)
   config.alpha_lr = 0.01;
   config.policy_delay = 1;
   Rng rng(7);
-  OffPolicyLearner learner(OffPolicyOptions::from_config(config, kAct), kObs, kAct, 0, rng);
+  const auto owned_learner = make_off_policy_learner(config, kObs, kAct, 0, rng);
+  OffPolicyLearner& learner = *owned_learner;
   const ReplayBatch batch = random_batch(rng, 0);
   const double before = learner.alpha();
   // A fresh actor has sigma near 1: entropy far above -|A|, so log pi + H_target < 0 and alpha falls.
@@ -234,7 +239,8 @@ TEST(OffPolicyLearner, AutoAlphaLowersTheTemperatureWhenTheEntropyIsAboveTarget)
 
 TEST(OffPolicyLearner, DdpgTargetsBootstrapFromTheTargetNetsUnlessTerminal) {
   Rng rng(8);
-  OffPolicyLearner learner(options_for(Algorithm::ddpg_lag), kObs, kAct, 1, rng);
+  const auto owned_learner = make_off_policy_learner(config_for(Algorithm::ddpg_lag), kObs, kAct, 1, rng);
+  OffPolicyLearner& learner = *owned_learner;
   perturb_targets(learner, rng);
   const ReplayBatch batch = random_batch(rng, 1);
   learner.compute_targets(batch, Eigen::MatrixXd::Zero(kRows, kAct));
@@ -253,7 +259,8 @@ TEST(OffPolicyLearner, DdpgTargetsBootstrapFromTheTargetNetsUnlessTerminal) {
 
 TEST(OffPolicyLearner, SacTargetsUseTheSoftValueOfTheTwinMinimum) {
   Rng rng(9);
-  OffPolicyLearner learner(options_for(Algorithm::sac_lag), kObs, kAct, 1, rng);
+  const auto owned_learner = make_off_policy_learner(config_for(Algorithm::sac_lag), kObs, kAct, 1, rng);
+  OffPolicyLearner& learner = *owned_learner;
   perturb_targets(learner, rng);
   const ReplayBatch batch = random_batch(rng, 1);
   const Eigen::MatrixXd noise = random_matrix(kRows, kAct, rng);
@@ -311,7 +318,8 @@ TEST(OffPolicyLearner, Td3UpdatesActorAndTargetsEveryPolicyDelaySteps) {
   config.dtype = Dtype::float64;
   config.policy_delay = 2;
   Rng rng(10);
-  OffPolicyLearner learner(OffPolicyOptions::from_config(config, kAct), kObs, kAct, 0, rng);
+  const auto owned_learner = make_off_policy_learner(config, kObs, kAct, 0, rng);
+  OffPolicyLearner& learner = *owned_learner;
   const ReplayBatch batch = random_batch(rng, 0);
   const Eigen::VectorXd actor0 = learner.actor().parameters();
   const Eigen::VectorXd target0 = learner.target_reward_critic(0).parameters();
@@ -331,14 +339,16 @@ TEST(OffPolicyLearner, Td3UpdatesActorAndTargetsEveryPolicyDelaySteps) {
 
 TEST(OffPolicyLearner, SaveAndLoadRestoreEveryNetworkAndOptimiser) {
   Rng rng(11);
-  OffPolicyLearner learner(options_for(Algorithm::sac_lag), kObs, kAct, 1, rng);
+  const auto owned_learner = make_off_policy_learner(config_for(Algorithm::sac_lag), kObs, kAct, 1, rng);
+  OffPolicyLearner& learner = *owned_learner;
   const ReplayBatch batch = random_batch(rng, 1);
   const std::vector<double> lambdas{0.5};
   learner.update(batch, lambdas, rng, MpiContext::single_process());
   BinaryWriter writer;
   learner.save(writer);
   Rng other_rng(99);
-  OffPolicyLearner restored(options_for(Algorithm::sac_lag), kObs, kAct, 1, other_rng);
+  const auto owned_restored = make_off_policy_learner(config_for(Algorithm::sac_lag), kObs, kAct, 1, other_rng);
+  OffPolicyLearner& restored = *owned_restored;
   BinaryReader reader(writer.bytes(), "test");
   restored.load(reader);
   reader.expect_end();
@@ -360,7 +370,8 @@ TEST(OffPolicyLearner, AGradientStepAllocatesNothingOnceSized) {
     config.auto_alpha = true;
     config.policy_delay = 2;
     Rng rng(12);
-    OffPolicyLearner learner(OffPolicyOptions::from_config(config, kAct), kObs, kAct, 2, rng);
+    const auto owned_learner = make_off_policy_learner(config, kObs, kAct, 2, rng);
+    OffPolicyLearner& learner = *owned_learner;
     const ReplayBatch batch = random_batch(rng, 2);
     const std::vector<double> lambdas{0.3, 0.0};
     const MpiContext mpi = MpiContext::single_process();

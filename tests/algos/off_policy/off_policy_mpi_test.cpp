@@ -9,6 +9,7 @@
 
 #include "../../test_support.h"
 #include "../scripted_env.h"
+#include "algos/off_policy/make_off_policy_learner.h"
 #include "algos/off_policy/off_policy_learner.h"
 #include "algos/training/off_policy_trainer.h"
 #include "common/mpi_context.h"
@@ -59,10 +60,11 @@ TEST(OffPolicyMpi, TwoRanksWithHalvesTakeTheStepsOfOneProcessOnTheWholeBatch) {
     config.dtype = Dtype::float64;
     config.policy_noise = 0.0;
     config.policy_delay = 2;
-    const OffPolicyOptions options = OffPolicyOptions::from_config(config, 2);
     Rng init_a(3), init_b(3), data(4);
-    OffPolicyLearner whole(options, 4, 2, 1, init_a);
-    OffPolicyLearner half(options, 4, 2, 1, init_b);
+    const auto owned_whole = make_off_policy_learner(config, 4, 2, 1, init_a);
+    const auto owned_half = make_off_policy_learner(config, 4, 2, 1, init_b);
+    OffPolicyLearner& whole = *owned_whole;
+    OffPolicyLearner& half = *owned_half;
     const ReplayBatch batch = random_batch(32, data);  // the same on both ranks
     const ReplayBatch mine = rows_of(batch, 16 * mpi.rank(), 16);
     const std::vector<double> lambdas{0.7};
