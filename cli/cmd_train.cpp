@@ -66,6 +66,10 @@ ResolvedTrainConfig resolve_config(const TrainArguments& args) {
   request.valid_env_ids = envs::registered_ids();
   resolved.config = resolve_run_config(request).config;
   algos::resolve_env_block(resolved.config);
+  // config.yaml names the dataset absolutely, so that --resume and bsg eval work from anywhere.
+  if (is_offline(resolved.config.alg) && !resolved.config.dataset.empty()) {
+    resolved.config.dataset = std::filesystem::absolute(resolved.config.dataset).lexically_normal().string();
+  }
   return resolved;
 }
 
@@ -142,8 +146,12 @@ int train(const TrainArguments& args) {
       for (const auto& [key, value] : config.env) {
         if (key == "name" && value != config.env_id) env_name = value + " (from " + config.env_id + ")";
       }
+      // An offline epoch takes gradient steps on its dataset, no environment step.
+      const std::string epoch_work = is_offline(config.alg) ? std::to_string(config.updates_per_epoch) +
+                                                                  " gradient steps on " + config.dataset
+                                                            : std::to_string(config.steps_per_epoch) + " steps";
       std::cout << "bsg train: " << env_name << " " << to_string(config.alg) << " seed " << config.seed << ", "
-                << config.epochs << " epochs of " << config.steps_per_epoch << " steps on " << mpi.size()
+                << config.epochs << " epochs of " << epoch_work << " on " << mpi.size()
                 << (mpi.size() == 1 ? " rank" : " ranks") << (resume ? ", resuming " : " -> ")
                 << directory->root.string() << std::endl;
       if (configs) std::cout << describe_configs(*configs) << std::endl;

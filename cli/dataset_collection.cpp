@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "algos/core/constraint_costs.h"
-#include "algos/offline/checkpoint_policy.h"
+#include "algos/training/checkpoint_policy.h"
 #include "algos/offline/collection.h"
 #include "algos/offline/dataset_file.h"
 #include "common/constraint_config.h"

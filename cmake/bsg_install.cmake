@@ -30,10 +30,8 @@ foreach(folder common envs algos experiments)
   if(folder STREQUAL "experiments" AND NOT TARGET bsg_experiments)
     continue()
   endif()
-  # algos/offline (datasets, behaviour cloning) links HDF5 and serves the
-  # program alone: its library is not installed, so neither are its headers.
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/bsg/${folder}
-          FILES_MATCHING PATTERN "*.h" PATTERN "offline" EXCLUDE)
+          FILES_MATCHING PATTERN "*.h")
 endforeach()
 
 install(EXPORT bsgTargets NAMESPACE bsg:: DESTINATION ${BSG_INSTALL_CMAKEDIR})

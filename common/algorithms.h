@@ -18,12 +18,16 @@ namespace bsg {
 // off-policy learners with a replay buffer (docs/algorithms.md#off-policy-learners), then
 // later additions. New values go last: the order of the value list in messages
 // (`trpo | lag-trpo | ...`) and of the key table's algorithm column follows the enum.
-enum class Algorithm { trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag, crpo };
+enum class Algorithm {
+  trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag, crpo,
+  bc_all, bc_safe
+};
 
 // Which update the policy takes: the natural-gradient step with a line search
 // (algos/trust_region), minibatch Adam passes (algos/first_order), or gradient
-// steps on batches from a replay buffer with critics of Q (algos/off_policy).
-enum class AlgorithmFamily { trust_region, first_order, off_policy };
+// steps on batches from a replay buffer with critics of Q (algos/off_policy), or gradient steps on
+// batches of a fixed dataset that never touch an environment (algos/offline).
+enum class AlgorithmFamily { trust_region, first_order, off_policy, offline };
 
 // Everything outside the algorithm's own files needs to know of it: the run checks, the
 // key table's families, Table 1's labels and PID columns, and the plots (`bsg table`
@@ -60,6 +64,10 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
     {Algorithm::td3_lag,  "td3-lag",  "TD3-Lag",  "TD3-PID",    AlgorithmFamily::off_policy,   true,  true,  false, "crimson"},
     {Algorithm::ddpg_lag, "ddpg-lag", "DDPG-Lag", "DDPG-PID",   AlgorithmFamily::off_policy,   true,  true,  false, "darkkhaki"},
     {Algorithm::crpo,     "crpo",     "CRPO",     "",           AlgorithmFamily::trust_region, true,  false, false, "darkviolet"},
+    // OSRL's behaviour cloning: every row, or the rows of episodes within the cost limit (which BC-Safe
+    // constrains by its choice of data).
+    {Algorithm::bc_all,   "bc-all",   "BC-All",   "",           AlgorithmFamily::offline,      false, false, false, "sienna"},
+    {Algorithm::bc_safe,  "bc-safe",  "BC-Safe",  "",           AlgorithmFamily::offline,      true,  false, false, "seagreen"},
 });
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }
@@ -92,6 +100,9 @@ constexpr bool is_first_order(Algorithm alg) {
 constexpr bool is_off_policy(Algorithm alg) {
   return algorithm_info(alg).family == AlgorithmFamily::off_policy;
 }
+
+// Whether the algorithm learns from a fixed dataset (algos/offline) without acting in an environment.
+constexpr bool is_offline(Algorithm alg) { return algorithm_info(alg).family == AlgorithmFamily::offline; }
 
 // Whether the algorithm keeps Lagrange multipliers (and so can use the PID rule).
 constexpr bool has_lagrange_multiplier(Algorithm alg) { return algorithm_info(alg).lagrange_multiplier; }

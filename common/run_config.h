@@ -161,6 +161,14 @@ struct RunConfig {
   bool auto_alpha = false;         // SAC: learn alpha towards the target entropy -|A|
   double alpha_lr = 0.0003;        // SAC: Adam step size of log alpha
 
+  // --- offline (bc-all, bc-safe; docs/datasets.md#offline-runs) ---
+  // Also read by the offline family: hidden_sizes, activation, zero_bias_init, dtype, actor_lr (the
+  // policy's Adam step size), batch_size (rows per gradient step), cost_limit (BC-Safe's episodes),
+  // epochs, eval_episodes, save_freq, seed.
+  std::string dataset;             // the HDF5 file (DSRL's layout) the policy learns from
+  int updates_per_epoch = 200;     // gradient steps per epoch
+  int eval_every = 1;              // online evaluation after every eval_every-th epoch (and the last)
+
   // --- value networks (docs/algorithms.md#value-fits) ---
   bool use_cost_value_function = false;
   double vf_lr = 0.001;

@@ -64,6 +64,35 @@ void check_env_id(const std::string& env_id, const std::string& origin,
                     (list.empty() ? std::string("(none)") : list));
 }
 
+namespace {
+
+// Whether the family collects its batch on-policy each epoch (one rollout of steps_per_epoch steps).
+bool uses_on_policy_batches(Algorithm alg) {
+  switch (algorithm_info(alg).family) {
+    case AlgorithmFamily::trust_region:
+    case AlgorithmFamily::first_order: return true;
+    case AlgorithmFamily::off_policy:
+    case AlgorithmFamily::offline: return false;
+  }
+  return false;
+}
+
+// The offline algorithms learn from `dataset:` and judge one cost against cost_limit.
+void check_offline_relations(const RunConfig& config, const ConfigOrigins& origins) {
+  const std::string alg(to_string(config.alg));
+  if (config.dataset.empty()) {
+    throw ConfigError("alg '" + alg + "' learns from a dataset: set 'dataset: FILE' (an HDF5 file in DSRL's "
+                      "layout, e.g. written by bsg collect) in the run file or with --set dataset=FILE");
+  }
+  if (config.constraints.size() > 1) {
+    throw ConfigError(origin_of(origins, "constraints") + ": key 'constraints' lists " +
+                      std::to_string(config.constraints.size()) + " constraints, but alg '" + alg +
+                      "' judges one cost (the dataset's costs) against cost_limit");
+  }
+}
+
+}  // namespace
+
 void check_run_config_relations(const RunConfig& config, const ConfigOrigins& origins) {
   if (ignores_cost(config.alg) && config.constraints.size() > 1) {
     const std::string alg(to_string(config.alg));
@@ -72,8 +101,10 @@ void check_run_config_relations(const RunConfig& config, const ConfigOrigins& or
                       "' ignores cost (it maximises the return alone); use lag-trpo, pdo, cpo, pcpo, ppo-lag, "
                       "focops or cup, or give one constraint to judge the policy by");
   }
-  // The off-policy loop's episodes run on across epochs (check_run_config_for_ranks bounds them).
-  if (!is_off_policy(config.alg) && config.max_ep_len > config.steps_per_epoch) {
+  if (is_offline(config.alg)) check_offline_relations(config, origins);
+  // Only an on-policy epoch must complete an episode: the off-policy loop's episodes run on across
+  // epochs (check_run_config_for_ranks bounds them), the offline family steps no environment.
+  if (uses_on_policy_batches(config.alg) && config.max_ep_len > config.steps_per_epoch) {
     throw ConfigError("max_ep_len = " + std::to_string(config.max_ep_len) + " (" +
                       origin_of(origins, "max_ep_len") + ") exceeds steps_per_epoch = " +
                       std::to_string(config.steps_per_epoch) + " (" +
@@ -151,10 +182,16 @@ TrainingMemoryEstimate estimate_training_memory(const RunConfig& config, int obs
   // log-probabilities, rewards, costs, values, advantages and returns.
   // Off-policy: the replay buffer instead (observations, next observations,
   // actions, reward, cost, discount and flags per transition), batch_size rows of activations.
-  const double buffer_values =
-      is_off_policy(config.alg)
-          ? static_cast<double>(config.buffer_size) * (2.0 * observation_dim + action_dim + 4.0)
-          : batch * (2.0 * observation_dim + 2.0 * action_dim + 12.0);
+  // Offline: batch_size rows of a batch (the dataset, read from its file, is not counted here).
+  double buffer_values = 0.0;
+  switch (algorithm_info(config.alg).family) {
+    case AlgorithmFamily::trust_region:
+    case AlgorithmFamily::first_order: buffer_values = batch * (2.0 * observation_dim + 2.0 * action_dim + 12.0); break;
+    case AlgorithmFamily::off_policy:
+      buffer_values = static_cast<double>(config.buffer_size) * (2.0 * observation_dim + action_dim + 4.0);
+      break;
+    case AlgorithmFamily::offline: buffer_values = static_cast<double>(config.batch_size) * (observation_dim + action_dim); break;
+  }
   constexpr double kProgramBytes = 64.0 * 1024 * 1024;
   TrainingMemoryEstimate estimate;
   estimate.network_bytes = 8 * (parameter_values + activation_values);
@@ -202,6 +239,15 @@ void check_run_config_for_ranks(const RunConfig& config, int num_ranks) {
     throw ConfigError("number of MPI ranks must be at least 1, got " + std::to_string(num_ranks));
   }
   const std::string ranks = std::to_string(num_ranks);
+  if (is_offline(config.alg)) {
+    // Every rank would take the same gradient steps on the same dataset: there is nothing to split.
+    if (num_ranks > 1) {
+      throw ConfigError("alg '" + std::string(to_string(config.alg)) + "' trains on one rank, not " + ranks +
+                        ": an offline run learns from one dataset in memory and steps no environment, so there "
+                        "is no data to split over ranks; run it without mpirun (or with -np 1)");
+    }
+    return;
+  }
   if (config.steps_per_epoch % num_ranks != 0) {
     throw ConfigError("steps_per_epoch = " + std::to_string(config.steps_per_epoch) +
                       " is not divisible by the " + ranks + " MPI ranks");

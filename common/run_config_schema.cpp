@@ -68,6 +68,7 @@ constexpr AlgorithmSet kLagrangian = algorithms_where(&AlgorithmInfo::lagrange_m
 constexpr AlgorithmSet kTrustRegion = algorithms_in(AlgorithmFamily::trust_region);
 constexpr AlgorithmSet kFirstOrder = algorithms_in(AlgorithmFamily::first_order);
 constexpr AlgorithmSet kOffPolicy = algorithms_in(AlgorithmFamily::off_policy);
+constexpr AlgorithmSet kOffline = algorithms_in(AlgorithmFamily::offline);
 constexpr AlgorithmSet kSacFamily = algorithm_bit(Algorithm::sac) | algorithm_bit(Algorithm::sac_lag);
 constexpr AlgorithmSet kTd3Family = algorithm_bit(Algorithm::td3) | algorithm_bit(Algorithm::td3_lag);
 constexpr AlgorithmSet kDeterministicActor =
@@ -88,8 +89,8 @@ SchemaRow real(std::string_view key, double RunConfig::*member, ConfigLayer laye
   return {{key, ValueType::real, layer, range, {}, used_by, description}, member};
 }
 SchemaRow text(std::string_view key, std::string RunConfig::*member, ConfigLayer layer,
-               std::string_view description) {
-  return {{key, ValueType::text, layer, {}, {}, kAllAlgorithms, description}, member};
+               std::string_view description, AlgorithmSet used_by = kAllAlgorithms) {
+  return {{key, ValueType::text, layer, {}, {}, used_by, description}, member};
 }
 SchemaRow choice(std::string_view key, EnumAccess access, std::span<const std::string_view> names,
                  ConfigLayer layer, AlgorithmSet used_by, std::string_view description) {
@@ -134,6 +135,9 @@ const std::vector<SchemaRow>& schema_rows() {
     constraint_list("constraints", &R::constraints, all,
                     "several constraints, each summing named cost terms (or all) against its own limit: "
                     "[{terms: [cost_outside_bounds], limit: 20}, ...]; absent: the cost against cost_limit"),
+    text("dataset", &R::dataset, L::run,
+         "offline: the HDF5 dataset (DSRL's layout, e.g. from bsg collect) the policy learns from; its env_id "
+         "must be the run's", kOffline),
     // --- environment (report Table 3, docs/reproducing.md#environment-settings) ---
     real("cost_limit", &R::cost_limit, L::environment, N::at_least(0), all,
          "d: limit on the undiscounted episode cost"),
@@ -155,7 +159,7 @@ const std::vector<SchemaRow>& schema_rows() {
            "value fits): float32 (the original's PyTorch default; faster, learning within seed spread) or "
            "float64; parameters, optimiser moments and CG vectors stay float64"),
     // --- returns, advantages, normalisation (docs/algorithms.md#normalisers, #rollout-and-gae) ---
-    real("gamma", &R::gamma, L::algorithm, N::open_closed(0, 1), all,
+    real("gamma", &R::gamma, L::algorithm, N::open_closed(0, 1), all & ~kOffline,
          "discount factor for rewards and costs"),
     real("lam", &R::lam, L::algorithm, N::closed(0, 1), on_policy,
          "GAE lambda for reward advantages"),
@@ -255,7 +259,7 @@ const std::vector<SchemaRow>& schema_rows() {
     real("crpo_tolerance", &R::crpo_tolerance, L::algorithm, N::at_least(0), algorithm_bit(Algorithm::crpo),
          "CRPO's eta (OmniSafe's distance): the step minimises a constraint's cost once J_C > d + eta"),
     // --- first-order updates (docs/algorithms.md#first-order-updates) ---
-    real("actor_lr", &R::actor_lr, L::algorithm, N::above(0), kFirstOrder | kOffPolicy,
+    real("actor_lr", &R::actor_lr, L::algorithm, N::above(0), kFirstOrder | kOffPolicy | kOffline,
          "Adam step size on the policy (first-order and off-policy updates)"),
     integer("update_iters", &R::update_iters, L::algorithm, N::closed(1, 10000), kFirstOrder,
             "passes over the batch per policy update (fewer after a KL early stop)"),
@@ -287,7 +291,7 @@ const std::vector<SchemaRow>& schema_rows() {
     real("updates_per_step", &R::updates_per_step, L::algorithm, N::open_closed(0, 1000), kOffPolicy,
          "gradient steps per environment step of a rank (a round of update_every steps takes "
          "update_every * updates_per_step of them, fractions carried to the next round)"),
-    integer("batch_size", &R::batch_size, L::algorithm, N::closed(1, 1000000), kOffPolicy,
+    integer("batch_size", &R::batch_size, L::algorithm, N::closed(1, 1000000), kOffPolicy | kOffline,
             "transitions per gradient step, sampled uniformly from the rank's replay buffer"),
     integer("buffer_size", &R::buffer_size, L::algorithm, N::closed(1, kIntMax), kOffPolicy,
             "replay buffer capacity in transitions per rank (the oldest are overwritten)"),
@@ -311,6 +315,11 @@ const std::vector<SchemaRow>& schema_rows() {
             "SAC: learn log alpha towards the target entropy -|A| (false: alpha stays alpha_init)"),
     real("alpha_lr", &R::alpha_lr, L::algorithm, N::above(0), kSacFamily,
          "SAC: Adam step size of log alpha (auto_alpha)"),
+    // --- offline (docs/datasets.md#offline-runs) ---
+    integer("updates_per_epoch", &R::updates_per_epoch, L::algorithm, N::closed(1, kIntMax), kOffline,
+            "offline: gradient steps per epoch, each on batch_size rows drawn uniformly with replacement"),
+    integer("eval_every", &R::eval_every, L::algorithm, N::closed(1, kIntMax), kOffline,
+            "offline: evaluate online (eval_episodes episodes) after every eval_every-th epoch and the last"),
     // --- value networks (docs/algorithms.md#value-fits) ---
     boolean("use_cost_value_function", &R::use_cost_value_function, L::algorithm, on_policy,
             "train the cost value net V_C"),

@@ -19,8 +19,8 @@ import sys
 # contains a file is its room. "envs" is the environments' face, the files
 # directly in envs/ (env.h, vector_env, env_benchmark, standard_envs); from
 # above envs/, only algos/ also sees envs/description (the value types of
-# env.h). algos/ has no face of its own: above it, its top rooms (training,
-# and offline for the program) are seen. docs/architecture.md#rooms-and-floors
+# env.h). algos/ has no face of its own: above it, its top room (training;
+# and offline's data files for the program) is seen. docs/architecture.md#rooms-and-floors
 # shows this table; tests/docs/test_room_map.py holds the two equal.
 ENVS_BELOW_FACE = ["envs/description", "envs/physics", "envs/agents", "envs/sensors", "envs/tasks",
                    "envs/assembly"]
@@ -42,12 +42,11 @@ FLOORS = {
     "algos/first_order": ["algos/lagrange", "algos/core", "envs", "envs/description", "common"],
     # Replay buffer, critics and the off-policy updates (SAC, TD3, DDPG and their -lag forms).
     "algos/off_policy": ["algos/lagrange", "algos/core", "envs", "envs/description", "common"],
-    "algos/training": ["algos/off_policy", "algos/first_order", "algos/trust_region", "algos/lagrange", "algos/core",
-                       "envs", "envs/description", "common"],
-    # Offline data (DSRL's datasets, behaviour cloning): reads checkpoints
-    # through the training room, so it sits above it.
-    "algos/offline": ["algos/training", "algos/off_policy", "algos/first_order", "algos/trust_region", "algos/lagrange",
-                      "algos/core", "envs", "envs/description", "common"],
+    # Offline data (DSRL's datasets) and the offline algorithms (behaviour cloning): a family room
+    # beside the others, below the training room that runs it.
+    "algos/offline": ["algos/lagrange", "algos/core", "envs", "envs/description", "common"],
+    "algos/training": ["algos/offline", "algos/off_policy", "algos/first_order", "algos/trust_region", "algos/lagrange",
+                       "algos/core", "envs", "envs/description", "common"],
     # Beside algos: reads a world and a task's markings and draws them.
     "render": ["envs", "envs/assembly", "envs/tasks", "envs/physics", "envs/description", "common"],
     # The numerics of results with their uncertainty (bootstrap, IQM, profiles):
@@ -55,8 +54,8 @@ FLOORS = {
     "experiments/statistics": ["common"],
     # Only the training room of algos/ is seen from above it.
     "experiments": ["experiments/statistics", "algos/training", "envs", "common"],
-    # The `bsg` program: every face. algos/offline is a top room of algos/
-    # that only the program links. The one file below a face: the run's
+    # The `bsg` program: every face, and algos/offline (the dataset files,
+    # collections and `bsg dataset`). The one file below a face: the run's
     # constraints (algos/core/constraint_costs.h), which `bsg collect` and
     # `bsg dataset make` hand to a collection (algos/offline/collection.h
     # takes a StepCostSelector).

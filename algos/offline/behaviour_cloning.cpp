@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "algos/core/adam_state.h"
 #include "common/adam.h"
 #include "common/random.h"
 
@@ -33,6 +34,79 @@ Eigen::VectorXd ClonedPolicy::action(const Eigen::Ref<const Eigen::VectorXd>& ob
   return network_.forward((observation - mean_).cwiseQuotient(std_));
 }
 
+BehaviourCloning::BehaviourCloning(std::string name, int observation_size, int action_size, ObservationScaling scaling,
+                                   const std::vector<int>& hidden_sizes, MlpOptions network_options,
+                                   double learning_rate, Rng& init_rng)
+    : name_(std::move(name)),
+      scaling_(std::move(scaling)),
+      network_(
+          [&] {
+            std::vector<int> layers{observation_size};
+            layers.insert(layers.end(), hidden_sizes.begin(), hidden_sizes.end());
+            layers.push_back(action_size);
+            return layers;
+          }(),
+          init_rng, network_options),
+      adam_(network_.num_parameters(), {.learning_rate = learning_rate}),
+      gradient_(network_.num_parameters()),
+      acting_(*this) {
+  if (scaling_.mean.size() != observation_size || scaling_.std.size() != observation_size) {
+    throw std::invalid_argument(name_ + ": the observation scaling has " + std::to_string(scaling_.mean.size()) +
+                                " features, the observations " + std::to_string(observation_size));
+  }
+}
+
+double BehaviourCloning::update(const OfflineBatch& batch) {
+  if (batch.observations.cols() != network_.input_size() || batch.actions.cols() != network_.output_size() ||
+      batch.observations.rows() != batch.actions.rows() || batch.observations.rows() < 1) {
+    throw std::invalid_argument(name_ + ": a batch of " + std::to_string(batch.observations.rows()) + " x " +
+                                std::to_string(batch.observations.cols()) + " observations and " +
+                                std::to_string(batch.actions.rows()) + " x " + std::to_string(batch.actions.cols()) +
+                                " actions does not fit the network");
+  }
+  const Eigen::MatrixXd& outputs = network_.forward_batch(batch.observations, workspace_);
+  const Eigen::MatrixXd error = outputs - batch.actions;
+  const double elements = static_cast<double>(batch.actions.rows() * batch.actions.cols());
+  const double loss = error.squaredNorm() / elements;  // torch's mse_loss: the mean over every element
+  output_gradients_ = (2.0 / elements) * error;
+  network_.backward_batch(output_gradients_, workspace_, gradient_);
+  adam_.step(network_.mutable_parameters(), gradient_);
+  return loss;
+}
+
+void BehaviourCloning::save(BinaryWriter& writer) const {
+  writer.write_section("behaviour cloning");
+  writer.write_string(name_);
+  writer.write_vector(scaling_.mean);
+  writer.write_vector(scaling_.std);
+  writer.write_vector(network_.parameters());
+  save_adam_state(adam_, writer);
+}
+
+void BehaviourCloning::load(BinaryReader& reader) {
+  reader.expect_section("behaviour cloning");
+  if (reader.read_string("algorithm") != name_) reader.fail("not a checkpoint of " + name_);
+  Eigen::VectorXd mean = reader.read_vector("observation mean", network_.input_size());
+  Eigen::VectorXd std = reader.read_vector("observation std", network_.input_size());
+  const Eigen::VectorXd parameters = reader.read_vector("policy parameters", network_.num_parameters());
+  load_adam_state(adam_, reader, "policy");
+  scaling_.mean = std::move(mean);
+  scaling_.std = std::move(std);
+  network_.set_parameters(parameters);
+}
+
+BehaviourCloning::Acting::Acting(const BehaviourCloning& owner)
+    : owner_(owner), input_(owner.network_.input_size()), output_(owner.network_.output_size()) {}
+
+void BehaviourCloning::Acting::act(std::span<const double> observation, ActionMode /*the same in both modes*/,
+                                   Rng& /*draws nothing*/, std::span<double> action) {
+  check_acting_sizes(*this, observation, action, owner_.name_.c_str());
+  input_ = (Eigen::Map<const Eigen::VectorXd>(observation.data(), input_.size()) - owner_.scaling_.mean)
+               .cwiseQuotient(owner_.scaling_.std);
+  owner_.network_.forward(input_, output_, workspace_);
+  Eigen::Map<Eigen::VectorXd>(action.data(), output_.size()) = output_;
+}
+
 BehaviourCloningResult train_behaviour_cloning(const OfflineDataset& dataset, const BehaviourCloningOptions& options) {
   if (options.updates < 1 || options.batch_size < 1 || !(options.learning_rate > 0.0) ||
       !std::isfinite(options.learning_rate)) {
@@ -41,77 +115,24 @@ BehaviourCloningResult train_behaviour_cloning(const OfflineDataset& dataset, co
   for (int size : options.hidden_sizes) {
     if (size < 1) throw std::invalid_argument("behaviour cloning: a hidden layer must have at least 1 unit");
   }
-  check_dataset_shapes(dataset);
-  // The training rows.
-  std::vector<std::size_t> rows;
-  std::size_t episodes = 0;
-  if (options.safe_only) {
-    for (const DatasetEpisode& e : dataset_episodes(dataset)) {
-      if (e.cost_return > options.cost_limit) continue;
-      ++episodes;
-      for (std::size_t t = e.begin; t < e.end; ++t) rows.push_back(t);
-    }
-    if (rows.empty()) {
-      throw std::invalid_argument("behaviour cloning: BC-Safe finds no episode with cost return <= " +
-                                  std::to_string(options.cost_limit) + " in the dataset");
-    }
-  } else {
-    episodes = dataset_episodes(dataset).size();
-    for (std::size_t t = 0; t < dataset.size(); ++t) rows.push_back(t);
-    if (rows.empty()) throw std::invalid_argument("behaviour cloning: the dataset is empty");
-  }
-  const int obs = dataset.observation_dim;
-  const int act = dataset.action_dim;
-  const auto observation = [&](std::size_t row) {
-    return Eigen::Map<const Eigen::VectorXf>(dataset.observations.data() + row * static_cast<std::size_t>(obs), obs)
-        .cast<double>();
-  };
-  // Standardisation constants of the training rows; a constant input keeps scale 1.
-  Eigen::VectorXd mean = Eigen::VectorXd::Zero(obs);
-  for (std::size_t row : rows) mean += observation(row);
-  mean /= static_cast<double>(rows.size());
-  Eigen::VectorXd variance = Eigen::VectorXd::Zero(obs);
-  for (std::size_t row : rows) variance += (observation(row) - mean).array().square().matrix();
-  variance /= static_cast<double>(rows.size());
-  Eigen::VectorXd std = variance.cwiseSqrt();
-  for (Eigen::Index k = 0; k < obs; ++k) {
-    if (!(std[k] > 1e-8)) std[k] = 1.0;
-  }
-
-  std::vector<int> layers{obs};
-  layers.insert(layers.end(), options.hidden_sizes.begin(), options.hidden_sizes.end());
-  layers.push_back(act);
+  const std::string name = options.safe_only ? "BC-Safe" : "BC-All";
+  const OfflineBatches batches(dataset,
+                               options.safe_only ? rows_within_cost_limit(dataset, options.cost_limit) : all_rows(dataset),
+                               options.batch_size);
+  // One stream draws the network and then every batch.
   Rng rng(options.seed);
-  Mlp network(layers, rng);
-  Adam adam(network.num_parameters(), {.learning_rate = options.learning_rate});
-  MlpBatchWorkspace workspace;
-  const Eigen::Index batch = options.batch_size;
-  Eigen::MatrixXd inputs(batch, obs);
-  Eigen::MatrixXd targets(batch, act);
-  Eigen::MatrixXd output_gradients(batch, act);
-  Eigen::VectorXd gradient(network.num_parameters());
+  BehaviourCloning learner(name, dataset.observation_dim, dataset.action_dim, batches.scaling(), options.hidden_sizes,
+                           MlpOptions{}, options.learning_rate, rng);
+  OfflineBatch batch;
   double loss = 0.0;
   for (int update = 0; update < options.updates; ++update) {
-    for (Eigen::Index i = 0; i < batch; ++i) {
-      const std::size_t row = rows[uniform_index(rng, rows.size())];
-      inputs.row(i) = (observation(row) - mean).cwiseQuotient(std).transpose();
-      targets.row(i) = Eigen::Map<const Eigen::VectorXf>(dataset.actions.data() + row * static_cast<std::size_t>(act), act)
-                           .cast<double>()
-                           .transpose();
-    }
-    const Eigen::MatrixXd& outputs = network.forward_batch(inputs, workspace);
-    const Eigen::MatrixXd error = outputs - targets;
-    const double elements = static_cast<double>(batch * act);
-    loss = error.squaredNorm() / elements;  // torch's mse_loss: the mean over every element
-    output_gradients = (2.0 / elements) * error;
-    network.backward_batch(output_gradients, workspace, gradient);
-    adam.step(network.mutable_parameters(), gradient);
+    batches.sample(rng, batch);
+    loss = learner.update(batch);
   }
   BehaviourCloningResult result;
-  result.policy = std::make_unique<ClonedPolicy>(std::move(network), mean, std,
-                                                 options.safe_only ? "BC-Safe" : "BC-All");
-  result.rows = rows.size();
-  result.episodes = episodes;
+  result.policy = std::make_unique<ClonedPolicy>(learner.network(), batches.scaling().mean, batches.scaling().std, name);
+  result.rows = batches.rows().rows.size();
+  result.episodes = batches.rows().episodes;
   result.final_loss = loss;
   return result;
 }

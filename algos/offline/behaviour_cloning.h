@@ -1,4 +1,6 @@
-// Behaviour cloning, the simplest offline baselines of OSRL (docs/datasets.md#behaviour-cloning):
+// Behaviour cloning, the simplest offline baselines of OSRL (docs/datasets.md#behaviour-cloning),
+// as an offline algorithm (BehaviourCloning, trained in runs of `alg: bc-all | bc-safe`) and as
+// train_behaviour_cloning (`bsg dataset bc`), which takes the same steps:
 // a deterministic policy a = f(s_hat), an MLP (common/mlp.h, tanh hidden
 // layers, linear output) on observations standardised with the training
 // rows' mean and standard deviation, fitted by Adam (common/adam.h) to the
@@ -26,10 +28,61 @@
 #include <Eigen/Core>
 
 #include "algos/offline/collection_policy.h"
+#include "algos/offline/offline_algorithm.h"
+#include "algos/offline/offline_batches.h"
 #include "algos/offline/offline_dataset.h"
+#include "common/adam.h"
 #include "common/mlp.h"
 
 namespace bsg::algos {
+
+// BC-All and BC-Safe as an offline algorithm (offline_algorithm.h): they differ only in their
+// training rows (offline_batches.h: all_rows, rows_within_cost_limit). One step on a batch of
+// standardised observations S and actions A: L = mean over every element of (f(S) - A)^2 (torch's
+// mse_loss), dL/df = 2 (f(S) - A) / (batch * |A|), then Adam. It acts with a = f((s - mean) / std),
+// the same action in both modes.
+class BehaviourCloning final : public OfflineAlgorithm {
+ public:
+  // The network obs -> hidden_sizes -> act drawn from `init_rng` (common/mlp.h).
+  BehaviourCloning(std::string name, int observation_size, int action_size, ObservationScaling scaling,
+                   const std::vector<int>& hidden_sizes, MlpOptions network_options, double learning_rate,
+                   Rng& init_rng);
+  BehaviourCloning(const BehaviourCloning&) = delete;  // its acting policy refers to it
+  BehaviourCloning& operator=(const BehaviourCloning&) = delete;
+
+  std::string_view name() const override { return name_; }
+  double update(const OfflineBatch& batch) override;
+  ActingPolicy& acting() override { return acting_; }
+  void save(BinaryWriter& writer) const override;
+  void load(BinaryReader& reader) override;
+
+  const Mlp& network() const { return network_; }
+  const ObservationScaling& scaling() const { return scaling_; }
+
+ private:
+  class Acting final : public ActingPolicy {
+   public:
+    explicit Acting(const BehaviourCloning& owner);
+    int observation_size() const override { return owner_.network_.input_size(); }
+    int action_size() const override { return owner_.network_.output_size(); }
+    void act(std::span<const double> observation, ActionMode mode, Rng& noise, std::span<double> action) override;
+
+   private:
+    const BehaviourCloning& owner_;
+    Eigen::VectorXd input_;
+    Eigen::VectorXd output_;
+    MlpSampleWorkspace workspace_;
+  };
+
+  std::string name_;
+  ObservationScaling scaling_;
+  Mlp network_;
+  Adam adam_;
+  MlpBatchWorkspace workspace_;
+  Eigen::MatrixXd output_gradients_;
+  Eigen::VectorXd gradient_;
+  Acting acting_;
+};
 
 struct BehaviourCloningOptions {
   bool safe_only = false;

@@ -4,11 +4,13 @@
 #include "algos/core/actor_critic_acting.h"
 #include "algos/core/constraint_costs.h"
 #include "algos/off_policy/make_off_policy_learner.h"
+#include "algos/offline/make_offline_algorithm.h"
 #include "algos/off_policy/off_policy_acting.h"
 #include "algos/off_policy/off_policy_learner.h"
 #include "algos/training/exploration_noise.h"
 #include "algos/training/make_algorithm.h"
 #include "algos/training/off_policy_checkpoint.h"
+#include "algos/training/offline_family.h"
 #include "algos/training/run_environment.h"
 #include "algos/training/training_checkpoint.h"
 #include "common/run_config_yaml.h"
@@ -90,6 +92,32 @@ class LoadedOffPolicy final : public LoadedPolicy {
   OffPolicyActing acting_;
 };
 
+class LoadedOffline final : public LoadedPolicy {
+ public:
+  LoadedOffline(const RunDirectory& directory, const RunConfig& config, PolicySizes sizes)
+      : LoadedOffline(directory, config, make_algorithm(config, sizes)) {}
+
+  int observation_size() const override { return algorithm_->acting().observation_size(); }
+  int action_size() const override { return algorithm_->acting().action_size(); }
+  void act(std::span<const double> observation, ActionMode mode, Rng& noise, std::span<double> action) override {
+    algorithm_->acting().act(observation, mode, noise, action);
+  }
+  double sampled_action_std() const override { return 0.0; }
+  std::string_view action_words(ActionMode /*both modes act alike*/) const override { return "deterministic actions"; }
+
+ private:
+  LoadedOffline(const RunDirectory& directory, const RunConfig& config, std::unique_ptr<OfflineAlgorithm> algorithm)
+      : LoadedPolicy(config, load_offline_checkpoint(directory.checkpoint(), config, *algorithm).epochs_completed),
+        algorithm_(std::move(algorithm)) {}
+  static std::unique_ptr<OfflineAlgorithm> make_algorithm(const RunConfig& config, PolicySizes sizes) {
+    Rng unused_init(0);  // the checkpoint overwrites every parameter and the standardisation
+    const ObservationScaling placeholder{Eigen::VectorXd::Zero(sizes.observation), Eigen::VectorXd::Ones(sizes.observation)};
+    return make_offline_algorithm(config, sizes.observation, sizes.action, placeholder, unused_init);
+  }
+
+  std::unique_ptr<OfflineAlgorithm> algorithm_;
+};
+
 }  // namespace
 
 std::unique_ptr<LoadedPolicy> load_policy(const RunDirectory& directory) {
@@ -100,6 +128,7 @@ std::unique_ptr<LoadedPolicy> load_policy(const RunDirectory& directory) {
     case AlgorithmFamily::trust_region:
     case AlgorithmFamily::first_order: return std::make_unique<LoadedOnPolicy>(directory, config, sizes);
     case AlgorithmFamily::off_policy: return std::make_unique<LoadedOffPolicy>(directory, config, sizes);
+    case AlgorithmFamily::offline: return std::make_unique<LoadedOffline>(directory, config, sizes);
   }
   throw std::invalid_argument("load_policy: unknown family of " + std::string(to_string(config.alg)));
 }

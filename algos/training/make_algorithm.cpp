@@ -35,6 +35,10 @@ std::unique_ptr<OnPolicyAlgorithm> make_algorithm(const RunConfig& config) {
     case Algorithm::ddpg_lag:
       throw std::invalid_argument("make_algorithm: " + std::string(to_string(config.alg)) +
                                   " is an off-policy learner; it trains with OffPolicyTrainer, not the on-policy loop");
+    case Algorithm::bc_all:
+    case Algorithm::bc_safe:
+      throw std::invalid_argument("make_algorithm: " + std::string(to_string(config.alg)) +
+                                  " is an offline algorithm; it trains with OfflineTrainer, not the on-policy loop");
   }
   throw std::invalid_argument("make_algorithm: unknown alg value " + std::to_string(static_cast<int>(config.alg)));
 }

@@ -9,7 +9,13 @@
 namespace bsg::algos {
 namespace {
 
-constexpr std::string_view kOffPolicyMarker = "off-policy";
+// The section and the marker of the layouts that have one (not on_policy's).
+std::string_view section_of(RunHeaderLayout layout) {
+  return layout == RunHeaderLayout::offline ? "offline run" : "off-policy run";
+}
+std::string_view marker_of(RunHeaderLayout layout) {
+  return layout == RunHeaderLayout::offline ? "offline" : "off-policy";
+}
 
 void read_config(BinaryReader& reader, const RunConfig& config) {
   if (reader.read_string("config") != to_yaml(config)) {
@@ -48,8 +54,8 @@ double read_elapsed_seconds(BinaryReader& reader) {
 void write_run_header(BinaryWriter& writer, RunHeaderLayout layout, const RunConfig& config,
                       const TrainingProgress& progress) {
   const bool on_policy = layout == RunHeaderLayout::on_policy;
-  writer.write_section(on_policy ? "run" : "off-policy run");
-  if (!on_policy) writer.write_string(kOffPolicyMarker);
+  writer.write_section(on_policy ? "run" : section_of(layout));
+  if (!on_policy) writer.write_string(marker_of(layout));
   writer.write_string(to_yaml(config));
   writer.write_i64(progress.num_ranks);
   if (on_policy) writer.write_section("progress");
@@ -62,14 +68,16 @@ TrainingProgress read_run_header(BinaryReader& reader, RunHeaderLayout layout, c
                                  std::uint32_t format_version) {
   const bool on_policy = layout == RunHeaderLayout::on_policy;
   TrainingProgress progress;
-  reader.expect_section(on_policy ? "run" : "off-policy run");
-  if (!on_policy && reader.read_string("marker") != kOffPolicyMarker) reader.fail("not an off-policy checkpoint");
+  reader.expect_section(on_policy ? "run" : section_of(layout));
+  if (!on_policy && reader.read_string("marker") != marker_of(layout)) {
+    reader.fail("not an " + std::string(marker_of(layout)) + " checkpoint");
+  }
   read_config(reader, config);
   progress.num_ranks = read_rank_count(reader);
   if (on_policy) reader.expect_section("progress");
   progress.epochs_completed = read_epochs_completed(reader, config);
   progress.elapsed_seconds = read_elapsed_seconds(reader);
-  // The on-policy format 1 had no log; the off-policy format began with format 2.
+  // The on-policy format 1 had no log; the off-policy and offline formats began later.
   if (!on_policy || format_version >= 2) progress.progress_log = reader.read_string("progress log");
   return progress;
 }

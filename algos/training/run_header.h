@@ -6,6 +6,7 @@
 //                                seconds, progress log (format 2 on)
 //   RunHeaderLayout::off_policy  section "off-policy run": the marker "off-policy", config, ranks,
 //                                epochs, seconds, progress log
+//   RunHeaderLayout::offline     as off_policy, with section "offline run" and the marker "offline"
 // What follows the header is each format's own.
 #pragma once
 
@@ -31,7 +32,7 @@ struct TrainingProgress {
 // Bounds a loaded checkpoint's fields must lie in.
 inline constexpr int kMaxCheckpointRanks = 1 << 20;
 
-enum class RunHeaderLayout { on_policy, off_policy };
+enum class RunHeaderLayout { on_policy, off_policy, offline };
 
 void write_run_header(BinaryWriter& writer, RunHeaderLayout layout, const RunConfig& config,
                       const TrainingProgress& progress);

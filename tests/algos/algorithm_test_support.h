@@ -157,7 +157,9 @@ inline algos::PolicyUpdateInputs inputs_for(SyntheticBatch& batch, algos::Policy
 inline std::vector<Algorithm> on_policy_algorithms() {
   std::vector<Algorithm> algorithms;
   for (const AlgorithmInfo& info : kAlgorithms) {
-    if (info.family != AlgorithmFamily::off_policy) algorithms.push_back(info.alg);
+    if (info.family == AlgorithmFamily::trust_region || info.family == AlgorithmFamily::first_order) {
+      algorithms.push_back(info.alg);
+    }
   }
   return algorithms;
 }

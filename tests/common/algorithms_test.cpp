@@ -31,8 +31,10 @@ TEST(Algorithms, FamiliesAgreeWithTheShippedAlgorithmFiles) {
   for (const AlgorithmInfo& info : kAlgorithms) {
     SCOPED_TRACE(std::string(info.name));
     const YAML::Node file = YAML::LoadFile((kAlgorithmFiles / (std::string(info.name) + ".yaml")).string());
-    EXPECT_EQ(info.family == AlgorithmFamily::first_order || info.family == AlgorithmFamily::off_policy,
+    EXPECT_EQ(info.family == AlgorithmFamily::first_order || info.family == AlgorithmFamily::off_policy ||
+                  info.family == AlgorithmFamily::offline,
               static_cast<bool>(file["actor_lr"]));
+    EXPECT_EQ(info.family == AlgorithmFamily::offline, static_cast<bool>(file["updates_per_epoch"]));
     EXPECT_EQ(info.family == AlgorithmFamily::off_policy, static_cast<bool>(file["critic_lr"]));
     EXPECT_EQ(info.lagrange_multiplier, static_cast<bool>(file["lambda_lr"]));
     EXPECT_EQ(info.clipped_surrogate, static_cast<bool>(file["clip"]));
@@ -42,9 +44,10 @@ TEST(Algorithms, FamiliesAgreeWithTheShippedAlgorithmFiles) {
 TEST(Algorithms, OnlyTheUnconstrainedIgnoreTheCostAndOnlyMultipliersHaveAPidLabel) {
   for (const AlgorithmInfo& info : kAlgorithms) {
     SCOPED_TRACE(std::string(info.name));
-    // TRPO and PPO are the report's unconstrained baselines; SAC, TD3 and DDPG the off-policy ones.
+    // TRPO and PPO are the report's unconstrained baselines; SAC, TD3 and DDPG the off-policy ones;
+    // BC-All the offline one (BC-Safe is constrained by its choice of episodes).
     EXPECT_EQ(ignores_cost(info.alg), info.name == "trpo" || info.name == "ppo" || info.name == "sac" ||
-                                          info.name == "td3" || info.name == "ddpg");
+                                          info.name == "td3" || info.name == "ddpg" || info.name == "bc-all");
     EXPECT_EQ(info.pid_label.empty(), !info.lagrange_multiplier);
   }
   std::set<std::string_view> labels;

@@ -26,7 +26,17 @@ const fs::path kShippedConfigs = fs::path(BSG_SOURCE_DIR) / "configs";
 const std::vector<std::string> kOnPolicyAlgorithms = [] {
   std::vector<std::string> names;
   for (const AlgorithmInfo& info : kAlgorithms) {
-    if (info.family != AlgorithmFamily::off_policy) names.emplace_back(info.name);
+    if (info.family == AlgorithmFamily::trust_region || info.family == AlgorithmFamily::first_order) {
+      names.emplace_back(info.name);
+    }
+  }
+  return names;
+}();
+// The offline algorithms, which resolve only with a dataset: key (the file is read by the trainer).
+const std::vector<std::string> kOfflineAlgorithms = [] {
+  std::vector<std::string> names;
+  for (const AlgorithmInfo& info : kAlgorithms) {
+    if (info.family == AlgorithmFamily::offline) names.emplace_back(info.name);
   }
   return names;
 }();
@@ -79,6 +89,35 @@ TEST(ShippedConfigs, AllSixteenEnvironmentsResolveWithEveryAlgorithm) {
       EXPECT_EQ(c.env_id, env_id);
       EXPECT_EQ(to_string(c.alg), alg);
     }
+  }
+}
+
+TEST(ShippedConfigs, OfflineAlgorithmsResolveOnEveryEnvironmentWithADatasetAndListTheirKeys) {
+  ASSERT_EQ(kOfflineAlgorithms, (std::vector<std::string>{"bc-all", "bc-safe"}));
+  for (const std::string& alg : kOfflineAlgorithms) {
+    for (const auto& [env_id, row] : kTable3) {
+      SCOPED_TRACE(env_id + " / " + alg);
+      RunConfigRequest request;
+      request.configs_dir = kShippedConfigs;
+      request.set_arguments = {"env_id=" + env_id, "alg=" + alg, "dataset=data.hdf5"};
+      const RunConfig c = resolve_run_config(request).config;
+      EXPECT_EQ(c.dataset, "data.hdf5");
+      EXPECT_EQ(c.epochs, row.epochs);
+      // OSRL's BC: actor_lr 1e-3, batch_size 512, a_hidden_sizes [256, 256].
+      EXPECT_EQ(c.actor_lr, 1e-3);
+      EXPECT_EQ(c.batch_size, 512);
+      EXPECT_EQ(c.hidden_sizes, (std::vector<int>{256, 256}));
+    }
+    const Algorithm id = alg == "bc-all" ? Algorithm::bc_all : Algorithm::bc_safe;
+    std::set<std::string> listed;
+    for (const ConfigEntry& entry : read_config_file(algorithm_config_path(kShippedConfigs, id))) {
+      listed.insert(entry.key);
+    }
+    std::set<std::string> expected;
+    for (const ConfigKey& key : run_config_schema()) {
+      if (key.default_source == ConfigLayer::algorithm && key.applies_to(id)) expected.insert(std::string(key.key));
+    }
+    EXPECT_EQ(listed, expected);
   }
 }
 

@@ -1,4 +1,4 @@
-#include "algos/offline/checkpoint_policy.h"
+#include "algos/training/checkpoint_policy.h"
 
 #include <stdexcept>
 #include <string>

@@ -1,0 +1,26 @@
+// The factory of the offline algorithms from a run's config: which rows of the dataset each learns
+// from, and the algorithm itself. The offline family (algos/training/offline_family.h) and the loader
+// of trained policies (algos/training/load_policy.h) build every offline algorithm here.
+#pragma once
+
+#include <memory>
+
+#include "algos/offline/offline_algorithm.h"
+#include "algos/offline/offline_batches.h"
+#include "algos/offline/offline_dataset.h"
+#include "common/random.h"
+#include "common/run_config.h"
+
+namespace bsg::algos {
+
+// bc-all: every row; bc-safe: the episodes with cost return <= cost_limit. Throws
+// std::invalid_argument if there is none, or if config.alg is not offline.
+TrainingRows offline_training_rows(const RunConfig& config, const OfflineDataset& dataset);
+
+// The algorithm of config.alg for observations and actions of these sizes, its networks drawn from
+// `init_rng` (a checkpoint's state may then overwrite everything, the scaling included).
+std::unique_ptr<OfflineAlgorithm> make_offline_algorithm(const RunConfig& config, int observation_size,
+                                                         int action_size, const ObservationScaling& scaling,
+                                                         Rng& init_rng);
+
+}  // namespace bsg::algos

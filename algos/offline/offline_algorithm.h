@@ -1,0 +1,43 @@
+// The offline algorithms (design.md "Off-policy and offline learning"; docs/architecture.md
+// "Adding an offline algorithm"): a gradient step on a batch drawn from a fixed dataset, an acting
+// policy for the online evaluations, and a state for the checkpoint. The offline family
+// (algos/training/offline_family.h) draws the batches (offline_batches.h), counts the epochs,
+// evaluates and saves; an algorithm never touches an environment.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "algos/core/acting_policy.h"
+#include "algos/core/algorithm.h"
+#include "common/binary_io.h"
+
+namespace bsg::algos {
+
+// One minibatch, row i a transition of the dataset: the observation standardised with the training
+// rows' mean and standard deviation (offline_batches.h), and the action as the dataset holds it.
+// Later algorithms that need rewards, costs or next observations add them here.
+struct OfflineBatch {
+  Eigen::MatrixXd observations;  // batch x observation size, standardised
+  Eigen::MatrixXd actions;       // batch x action size
+};
+
+class OfflineAlgorithm {
+ public:
+  virtual ~OfflineAlgorithm() = default;
+  // "BC-All", "BC-Safe".
+  virtual std::string_view name() const = 0;
+  // One gradient step on `batch`; returns its loss (the batch's, before the step).
+  virtual double update(const OfflineBatch& batch) = 0;
+  // The policy as it acts now (on raw observations; its standardisation inside).
+  virtual ActingPolicy& acting() = 0;
+  // The learner's whole state (networks, optimisers, standardisation), for the checkpoint; load
+  // fails on the reader naming the field if the sizes are not this algorithm's.
+  virtual void save(BinaryWriter& writer) const = 0;
+  virtual void load(BinaryReader& reader) = 0;
+};
+
+}  // namespace bsg::algos

@@ -1,0 +1,53 @@
+// What an offline algorithm learns from: the dataset's training rows (every row, or BC-Safe's rows
+// of episodes within the cost limit), their observations' standardisation constants, and minibatches
+// of them drawn uniformly with replacement (OSRL's sampler).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "algos/offline/offline_algorithm.h"
+#include "algos/offline/offline_dataset.h"
+#include "common/random.h"
+
+namespace bsg::algos {
+
+struct TrainingRows {
+  std::vector<std::size_t> rows;
+  std::size_t episodes = 0;  // complete episodes among them (every episode of the dataset for all rows)
+};
+
+// Every row of the dataset. Throws std::invalid_argument if it is empty.
+TrainingRows all_rows(const OfflineDataset& dataset);
+// The rows of the complete episodes whose cost return is at most `cost_limit`. Throws
+// std::invalid_argument if there is none.
+TrainingRows rows_within_cost_limit(const OfflineDataset& dataset, double cost_limit);
+
+// The mean and standard deviation of each observation feature over `rows`; a feature with standard
+// deviation <= 1e-8 keeps the scale 1.
+struct ObservationScaling {
+  Eigen::VectorXd mean;
+  Eigen::VectorXd std;
+};
+ObservationScaling observation_scaling(const OfflineDataset& dataset, const std::vector<std::size_t>& rows);
+
+class OfflineBatches {
+ public:
+  // `dataset` must outlive this object.
+  OfflineBatches(const OfflineDataset& dataset, TrainingRows rows, int batch_size);
+
+  const TrainingRows& rows() const { return rows_; }
+  const ObservationScaling& scaling() const { return scaling_; }
+  // Fills `batch` with batch_size rows, each uniform_index(rng, rows) in turn.
+  void sample(Rng& rng, OfflineBatch& batch) const;
+
+ private:
+  const OfflineDataset& dataset_;
+  TrainingRows rows_;
+  ObservationScaling scaling_;
+  int batch_size_;
+};
+
+}  // namespace bsg::algos
