@@ -56,12 +56,9 @@ FLOORS = {
     # Only the training room of algos/ is seen from above it.
     "experiments": ["experiments/statistics", "algos/training", "envs", "common"],
     # The `bsg` program: every face. algos/offline is a top room of algos/
-    # that only the program links. The one file below a face: the run's
-    # constraints (algos/core/constraint_costs.h), which `bsg collect` and
-    # `bsg dataset make` hand to a collection (algos/offline/collection.h
-    # takes a StepCostSelector).
-    "cli": ["experiments", "algos/offline", "algos/training", "render", "envs", "common",
-            "algos/core/constraint_costs.h"],
+    # that only the program links; a collection's constraints are chosen
+    # there (algos/offline/collection_request.h), not by the program.
+    "cli": ["experiments", "algos/offline", "algos/training", "render", "envs", "common"],
     # The Python module binds the environments and the renderer, nothing else.
     "python/src": ["render", "envs", "common"],
 }
