@@ -67,7 +67,8 @@ DatasetRecipe recipe_from_root(const YAML::Node& root, const std::string& file) 
       recipe_error(file, entry.first, "unknown key '" + key + "' (expected description, grid, collect)");
     }
   }
-  if (!grid) throw std::invalid_argument(file + ": the recipe has no grid");
+  // A default-constructed YAML::Node is a defined null node, so `!grid` would never be true.
+  if (!grid.IsMap()) throw std::invalid_argument(file + ": the recipe has no grid");
   YAML::Emitter grid_text;
   grid_text << grid;
   recipe.grid_yaml = grid_text.c_str();
