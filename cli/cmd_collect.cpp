@@ -6,20 +6,54 @@
 // weight, default 1): `--policy random=1 --policy runs/ppo_lag=3` gives the
 // run's policy three quarters of the episodes. Without --env the environment
 // is the first checkpoint's; every checkpoint must have been trained on the
-// collection's environment (id and parameters).
+// collection's environment (id and parameters). The rules are
+// algos/training/collection_request.h; this file reads the arguments into a
+// request and prints its summary.
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
+#include "algos/training/collection_request.h"
 #include "commands.h"
-#include "dataset_collection.h"
+#include "env_set_arguments.h"
 
 namespace bsg::cli {
 namespace {
 
+// The command line as given; algos/training/collection_request.h has the rules.
+struct CollectArguments {
+  std::string out;
+  std::string env_id;
+  std::vector<std::string> set_arguments;
+  std::vector<std::string> policies;  // "random" or a run directory, optionally "=SHARE"
+  std::optional<std::int64_t> episodes;
+  std::optional<std::int64_t> transitions;
+  std::uint64_t seed = 0;
+  std::string actions = "sampled";
+  std::optional<double> cost_limit;
+  std::string physics = "faithful";
+  bool force = false;
+};
+
 int collect(const CollectArguments& args) {
-  const CollectSummary summary = collect_to_file(args);
+  algos::CollectionRequest request;
+  request.out = args.out;
+  request.env_id = args.env_id;
+  request.env_overrides = parse_env_set_arguments(args.set_arguments);
+  for (const std::string& text : args.policies) request.policies.push_back(algos::parse_policy_spec(text));
+  request.episodes = args.episodes;
+  request.transitions = args.transitions;
+  request.seed = args.seed;
+  request.actions = args.actions == "mean" ? algos::EvaluationActions::mean : algos::EvaluationActions::sampled;
+  request.cost_limit = args.cost_limit;
+  request.physics = parse_physics_model(args.physics);
+  request.force = args.force;
+  const algos::CollectionSummary summary = algos::collect_to_file(request);
   std::cout << "wrote " << args.out << ": " << summary.transitions << " transitions, " << summary.episodes
             << " episodes of " << summary.env_id << " in " << summary.seconds << " s (" << summary.bytes
             << " bytes)\n";

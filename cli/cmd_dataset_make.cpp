@@ -8,24 +8,26 @@
 // Everything resumes: the sweep continues its runs, and a file already made is
 // kept, so running the command again after an interruption finishes the job
 // with the files an uninterrupted one would have written.
+// The recipe's format and the files it collects are experiments/dataset_recipe.h;
+// each file is one collection of algos/training/collection_request.h.
 #include <CLI/CLI.hpp>
 #include <stdlib.h>  // mkdtemp
 #include <sys/wait.h>
-#include <yaml-cpp/yaml.h>
 
+#include <cerrno>
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "algos/training/collection_request.h"
 #include "commands.h"
 #include "common/atomic_file.h"
 #include "configs_search.h"
-#include "dataset_collection.h"
 #include "experiments/child_process.h"
+#include "experiments/dataset_recipe.h"
 #include "experiments/sweep_plan.h"
 
 namespace bsg::cli {
@@ -38,82 +40,6 @@ struct MakeArguments {
   std::string configs_dir;
   bool dry_run = false;
 };
-
-struct CollectRecipe {
-  long long episodes_per_run = 10;
-  long long random_episodes = 0;
-  std::string actions = "sampled";
-  long long seed = 0;
-};
-
-struct Recipe {
-  YAML::Node grid;
-  CollectRecipe collect;
-};
-
-[[noreturn]] void recipe_error(const std::string& file, const YAML::Node& node, const std::string& what) {
-  const YAML::Mark mark = node.Mark();
-  throw std::invalid_argument(file + (mark.is_null() ? "" : ":" + std::to_string(mark.line + 1)) + ": " + what);
-}
-
-long long integer_at_least(const std::string& file, const YAML::Node& node, const std::string& key, long long low) {
-  long long value = 0;
-  try {
-    value = node.as<long long>();
-  } catch (const YAML::Exception&) {
-    recipe_error(file, node, "collect." + key + " must be an integer, got '" + node.as<std::string>("?") + "'");
-  }
-  if (value < low) {
-    recipe_error(file, node, "collect." + key + " must be at least " + std::to_string(low) + ", got " +
-                                 std::to_string(value));
-  }
-  return value;
-}
-
-Recipe load_recipe(const std::string& file) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file);
-  } catch (const YAML::BadFile&) {
-    throw std::invalid_argument(file + ": cannot read the recipe");
-  } catch (const YAML::Exception& e) {
-    throw std::invalid_argument(file + ":" + std::to_string(e.mark.line + 1) + ": not YAML: " + e.msg);
-  }
-  if (!root.IsMap()) throw std::invalid_argument(file + ": a recipe is a mapping of description, grid and collect");
-  Recipe recipe;
-  for (const auto& entry : root) {
-    const std::string key = entry.first.as<std::string>();
-    if (key == "description") continue;
-    if (key == "grid") {
-      if (!entry.second.IsMap()) recipe_error(file, entry.second, "grid must be a grid file's mapping (envs, seeds, algorithms, ...)");
-      recipe.grid = entry.second;
-    } else if (key == "collect") {
-      if (!entry.second.IsMap()) recipe_error(file, entry.second, "collect must be a mapping");
-      for (const auto& item : entry.second) {
-        const std::string name = item.first.as<std::string>();
-        if (name == "episodes_per_run") {
-          recipe.collect.episodes_per_run = integer_at_least(file, item.second, name, 1);
-        } else if (name == "random_episodes") {
-          recipe.collect.random_episodes = integer_at_least(file, item.second, name, 0);
-        } else if (name == "seed") {
-          recipe.collect.seed = integer_at_least(file, item.second, name, 0);
-        } else if (name == "actions") {
-          recipe.collect.actions = item.second.as<std::string>("");
-          if (recipe.collect.actions != "sampled" && recipe.collect.actions != "mean") {
-            recipe_error(file, item.second, "collect.actions must be sampled or mean, got '" + recipe.collect.actions + "'");
-          }
-        } else {
-          recipe_error(file, item.first,
-                       "unknown key 'collect." + name + "' (expected episodes_per_run, random_episodes, actions, seed)");
-        }
-      }
-    } else {
-      recipe_error(file, entry.first, "unknown key '" + key + "' (expected description, grid, collect)");
-    }
-  }
-  if (!recipe.grid) throw std::invalid_argument(file + ": the recipe has no grid");
-  return recipe;
-}
 
 // Runs `bsg sweep` on the grid and waits for it; its output goes to the log.
 void run_sweep(const std::filesystem::path& grid, const std::filesystem::path& sweep_dir,
@@ -135,44 +61,60 @@ void run_sweep(const std::filesystem::path& grid, const std::filesystem::path& s
   }
 }
 
+experiments::SweepPlan plan_grid(const std::filesystem::path& grid_file, const std::string& configs_dir,
+                                 const std::filesystem::path& sweep_dir) {
+  experiments::SweepPlanRequest request;
+  request.grid_file = grid_file;
+  request.configs_dir = configs_dir;
+  request.out_dir = sweep_dir;
+  return experiments::make_sweep_plan(request);
+}
+
+// The grid checked and planned in a scratch folder; nothing under `out` is written.
+int dry_run(const MakeArguments& args, const experiments::DatasetRecipe& recipe, const std::string& grid_contents,
+            const std::string& configs_dir, const std::filesystem::path& out) {
+  char scratch_pattern[] = "/tmp/bsg_dataset_make_XXXXXX";
+  if (::mkdtemp(scratch_pattern) == nullptr) throw std::runtime_error("cannot create a scratch folder in /tmp");
+  const std::filesystem::path scratch(scratch_pattern);
+  try {
+    write_file_atomically(scratch / "grid.yaml", grid_contents);
+    const experiments::SweepPlan plan = plan_grid(scratch / "grid.yaml", configs_dir, out / "sweep");
+    std::cout << "bsg dataset make --dry-run " << args.recipe << " -> " << out.string() << "\n"
+              << experiments::dry_run_listing(plan);
+    for (const experiments::RecipeDatasetFile& file : experiments::plan_recipe_files(recipe, plan, out, args.recipe)) {
+      std::cout << file.file.string() << ": " << file.runs << " runs x " << recipe.collect.episodes_per_run
+                << " episodes + " << recipe.collect.random_episodes << " random episodes\n";
+    }
+  } catch (...) {
+    std::filesystem::remove_all(scratch);
+    throw;
+  }
+  std::filesystem::remove_all(scratch);
+  return 0;
+}
+
+algos::CollectionRequest collection_request(const experiments::RecipeDatasetFile& file) {
+  algos::CollectionRequest request;
+  request.out = file.file.string();
+  request.env_id = file.env_id;
+  request.seed = file.seed;
+  request.actions = file.actions == "mean" ? algos::EvaluationActions::mean : algos::EvaluationActions::sampled;
+  for (const experiments::RecipePolicy& policy : file.policies) {
+    request.policies.push_back({policy.source, static_cast<double>(policy.episodes)});
+  }
+  request.episodes = file.episodes;
+  return request;
+}
+
 int make_datasets(const MakeArguments& args) {
   const std::filesystem::path recipe_file(args.recipe);
-  const Recipe recipe = load_recipe(args.recipe);
+  const experiments::DatasetRecipe recipe = experiments::load_dataset_recipe(args.recipe);
   const std::filesystem::path out =
-      args.out.empty() ? std::filesystem::path("datasets") / recipe_file.stem() : std::filesystem::path(args.out);
-  YAML::Emitter grid_text;
-  grid_text << recipe.grid;
-  const std::string grid_contents =
-      std::string("# The grid of ") + args.recipe + " (bsg dataset make)\n" + grid_text.c_str() + "\n";
+      args.out.empty() ? experiments::default_recipe_out_dir(recipe_file) : std::filesystem::path(args.out);
+  const std::string grid_contents = experiments::recipe_grid_file_text(recipe, args.recipe);
   const std::string configs_dir = find_configs(args.configs_dir, recipe_file, "recipe").dir.string();
-  if (args.dry_run) {
-    // The grid checked and planned in a scratch folder; nothing under `out` is written.
-    char scratch_pattern[] = "/tmp/bsg_dataset_make_XXXXXX";
-    if (::mkdtemp(scratch_pattern) == nullptr) throw std::runtime_error("cannot create a scratch folder in /tmp");
-    const std::filesystem::path scratch(scratch_pattern);
-    try {
-      write_file_atomically(scratch / "grid.yaml", grid_contents);
-      experiments::SweepPlanRequest request;
-      request.grid_file = scratch / "grid.yaml";
-      request.configs_dir = configs_dir;
-      request.out_dir = out / "sweep";
-      const experiments::SweepPlan plan = experiments::make_sweep_plan(request);
-      std::cout << "bsg dataset make --dry-run " << args.recipe << " -> " << out.string() << "\n"
-                << experiments::dry_run_listing(plan);
-      for (const std::string& env_id : plan.grid.env_ids) {
-        long long runs = 0;
-        for (const experiments::PlannedRun& run : plan.runs) runs += run.run.env_id == env_id ? 1 : 0;
-        std::cout << (out / (env_id + ".hdf5")).string() << ": " << runs << " runs x "
-                  << recipe.collect.episodes_per_run << " episodes + " << recipe.collect.random_episodes
-                  << " random episodes\n";
-      }
-    } catch (...) {
-      std::filesystem::remove_all(scratch);
-      throw;
-    }
-    std::filesystem::remove_all(scratch);
-    return 0;
-  }
+  if (args.dry_run) return dry_run(args, recipe, grid_contents, configs_dir, out);
+
   std::filesystem::create_directories(out);
   const std::filesystem::path grid = out / "grid.yaml";
   write_file_atomically(grid, grid_contents);
@@ -181,42 +123,20 @@ int make_datasets(const MakeArguments& args) {
             << (out / "sweep.log").string() << ")" << std::endl;
   run_sweep(grid, sweep_dir, out / "sweep.log", configs_dir, args.jobs);
 
-  experiments::SweepPlanRequest request;
-  request.grid_file = grid;
-  request.configs_dir = configs_dir;
-  request.out_dir = sweep_dir;
-  const experiments::SweepPlan plan = experiments::make_sweep_plan(request);
+  const experiments::SweepPlan plan = plan_grid(grid, configs_dir, sweep_dir);
   // A make killed during a file's write leaves its temporary behind.
   for (const std::filesystem::path& stale : remove_stale_temporaries(out)) {
     std::cout << "removed " << stale.string() << ", left by an interrupted write\n";
   }
-  for (const std::string& env_id : plan.grid.env_ids) {
-    const std::filesystem::path file = out / (env_id + ".hdf5");
-    if (std::filesystem::exists(file)) {
-      std::cout << "kept " << file.string() << " (made before)\n";
+  for (const experiments::RecipeDatasetFile& file : experiments::plan_recipe_files(recipe, plan, out, args.recipe)) {
+    if (std::filesystem::exists(file.file)) {
+      std::cout << "kept " << file.file.string() << " (made before)\n";
       continue;
     }
-    CollectArguments collect;
-    collect.out = file.string();
-    collect.env_id = env_id;
-    collect.seed = static_cast<std::uint64_t>(recipe.collect.seed);
-    collect.actions = recipe.collect.actions;
-    long long episodes = 0;
-    for (const experiments::PlannedRun& run : plan.runs) {
-      if (run.run.env_id != env_id) continue;
-      collect.policies.push_back(run.dir.string() + "=" + std::to_string(recipe.collect.episodes_per_run));
-      episodes += recipe.collect.episodes_per_run;
-    }
-    if (recipe.collect.random_episodes > 0) {
-      collect.policies.push_back("random=" + std::to_string(recipe.collect.random_episodes));
-      episodes += recipe.collect.random_episodes;
-    }
-    if (collect.policies.empty()) throw std::invalid_argument(args.recipe + ": no policy collects on " + env_id);
-    collect.episodes = episodes;
-    const CollectSummary summary = collect_to_file(collect);
-    std::cout << "wrote " << file.string() << ": " << summary.transitions << " transitions, " << summary.episodes
-              << " episodes from " << collect.policies.size() << " policies in " << summary.seconds << " s ("
-              << summary.bytes << " bytes)" << std::endl;
+    const algos::CollectionSummary summary = algos::collect_to_file(collection_request(file));
+    std::cout << "wrote " << file.file.string() << ": " << summary.transitions << " transitions, "
+              << summary.episodes << " episodes from " << file.policies.size() << " policies in "
+              << summary.seconds << " s (" << summary.bytes << " bytes)" << std::endl;
   }
   return 0;
 }

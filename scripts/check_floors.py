@@ -54,13 +54,10 @@ FLOORS = {
     "experiments/statistics": ["common"],
     # Only the training room of algos/ is seen from above it.
     "experiments": ["experiments/statistics", "algos/training", "envs", "common"],
-    # The `bsg` program: every face, and algos/offline (the dataset files,
-    # collections and `bsg dataset`). The one file below a face: the run's
-    # constraints (algos/core/constraint_costs.h), which `bsg collect` and
-    # `bsg dataset make` hand to a collection (algos/offline/collection.h
-    # takes a StepCostSelector).
-    "cli": ["experiments", "algos/offline", "algos/training", "render", "envs", "common",
-            "algos/core/constraint_costs.h"],
+    # The `bsg` program: every face, and algos/offline (the dataset files and
+    # `bsg dataset`). A collection's constraints are chosen in the training
+    # room (algos/training/collection_request.h), not by the program.
+    "cli": ["experiments", "algos/offline", "algos/training", "render", "envs", "common"],
     # The Python module binds the environments and the renderer, nothing else.
     "python/src": ["render", "envs", "common"],
 }

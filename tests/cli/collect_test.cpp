@@ -143,6 +143,43 @@ TEST(Collect, TheSameCommandWritesTheSameBytes) {
   EXPECT_TRUE(a == bsg::testing::read_text_file(dir.path() / "b.hdf5"));
 }
 
+// Checkpoints of one environment with other constraints cannot share a file:
+// its costs would mean different things. One with the same terms at another
+// limit can (a grid over cost limits); the file then holds one column per
+// constraint and the costs summed, as the two-constraint run recorded them.
+TEST(Collect, CheckpointsMustHaveTheSameConstraints) {
+  TemporaryDirectory dir("collect");
+  const std::string whole = train_tiny_run(dir, "SafetyBallGather-v0");
+  const auto train_two = [&](const std::string& name, const std::string& bomb_limit) {
+    const fs::path file = dir.path() / (name + ".yaml");
+    write_text_file(file, "env_id: SafetyBallGather-v0\nalg: lag-trpo\nseed: 1\nepochs: 1\nsteps_per_epoch: 1000\n"
+                          "eval_episodes: 1\nconstraints:\n  - terms: [cost_gathered_bombs]\n    limit: " +
+                              bomb_limit + "\n  - terms: [cost_out_of_range]\n    limit: 0.1\n");
+    const std::string out = (dir.path() / name).string();
+    const auto trained = run_bsg("train " + file.string() + kConfigs + " --quiet --out " + out);
+    EXPECT_EQ(trained.exit_code, 0) << trained.output;
+    return out;
+  };
+  const std::string two = train_two("two", "0.2");
+  const std::string two_looser = train_two("two_looser", "3");
+  const auto refused = run_bsg("collect --out " + (dir.path() / "x.hdf5").string() + " --policy " + two +
+                               " --policy " + whole + " --episodes 2");
+  expect_one_line_error(refused, "checkpoint " + whole + " has other constraints than the first one");
+  EXPECT_FALSE(fs::exists(dir.path() / "x.hdf5"));
+
+  const std::string file = (dir.path() / "two.hdf5").string();
+  const auto made = run_bsg("collect --out " + file + " --policy " + two + " --policy " + two_looser + " --episodes 2");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const bsg::algos::OfflineDataset d = bsg::algos::read_dataset_file(file);
+  ASSERT_EQ(d.constraint_costs.size(), 2 * d.size());
+  for (std::size_t t = 0; t < d.size(); ++t) {
+    ASSERT_FLOAT_EQ(d.costs[t], d.constraint_costs[2 * t] + d.constraint_costs[2 * t + 1]) << t;
+  }
+  EXPECT_EQ(d.constraint_names, (std::vector<std::string>{"cost_gathered_bombs", "cost_out_of_range"}));
+  // Several constraints: the stored limit is the environment's own (Gather's 0.2), not one constraint's.
+  EXPECT_EQ(d.number_attributes.at("cost_limit"), 0.2);
+}
+
 TEST(Collect, RefusesToReplaceAFileWithoutForce) {
   TemporaryDirectory dir("collect");
   const std::string file = (dir.path() / "d.hdf5").string();
