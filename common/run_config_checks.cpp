@@ -92,17 +92,17 @@ void check_run_config_relations(const RunConfig& config, const ConfigOrigins& or
       throw ConfigError(where + " exceeds epochs = " + std::to_string(config.epochs) + " (" +
                         origin_of(origins, "epochs") + "): the annealing must end within the run");
     }
-    if (!config.use_exploration_noise_anneal || config.learn_log_std) {
+    if (!config.use_exploration_noise_anneal || config.first_order.learn_log_std) {
       throw ConfigError(where + " has no effect: sigma is " +
-                        (config.learn_log_std ? std::string("learned (learn_log_std: true)")
+                        (config.first_order.learn_log_std ? std::string("learned (learn_log_std: true)")
                                               : std::string("fixed (use_exploration_noise_anneal: false)")) +
                         "; set it to 0 or anneal sigma");
     }
   }
-  if (config.exploration_std_floor > 0.0 && (!config.use_exploration_noise_anneal || config.learn_log_std)) {
+  if (config.exploration_std_floor > 0.0 && (!config.use_exploration_noise_anneal || config.first_order.learn_log_std)) {
     throw ConfigError("exploration_std_floor = " + format_config_real(config.exploration_std_floor) + " (" +
                       origin_of(origins, "exploration_std_floor") + ") has no effect: sigma is " +
-                      (config.learn_log_std ? std::string("learned (learn_log_std: true)")
+                      (config.first_order.learn_log_std ? std::string("learned (learn_log_std: true)")
                                             : std::string("fixed (use_exploration_noise_anneal: false)")) +
                       "; set it to 0 or anneal sigma");
   }
@@ -153,7 +153,7 @@ TrainingMemoryEstimate estimate_training_memory(const RunConfig& config, int obs
   // actions, reward, cost, discount and flags per transition), batch_size rows of activations.
   const double buffer_values =
       is_off_policy(config.alg)
-          ? static_cast<double>(config.buffer_size) * (2.0 * observation_dim + action_dim + 4.0)
+          ? static_cast<double>(config.off_policy.buffer_size) * (2.0 * observation_dim + action_dim + 4.0)
           : batch * (2.0 * observation_dim + 2.0 * action_dim + 12.0);
   constexpr double kProgramBytes = 64.0 * 1024 * 1024;
   TrainingMemoryEstimate estimate;
@@ -215,18 +215,18 @@ void check_run_config_for_ranks(const RunConfig& config, int num_ranks) {
   }
   if (is_off_policy(config.alg)) {
     // The off-policy loop steps num_envs environments in turn and has no value-net minibatches.
-    if (local_steps % config.num_envs != 0) {
+    if (local_steps % config.off_policy.num_envs != 0) {
       throw ConfigError("steps_per_epoch / ranks = " + std::to_string(local_steps) + " with " + ranks +
-                        " ranks is not a multiple of num_envs = " + std::to_string(config.num_envs));
+                        " ranks is not a multiple of num_envs = " + std::to_string(config.off_policy.num_envs));
     }
     // Episodes run on across epochs but a checkpoint cuts them (docs/algorithms.md#off-policy-checkpoints),
     // so each environment needs max_ep_len steps between checkpoints for an episode to end.
     const long long steps_between_checkpoints =
-        static_cast<long long>(config.save_freq) * (local_steps / config.num_envs);
+        static_cast<long long>(config.save_freq) * (local_steps / config.off_policy.num_envs);
     if (steps_between_checkpoints < config.max_ep_len) {
       throw ConfigError("each environment steps save_freq * steps_per_epoch / (ranks * num_envs) = " +
                         std::to_string(config.save_freq) + " * " + std::to_string(config.steps_per_epoch) + " / (" +
-                        ranks + " * " + std::to_string(config.num_envs) + ") = " +
+                        ranks + " * " + std::to_string(config.off_policy.num_envs) + ") = " +
                         std::to_string(steps_between_checkpoints) +
                         " steps between checkpoints, which cut episodes; that is fewer than max_ep_len = " +
                         std::to_string(config.max_ep_len) +

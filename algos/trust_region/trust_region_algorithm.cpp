@@ -83,7 +83,7 @@ PolicyUpdateResult TrustRegionAlgorithm::update(const PolicyUpdateInputs& inputs
   FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
                              fisher_vector_product_options(config()));
   const NaturalGradientStep step = natural_gradient_step(as_linear_operator(fisher), direction.gradient,
-                                                         config().target_kl, conjugate_gradient_options(config()));
+                                                         config().trust_region.target_kl, conjugate_gradient_options(config()));
 
   LineSearchResult search;
   if (plan.line_search) {
