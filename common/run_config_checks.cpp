@@ -99,7 +99,8 @@ void check_run_config_relations(const RunConfig& config, const ConfigOrigins& or
                         "; set it to 0 or anneal sigma");
     }
   }
-  if (config.exploration_std_floor > 0.0 && (!config.use_exploration_noise_anneal || config.first_order.learn_log_std)) {
+  if (config.exploration_std_floor > 0.0 &&
+      (!config.use_exploration_noise_anneal || config.first_order.learn_log_std)) {
     throw ConfigError("exploration_std_floor = " + format_config_real(config.exploration_std_floor) + " (" +
                       origin_of(origins, "exploration_std_floor") + ") has no effect: sigma is " +
                       (config.first_order.learn_log_std ? std::string("learned (learn_log_std: true)")

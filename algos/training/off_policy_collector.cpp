@@ -50,7 +50,8 @@ OffPolicyCollector::OffPolicyCollector(const RunConfig& config, std::vector<std:
   const int action_size = spec().action_dim;
   const std::size_t n = envs_.size();
   for (std::size_t j = 0; j < n; ++j) {
-    accumulators_.emplace_back(config_.off_policy.n_step, config_.gamma, observation_size_, action_size, critic_cost_count_);
+    accumulators_.emplace_back(config_.off_policy.n_step, config_.gamma, observation_size_, action_size,
+                               critic_cost_count_);
   }
   observations_.assign(n, Eigen::VectorXd(observation_size_));
   episode_returns_.assign(n, 0.0);

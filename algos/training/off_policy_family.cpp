@@ -47,7 +47,8 @@ OffPolicyFamily::OffPolicyFamily(const RunConfig& config, const RunDirectory& di
       constraint_count_(constraint_count(config)),
       critic_cost_count_(ignores_cost(config.alg) ? 0 : constraint_count_),
       local_steps_(local_steps(config, mpi)),
-      buffer_(collector_.spec().observation_dim, collector_.spec().action_dim, critic_cost_count_, config.off_policy.buffer_size),
+      buffer_(collector_.spec().observation_dim, collector_.spec().action_dim, critic_cost_count_,
+              config.off_policy.buffer_size),
       buffer_log_(replay_buffer_log_path(directory.root, mpi.rank())),
       epoch_episodes_(constraint_count_) {
   const int observation_size = collector_.spec().observation_dim;
@@ -115,7 +116,8 @@ FamilyEpoch OffPolicyFamily::run_epoch(int epoch, bool checkpoint_follows) {
                   epoch_episodes_);
     schedule_.steps_since_update += config_.off_policy.num_envs;
     if (schedule_.steps_since_update >= config_.off_policy.update_every) {
-      const bool learning = steps_before + steps_per_round_all_ranks >= config_.off_policy.start_steps && buffer_.size() > 0;
+      const bool learning =
+          steps_before + steps_per_round_all_ranks >= config_.off_policy.start_steps && buffer_.size() > 0;
       const auto update_start = Clock::now();
       // Every rank takes the same number of steps (the schedule is the same on all), so the
       // gradient averages pair up.
@@ -158,7 +160,8 @@ void OffPolicyFamily::start_epoch(int epoch) {
   if (epoch == checkpoint_mark().epochs) {
     collector_.restart([&](int j) {
       return stream_seed(config_, SeedStream::environment, mpi_.rank(),
-                         static_cast<std::uint64_t>(epoch) * config_.off_policy.num_envs + static_cast<std::uint64_t>(j));
+                         static_cast<std::uint64_t>(epoch) * config_.off_policy.num_envs +
+                             static_cast<std::uint64_t>(j));
     });
   }
 }

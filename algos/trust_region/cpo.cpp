@@ -218,7 +218,8 @@ PolicyUpdateResult Cpo::update_several(const PolicyUpdateInputs& inputs,
       conjugate_gradient_columns(begun.fisher, begun.gradients.costs, conjugate_gradient_options(config()));  // p_j
   const Eigen::VectorXd r = P.transpose() * begun.gradients.reward;  // r_j = g^T p_j
   const Eigen::MatrixXd S = begun.gradients.costs.transpose() * P;   // S_jk = b_j^T p_k
-  const CpoDualSolution dual = solve_cpo_dual(begun.natural.x_fisher_x, r, S, begun.violations, config().trust_region.target_kl);
+  const CpoDualSolution dual =
+      solve_cpo_dual(begun.natural.x_fisher_x, r, S, begun.violations, config().trust_region.target_kl);
   // Delta = (x - sum_j nu_j p_j) / lambda*; infeasible: -sum_j nu_j p_j scaled to the trust region.
   const Eigen::VectorXd full_step =
       dual.direction_scale * (dual.reward_weight * begun.natural.direction - P * dual.nu);
