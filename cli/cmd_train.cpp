@@ -67,8 +67,8 @@ ResolvedTrainConfig resolve_config(const TrainArguments& args) {
   resolved.config = resolve_run_config(request).config;
   algos::resolve_env_block(resolved.config);
   // config.yaml names the dataset absolutely, so that --resume and bsg eval work from anywhere.
-  if (is_offline(resolved.config.alg) && !resolved.config.dataset.empty()) {
-    resolved.config.dataset = std::filesystem::absolute(resolved.config.dataset).lexically_normal().string();
+  if (is_offline(resolved.config.alg) && !resolved.config.offline.dataset.empty()) {
+    resolved.config.offline.dataset = std::filesystem::absolute(resolved.config.offline.dataset).lexically_normal().string();
   }
   return resolved;
 }
@@ -147,8 +147,8 @@ int train(const TrainArguments& args) {
         if (key == "name" && value != config.env_id) env_name = value + " (from " + config.env_id + ")";
       }
       // An offline epoch takes gradient steps on its dataset, no environment step.
-      const std::string epoch_work = is_offline(config.alg) ? std::to_string(config.updates_per_epoch) +
-                                                                  " gradient steps on " + config.dataset
+      const std::string epoch_work = is_offline(config.alg) ? std::to_string(config.offline.updates_per_epoch) +
+                                                                  " gradient steps on " + config.offline.dataset
                                                             : std::to_string(config.steps_per_epoch) + " steps";
       std::cout << "bsg train: " << env_name << " " << to_string(config.alg) << " seed " << config.seed << ", "
                 << config.epochs << " epochs of " << epoch_work << " on " << mpi.size()

@@ -2,8 +2,20 @@
 // algorithm, seed, hyper-parameters, quirk switches), as read from configs/
 // by run_config_resolve.h and written to a run directory by run_config_yaml.h.
 //
+// The keys every family reads (the run, the environment settings, networks,
+// returns and advantages, value networks, bookkeeping) are RunConfig's own
+// members; a family's keys, and its algorithms' own, are a group of their own,
+// each in its header beside the rows of its keys:
+//   trust_region  TrustRegionKeys  common/trust_region_keys.h/.cpp (trpo .. crpo)
+//   multiplier    MultiplierKeys   common/multiplier_keys.h/.cpp   (the Lagrangian ones)
+//   first_order   FirstOrderKeys   common/first_order_keys.h/.cpp  (ppo .. cup)
+//   off_policy    OffPolicyKeys    common/off_policy_keys.h/.cpp   (sac .. ddpg-lag)
+//   offline       OfflineKeys      common/offline_keys.h/.cpp      (bc-all, bc-safe)
+// In YAML every key is flat (`cg_iters: 10`, not nested under its group).
+//
 // Parameters: every key, its type, where its default comes from, its valid
-// range and meaning are listed in one table, run_config_schema.cpp
+// range and meaning are listed in one table, run_config_schema.h, whose rows
+// run_config_schema.cpp assembles from the groups' files in one fixed order
 // (`bsg train --print-config` and configs/README.md show the same). The key
 // names are those of the original (docs/algorithms.md#hyper-parameters, #quirk-switches) and of its
 // code. A default-constructed RunConfig holds the TRPO defaults on
@@ -20,24 +32,15 @@
 #include "common/activation.h"
 #include "common/algorithms.h"
 #include "common/constraint_config.h"
+#include "common/first_order_keys.h"
+#include "common/multiplier_keys.h"
+#include "common/off_policy_keys.h"
+#include "common/offline_keys.h"
 #include "common/physics_model.h"
 #include "common/dtype.h"
+#include "common/trust_region_keys.h"
 
 namespace bsg {
-
-// Update rule of the Lagrange multiplier (docs/algorithms.md#trpo-l SGD for
-// TRPO-L, docs/algorithms.md#pdo Adam for PDO; PID: the PID Lagrangian of Stooke, Achiam and Abbeel 2020, with
-// the pid_* keys, algos/lagrange/pid_lagrangian.h).
-enum class LambdaOptimizer { sgd, adam, pid };
-inline constexpr std::array<std::string_view, 3> kLambdaOptimizerNames = {"SGD", "Adam", "PID"};
-
-// Sign of r in CPO's dual solution (docs/algorithms.md#cpo, quirk Q10).
-enum class CpoRSign { original, corrected };
-inline constexpr std::array<std::string_view, 2> kCpoRSignNames = {"original", "corrected"};
-
-// Metric of PCPO's projection step (docs/algorithms.md#pcpo): Fisher (KL) or Euclidean (L2).
-enum class PcpoProjection { kl, l2 };
-inline constexpr std::array<std::string_view, 2> kPcpoProjectionNames = {"kl", "l2"};
 
 // Which learner a run uses (docs/algorithms.md#quirk-switches): the original's
 // (every quirk switch as set by the layers) or the corrected one, which turns
@@ -47,9 +50,6 @@ enum class Learner { faithful, corrected };
 inline constexpr std::array<std::string_view, 2> kLearnerNames = {"faithful", "corrected"};
 
 std::string_view to_string(Algorithm alg);
-std::string_view to_string(LambdaOptimizer optimizer);
-std::string_view to_string(CpoRSign sign);
-std::string_view to_string(PcpoProjection projection);
 std::string_view to_string(Learner learner);
 
 struct RunConfig {
@@ -100,74 +100,12 @@ struct RunConfig {
   bool timeout_bootstrap = true;             // bootstrap V at time-outs (false: a time-out ends the return)
   bool value_time_input = false;             // V and V_C also see the fraction of max_ep_len left
 
-  // --- trust region (docs/algorithms.md#trust-region-tools) ---
-  double target_kl = 0.01;         // delta
-  double cg_damping = 0.1;
-  int cg_iters = 10;
-  int fvp_subsample = 4;           // FVP uses every k-th observation
-  int backtrack_budget = 15;       // Q11
-  double backtrack_decay = 0.8;
-  double kl_accept_factor = 1.5;   // Q13
-
-  // --- Lagrange multiplier (TRPO-L, PDO; docs/algorithms.md#trpo-l, #pdo) ---
-  double lagrangian_multiplier_init = 0.001;
-  double lambda_lr = 0.05;
-  LambdaOptimizer lambda_optimizer = LambdaOptimizer::sgd;
-  double lagrangian_upper_bound = 0.0;  // FOCOPS's nu_max (every rule); 0 = none
-  // PID multiplier (lambda_optimizer PID only; algos/lagrange/pid_lagrangian.h)
-  double pid_kp = 0.1;                  // K_P
-  double pid_ki = 0.005;                // K_I (replaces lambda_lr)
-  double pid_kd = 0.0;                  // K_D
-  int pid_d_delay = 10;                 // epochs between the J_ema compared by D
-  double pid_delta_p_ema_alpha = 0.0;   // EMA factor of the P input; 0 = none
-  double pid_delta_d_ema_alpha = 0.0;   // EMA factor of the D input; 0 = none
-  double pid_lambda_max = 0.0;          // upper bound on lambda; 0 = none
-
-  // --- algorithm-specific switches ---
-  CpoRSign cpo_r_sign = CpoRSign::original;  // Q10
-  bool cpo_clamp_a = false;                  // docs/algorithms.md#cpo degenerate A < 0
-  PcpoProjection pcpo_projection = PcpoProjection::kl;
-  bool pcpo_line_search = true;
-  bool pdo_line_search = true;               // Q14
-  double crpo_tolerance = 2.0;               // CRPO's eta: a cost step once J_C > d + eta
-
-  // --- first-order updates (PPO, PPO-Lag, FOCOPS, CUP; docs/algorithms.md#first-order-updates) ---
-  double actor_lr = 3e-4;          // Adam step size on the policy
-  int update_iters = 40;           // passes over the batch per update
-  int policy_minibatch_size = 64;  // samples per minibatch, summed over ranks
-  bool kl_early_stop = true;       // stop the passes once the KL exceeds target_kl
-  double max_grad_norm = 40.0;     // 0: no gradient rescaling
-  double clip = 0.2;               // PPO's epsilon (ppo, ppo-lag, cup's first step)
-  double focops_lam = 1.5;         // FOCOPS's temperature lambda
-  double focops_eta = 0.02;        // FOCOPS's per-sample KL mask threshold
-  bool learn_log_std = false;      // learn a state-independent log sigma per action dimension
-  double learned_std_init = 0.509; // its initial sigma (the annealing's first)
-
-  // --- off-policy learners (SAC, TD3, DDPG and their -lag forms; docs/algorithms.md#off-policy-learners) ---
-  int num_envs = 1;                // environments per rank, stepped in turn
-  int start_steps = 10000;         // uniform random actions for the first start_steps steps (all ranks)
-  int update_every = 1;            // environment steps (per rank, over its environments) between rounds of updates
-  double updates_per_step = 1.0;   // gradient steps per environment step of a rank
-  int batch_size = 256;            // transitions per gradient step and rank
-  int buffer_size = 1000000;       // replay buffer capacity in transitions per rank
-  double polyak = 0.005;           // tau: target <- (1 - tau) target + tau online
-  int n_step = 1;                  // n-step returns
-  double critic_lr = 0.001;        // Adam step size of the Q networks
-  double exploration_noise = 0.1;  // TD3, DDPG: std of the Gaussian action noise
-  double policy_noise = 0.2;       // TD3: std of the target policy smoothing noise
-  double noise_clip = 0.5;         // TD3: the smoothing noise is clipped to +-noise_clip
-  int policy_delay = 2;            // TD3: critic steps per actor (and target) step
-  double alpha_init = 0.2;         // SAC: initial entropy temperature
-  bool auto_alpha = false;         // SAC: learn alpha towards the target entropy -|A|
-  double alpha_lr = 0.0003;        // SAC: Adam step size of log alpha
-
-  // --- offline (bc-all, bc-safe; docs/datasets.md#offline-runs) ---
-  // Also read by the offline family: hidden_sizes, activation, zero_bias_init, dtype, actor_lr (the
-  // policy's Adam step size), batch_size (rows per gradient step), cost_limit (BC-Safe's episodes),
-  // epochs, eval_episodes, save_freq, seed.
-  std::string dataset;             // the HDF5 file (DSRL's layout) the policy learns from
-  int updates_per_epoch = 200;     // gradient steps per epoch
-  int eval_every = 1;              // online evaluation after every eval_every-th epoch (and the last)
+  // --- the families' groups (their headers list the keys) ---
+  TrustRegionKeys trust_region;    // trust-region tools and the variants' switches
+  MultiplierKeys multiplier;       // Lagrange multipliers (the Lagrangian algorithms)
+  FirstOrderKeys first_order;      // first-order updates
+  OffPolicyKeys off_policy;        // off-policy learners
+  OfflineKeys offline;             // offline learners (the dataset, steps per epoch)
 
   // --- value networks (docs/algorithms.md#value-fits) ---
   bool use_cost_value_function = false;

@@ -80,7 +80,7 @@ bool uses_on_policy_batches(Algorithm alg) {
 // The offline algorithms learn from `dataset:` and judge one cost against cost_limit.
 void check_offline_relations(const RunConfig& config, const ConfigOrigins& origins) {
   const std::string alg(to_string(config.alg));
-  if (config.dataset.empty()) {
+  if (config.offline.dataset.empty()) {
     throw ConfigError("alg '" + alg + "' learns from a dataset: set 'dataset: FILE' (an HDF5 file in DSRL's "
                       "layout, e.g. written by bsg collect) in the run file or with --set dataset=FILE");
   }
@@ -123,17 +123,18 @@ void check_run_config_relations(const RunConfig& config, const ConfigOrigins& or
       throw ConfigError(where + " exceeds epochs = " + std::to_string(config.epochs) + " (" +
                         origin_of(origins, "epochs") + "): the annealing must end within the run");
     }
-    if (!config.use_exploration_noise_anneal || config.learn_log_std) {
+    if (!config.use_exploration_noise_anneal || config.first_order.learn_log_std) {
       throw ConfigError(where + " has no effect: sigma is " +
-                        (config.learn_log_std ? std::string("learned (learn_log_std: true)")
+                        (config.first_order.learn_log_std ? std::string("learned (learn_log_std: true)")
                                               : std::string("fixed (use_exploration_noise_anneal: false)")) +
                         "; set it to 0 or anneal sigma");
     }
   }
-  if (config.exploration_std_floor > 0.0 && (!config.use_exploration_noise_anneal || config.learn_log_std)) {
+  if (config.exploration_std_floor > 0.0 &&
+      (!config.use_exploration_noise_anneal || config.first_order.learn_log_std)) {
     throw ConfigError("exploration_std_floor = " + format_config_real(config.exploration_std_floor) + " (" +
                       origin_of(origins, "exploration_std_floor") + ") has no effect: sigma is " +
-                      (config.learn_log_std ? std::string("learned (learn_log_std: true)")
+                      (config.first_order.learn_log_std ? std::string("learned (learn_log_std: true)")
                                             : std::string("fixed (use_exploration_noise_anneal: false)")) +
                       "; set it to 0 or anneal sigma");
   }
@@ -188,9 +189,9 @@ TrainingMemoryEstimate estimate_training_memory(const RunConfig& config, int obs
     case AlgorithmFamily::trust_region:
     case AlgorithmFamily::first_order: buffer_values = batch * (2.0 * observation_dim + 2.0 * action_dim + 12.0); break;
     case AlgorithmFamily::off_policy:
-      buffer_values = static_cast<double>(config.buffer_size) * (2.0 * observation_dim + action_dim + 4.0);
+      buffer_values = static_cast<double>(config.off_policy.buffer_size) * (2.0 * observation_dim + action_dim + 4.0);
       break;
-    case AlgorithmFamily::offline: buffer_values = static_cast<double>(config.batch_size) * (observation_dim + action_dim); break;
+    case AlgorithmFamily::offline: buffer_values = static_cast<double>(config.off_policy.batch_size) * (observation_dim + action_dim); break;
   }
   constexpr double kProgramBytes = 64.0 * 1024 * 1024;
   TrainingMemoryEstimate estimate;
@@ -261,18 +262,18 @@ void check_run_config_for_ranks(const RunConfig& config, int num_ranks) {
   }
   if (is_off_policy(config.alg)) {
     // The off-policy loop steps num_envs environments in turn and has no value-net minibatches.
-    if (local_steps % config.num_envs != 0) {
+    if (local_steps % config.off_policy.num_envs != 0) {
       throw ConfigError("steps_per_epoch / ranks = " + std::to_string(local_steps) + " with " + ranks +
-                        " ranks is not a multiple of num_envs = " + std::to_string(config.num_envs));
+                        " ranks is not a multiple of num_envs = " + std::to_string(config.off_policy.num_envs));
     }
     // Episodes run on across epochs but a checkpoint cuts them (docs/algorithms.md#off-policy-checkpoints),
     // so each environment needs max_ep_len steps between checkpoints for an episode to end.
     const long long steps_between_checkpoints =
-        static_cast<long long>(config.save_freq) * (local_steps / config.num_envs);
+        static_cast<long long>(config.save_freq) * (local_steps / config.off_policy.num_envs);
     if (steps_between_checkpoints < config.max_ep_len) {
       throw ConfigError("each environment steps save_freq * steps_per_epoch / (ranks * num_envs) = " +
                         std::to_string(config.save_freq) + " * " + std::to_string(config.steps_per_epoch) + " / (" +
-                        ranks + " * " + std::to_string(config.num_envs) + ") = " +
+                        ranks + " * " + std::to_string(config.off_policy.num_envs) + ") = " +
                         std::to_string(steps_between_checkpoints) +
                         " steps between checkpoints, which cut episodes; that is fewer than max_ep_len = " +
                         std::to_string(config.max_ep_len) +

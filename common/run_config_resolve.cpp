@@ -45,7 +45,7 @@ const ConfigEntry& choosing_entry(const std::vector<ConfigEntry>& run_entries,
 // ignore (equal values are fine: a resolved config lists every key).
 void reject_ineffective_multiplier_keys(const RunConfig& config, const RunConfig& algorithm_defaults,
                                         const ConfigOrigins& origins) {
-  const bool pid = config.lambda_optimizer == LambdaOptimizer::pid;
+  const bool pid = config.multiplier.lambda_optimizer == LambdaOptimizer::pid;
   for (const ConfigKey& key : run_config_schema()) {
     const bool pid_key = key.key.starts_with("pid_");
     const bool ineffective = pid ? key.key == "lambda_lr" : pid_key;
@@ -58,7 +58,7 @@ void reject_ineffective_multiplier_keys(const RunConfig& config, const RunConfig
     const std::string where = origin == origins.end() ? std::string("default") : origin->second;
     if (pid_key) {
       throw ConfigError(where + ": key '" + name + "' applies only with lambda_optimizer: PID, but " +
-                        "lambda_optimizer is " + std::string(to_string(config.lambda_optimizer)) +
+                        "lambda_optimizer is " + std::string(to_string(config.multiplier.lambda_optimizer)) +
                         "; set lambda_optimizer: PID as well");
     }
     throw ConfigError(where + ": key 'lambda_lr' has no effect with lambda_optimizer: PID; the PID " +

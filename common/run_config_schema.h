@@ -1,7 +1,7 @@
-// The schema of RunConfig: one table (run_config_schema.cpp) listing every
-// configuration key with its type, the layer its default comes from, its
-// valid range, the algorithms it applies to and a one-line description; and
-// the typed, range-checked assignment of a YAML value to a key.
+// The schema of RunConfig: one table listing every key (its type, layer, range, algorithms and a
+// one-line description), put together by run_config_schema.cpp from RunConfig's own rows and its
+// groups' (common/trust_region_keys.cpp, multiplier_keys.cpp, first_order_keys.cpp,
+// off_policy_keys.cpp); and the typed, range-checked assignment of a YAML value to a key.
 #pragma once
 
 #include <span>

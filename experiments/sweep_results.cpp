@@ -38,7 +38,7 @@ std::optional<RunConfig> read_run_directory_config(const std::filesystem::path& 
 
 // Whether a run uses the PID multiplier (a Table 1 column of its own).
 bool uses_pid_multiplier(const RunConfig& config) {
-  return has_lagrange_multiplier(config.alg) && config.lambda_optimizer == LambdaOptimizer::pid;
+  return has_lagrange_multiplier(config.alg) && config.multiplier.lambda_optimizer == LambdaOptimizer::pid;
 }
 
 // The Table 1 column flags of a configuration.

@@ -94,7 +94,8 @@ ActorCritic::ActorCritic(int observation_size, int action_size, const RunConfig&
     extra_cost_values.emplace_back(value_input_size_of(observation_size, config), config.hidden_sizes, init_rng,
                                    init_options(config), value_adam_options(config));
   }
-  if (config.learn_log_std) policy.learn_log_std(config.learned_std_init);  // docs/algorithms.md#learned-log-sigma
+  // docs/algorithms.md#learned-log-sigma
+  if (config.first_order.learn_log_std) policy.learn_log_std(config.first_order.learned_std_init);
 }
 
 void ActorCritic::value_input(const Eigen::Ref<const Eigen::VectorXd>& normalized, int episode_step,

@@ -25,7 +25,7 @@ PolicyUpdateResult Cup::update(const PolicyUpdateInputs& inputs) {
   SampleLossBatch performance_batch(inputs.surrogate, inputs.surrogate.reference_means(), inputs.policy.log_stds());
   const MinibatchPassesResult performance =
       minibatch_passes(inputs, options, adam(), performance_batch,
-                       clipped_surrogate_loss(inputs.surrogate.advantages(), config().clip));
+                       clipped_surrogate_loss(inputs.surrogate.advantages(), config().first_order.clip));
 
   // 2. Projection step from pi_{k+1/2}: l_i = KL_i + c rho_i sum_j nu_j A^Cj_i.
   const double c = (1.0 - config().gamma * config().lam_c) / (1.0 - config().gamma);

@@ -11,7 +11,7 @@ FirstOrderAlgorithm::FirstOrderAlgorithm(const RunConfig& config, bool constrain
       constrained_(constrained),
       own_columns_(std::move(own_columns)),
       multipliers_(config),
-      adam_(config.actor_lr) {}
+      adam_(config.first_order.actor_lr) {}
 
 std::vector<std::string> FirstOrderAlgorithm::diagnostic_names() const {
   std::vector<std::string> names = common_diagnostic_names();

@@ -19,12 +19,12 @@ constexpr std::string_view kAdamStep = "policy_adam/t";
 
 FirstOrderOptions first_order_options(const RunConfig& config) {
   FirstOrderOptions options;
-  options.learning_rate = config.actor_lr;
-  options.passes = config.update_iters;
-  options.minibatch_size = config.policy_minibatch_size;
-  options.kl_early_stop = config.kl_early_stop;
-  options.target_kl = config.target_kl;
-  options.max_grad_norm = config.max_grad_norm;
+  options.learning_rate = config.first_order.actor_lr;
+  options.passes = config.first_order.update_iters;
+  options.minibatch_size = config.first_order.policy_minibatch_size;
+  options.kl_early_stop = config.first_order.kl_early_stop;
+  options.target_kl = config.trust_region.target_kl;
+  options.max_grad_norm = config.first_order.max_grad_norm;
   return options;
 }
 

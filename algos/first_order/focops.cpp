@@ -24,7 +24,7 @@ PolicyUpdateResult Focops::update(const PolicyUpdateInputs& inputs) {
   // 1. The masked loss's minibatch passes.
   const MinibatchPassesResult passes =
       minibatch_passes(inputs, first_order_options(config()), adam(), batch,
-                       focops_loss(advantages, config().focops_lam, config().focops_eta));
+                       focops_loss(advantages, config().first_order.focops_lam, config().first_order.focops_eta));
   return make_result(common_diagnostics(inputs, start.before, 1.0, std::span<const double>(cost_weights)), passes, {});
 }
 

@@ -36,7 +36,7 @@ PolicyUpdateResult Ppo::update(const PolicyUpdateInputs& inputs) {
   SampleLossBatch batch(inputs.surrogate, inputs.surrogate.reference_means(), inputs.policy.log_stds());  // KL_i to theta_old
   // 1. The clipped surrogate's minibatch passes.
   const MinibatchPassesResult passes = minibatch_passes(inputs, first_order_options(config()), adam(), batch,
-                                                        clipped_surrogate_loss(advantages, config().clip));
+                                                        clipped_surrogate_loss(advantages, config().first_order.clip));
   return make_result(common_diagnostics(inputs, start.before, weights.reward, std::span<const double>(weights.costs)),
                      passes, {});
 }

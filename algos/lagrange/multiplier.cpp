@@ -33,9 +33,10 @@ LagrangeMultiplier::LagrangeMultiplier(double initial_value, LambdaOptimizer opt
       rule_(make_multiplier_rule(optimizer, checked_learning_rate(learning_rate), lambda_, pid)) {}
 
 LagrangeMultiplier::LagrangeMultiplier(const RunConfig& config)
-    : LagrangeMultiplier(config.lagrangian_multiplier_init, config.lambda_optimizer, config.lambda_lr,
+    : LagrangeMultiplier(config.multiplier.lagrangian_multiplier_init, config.multiplier.lambda_optimizer,
+                         config.multiplier.lambda_lr,
                          pid_lagrangian_options(config)) {
-  upper_bound_ = config.lagrangian_upper_bound;
+  upper_bound_ = config.multiplier.lagrangian_upper_bound;
 }
 
 LagrangeMultiplier::LagrangeMultiplier(const LagrangeMultiplier& other)

@@ -26,13 +26,13 @@ void check_ema(double value, const char* key) {
 
 PidLagrangianOptions pid_lagrangian_options(const RunConfig& config) {
   PidLagrangianOptions options;
-  options.proportional_gain = config.pid_kp;
-  options.integral_gain = config.pid_ki;
-  options.derivative_gain = config.pid_kd;
-  options.derivative_delay = config.pid_d_delay;
-  options.proportional_ema = config.pid_delta_p_ema_alpha;
-  options.derivative_ema = config.pid_delta_d_ema_alpha;
-  options.lambda_max = config.pid_lambda_max;
+  options.proportional_gain = config.multiplier.pid_kp;
+  options.integral_gain = config.multiplier.pid_ki;
+  options.derivative_gain = config.multiplier.pid_kd;
+  options.derivative_delay = config.multiplier.pid_d_delay;
+  options.proportional_ema = config.multiplier.pid_delta_p_ema_alpha;
+  options.derivative_ema = config.multiplier.pid_delta_d_ema_alpha;
+  options.lambda_max = config.multiplier.pid_lambda_max;
   return options;
 }
 

@@ -31,7 +31,7 @@ std::unique_ptr<OfflineAlgorithm> make_offline_algorithm(const RunConfig& config
     case Algorithm::bc_all:
     case Algorithm::bc_safe:
       return std::make_unique<BehaviourCloning>(std::string(algorithm_info(config.alg).label), observation_size,
-                                                action_size, scaling, config.hidden_sizes, network, config.actor_lr,
+                                                action_size, scaling, config.hidden_sizes, network, config.first_order.actor_lr,
                                                 init_rng);
     default: not_offline(config);
   }

@@ -1,7 +1,10 @@
-// The factory of the nine algorithms: the RunConfig's `alg` picks TRPO,
-// TRPO-L, CPO, PDO or PCPO (algos/trust_region/) or PPO, PPO-Lag (CPPO-PID with
-// the PID multiplier), FOCOPS or CUP (algos/first_order/); every
-// hyper-parameter the update needs is read from the same RunConfig.
+// The factory of the on-policy algorithms: the RunConfig's `alg` picks its
+// family's factory, make_trust_region_algorithm (TRPO, TRPO-L, CPO, PDO, PCPO,
+// CRPO; algos/trust_region/make_trust_region_algorithm.h) or
+// make_first_order_algorithm (PPO, PPO-Lag, FOCOPS, CUP;
+// algos/first_order/make_first_order_algorithm.h); every hyper-parameter the
+// update needs is read from the same RunConfig. Throws std::invalid_argument
+// for an off-policy algorithm.
 #pragma once
 
 #include <memory>

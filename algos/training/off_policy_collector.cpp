@@ -43,14 +43,15 @@ OffPolicyCollector::OffPolicyCollector(const RunConfig& config, std::vector<std:
                                        int critic_cost_count)
     : config_(config),
       envs_(std::move(envs)),
-      observation_size_(checked_spec(envs_, config.num_envs).observation_dim),
+      observation_size_(checked_spec(envs_, config.off_policy.num_envs).observation_dim),
       constraint_count_(constraint_count(config)),
       critic_cost_count_(critic_cost_count),
       cost_selector_(bound_cost_selector(config, envs_.front()->spec())) {
   const int action_size = spec().action_dim;
   const std::size_t n = envs_.size();
   for (std::size_t j = 0; j < n; ++j) {
-    accumulators_.emplace_back(config_.n_step, config_.gamma, observation_size_, action_size, critic_cost_count_);
+    accumulators_.emplace_back(config_.off_policy.n_step, config_.gamma, observation_size_, action_size,
+                               critic_cost_count_);
   }
   observations_.assign(n, Eigen::VectorXd(observation_size_));
   episode_returns_.assign(n, 0.0);

@@ -33,7 +33,7 @@ struct OffPolicyEpochEpisodes {
 
 class OffPolicyCollector {
  public:
-  // `envs` must hold config.num_envs environments of one spec with non-empty spaces (checked).
+  // `envs` must hold config.off_policy.num_envs environments of one spec with non-empty spaces (checked).
   // `critic_cost_count` constraints' costs go into the buffer (m for the -lag learners, 0 otherwise).
   OffPolicyCollector(const RunConfig& config, std::vector<std::unique_ptr<envs::Env>> envs, int critic_cost_count);
 

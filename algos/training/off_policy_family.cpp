@@ -47,7 +47,8 @@ OffPolicyFamily::OffPolicyFamily(const RunConfig& config, const RunDirectory& di
       constraint_count_(constraint_count(config)),
       critic_cost_count_(ignores_cost(config.alg) ? 0 : constraint_count_),
       local_steps_(local_steps(config, mpi)),
-      buffer_(collector_.spec().observation_dim, collector_.spec().action_dim, critic_cost_count_, config.buffer_size),
+      buffer_(collector_.spec().observation_dim, collector_.spec().action_dim, critic_cost_count_,
+              config.off_policy.buffer_size),
       buffer_log_(replay_buffer_log_path(directory.root, mpi.rank())),
       epoch_episodes_(constraint_count_) {
   const int observation_size = collector_.spec().observation_dim;
@@ -105,17 +106,18 @@ void OffPolicyFamily::save_checkpoint(const std::filesystem::path& path, const T
 FamilyEpoch OffPolicyFamily::run_epoch(int epoch, bool checkpoint_follows) {
   start_epoch(epoch);  // 1
   // 2. Rounds of environment steps and, every update_every steps, rounds of gradient steps.
-  const int rounds = local_steps_ / config_.num_envs;
-  const long long steps_per_round_all_ranks = static_cast<long long>(config_.num_envs) * mpi_.size();
+  const int rounds = local_steps_ / config_.off_policy.num_envs;
+  const long long steps_per_round_all_ranks = static_cast<long long>(config_.off_policy.num_envs) * mpi_.size();
   for (int round = 0; round < rounds; ++round) {
     // Environment steps taken before this round, all ranks together.
     const long long steps_before =
         static_cast<long long>(epoch) * config_.steps_per_epoch + round * steps_per_round_all_ranks;
-    collect_round(epoch, steps_before < config_.start_steps, checkpoint_follows && round + 1 == rounds,
+    collect_round(epoch, steps_before < config_.off_policy.start_steps, checkpoint_follows && round + 1 == rounds,
                   epoch_episodes_);
-    schedule_.steps_since_update += config_.num_envs;
-    if (schedule_.steps_since_update >= config_.update_every) {
-      const bool learning = steps_before + steps_per_round_all_ranks >= config_.start_steps && buffer_.size() > 0;
+    schedule_.steps_since_update += config_.off_policy.num_envs;
+    if (schedule_.steps_since_update >= config_.off_policy.update_every) {
+      const bool learning =
+          steps_before + steps_per_round_all_ranks >= config_.off_policy.start_steps && buffer_.size() > 0;
       const auto update_start = Clock::now();
       // Every rank takes the same number of steps (the schedule is the same on all), so the
       // gradient averages pair up.
@@ -158,7 +160,8 @@ void OffPolicyFamily::start_epoch(int epoch) {
   if (epoch == checkpoint_mark().epochs) {
     collector_.restart([&](int j) {
       return stream_seed(config_, SeedStream::environment, mpi_.rank(),
-                         static_cast<std::uint64_t>(epoch) * config_.num_envs + static_cast<std::uint64_t>(j));
+                         static_cast<std::uint64_t>(epoch) * config_.off_policy.num_envs +
+                             static_cast<std::uint64_t>(j));
     });
   }
 }
@@ -185,7 +188,7 @@ void OffPolicyFamily::collect_round(int epoch, bool random_action, bool cut, Off
 int OffPolicyFamily::owed_gradient_steps(bool learning) {
   int updates = 0;
   if (learning) {
-    schedule_.owed_updates += static_cast<double>(schedule_.steps_since_update) * config_.updates_per_step;
+    schedule_.owed_updates += static_cast<double>(schedule_.steps_since_update) * config_.off_policy.updates_per_step;
     updates = static_cast<int>(std::floor(schedule_.owed_updates));
     schedule_.owed_updates -= updates;
   }
@@ -195,7 +198,7 @@ int OffPolicyFamily::owed_gradient_steps(bool learning) {
 
 void OffPolicyFamily::train(int updates) {
   for (int u = 0; u < updates; ++u) {
-    buffer_.sample(config_.batch_size, sample_rng_, slots_, batch_);
+    buffer_.sample(config_.off_policy.batch_size, sample_rng_, slots_, batch_);
     learner_->update(batch_, lambdas_, sample_rng_, mpi_, step_stats_);
     const OffPolicyStepStats& stats = step_stats_;
     ++tally_.updates;

@@ -7,7 +7,7 @@ namespace {
 
 std::vector<std::unique_ptr<envs::Env>> make_run_envs(const RunConfig& config) {
   std::vector<std::unique_ptr<envs::Env>> envs;
-  for (int j = 0; j < config.num_envs; ++j) envs.push_back(make_run_env(config));
+  for (int j = 0; j < config.off_policy.num_envs; ++j) envs.push_back(make_run_env(config));
   return envs;
 }
 

@@ -40,11 +40,11 @@ const RunConfig& checked_offline(const RunConfig& config, const MpiContext& mpi)
 
 // The dataset of `dataset:`, checked against the run and its environment.
 OfflineDataset read_run_dataset(const RunConfig& config, const envs::Env& env) {
-  if (config.dataset.empty()) {
+  if (config.offline.dataset.empty()) {
     throw std::invalid_argument("alg " + std::string(to_string(config.alg)) + " needs 'dataset:', the HDF5 file it learns from");
   }
-  OfflineDataset dataset = read_dataset_file(config.dataset);
-  const std::string where = "dataset " + config.dataset + ": ";
+  OfflineDataset dataset = read_dataset_file(config.offline.dataset);
+  const std::string where = "dataset " + config.offline.dataset + ": ";
   const auto env_id = dataset.text_attributes.find("env_id");
   if (env_id != dataset.text_attributes.end() && env_id->second != config.env_id) {
     throw std::invalid_argument(where + "collected on " + env_id->second + ", but the run's env_id is " +
@@ -82,7 +82,7 @@ std::vector<NamedScalar> offline_log_entries(const RunConfig& config, const Epoc
     return evaluation ? (*evaluation).*member : kNone;
   };
   add("epoch", values ? accounts->epoch : 0);
-  add("updates", values ? static_cast<double>(accounts->epoch + 1) * config.updates_per_epoch : 0.0);
+  add("updates", values ? static_cast<double>(accounts->epoch + 1) * config.offline.updates_per_epoch : 0.0);
   add("loss", values ? loss : 0.0);
   add("eval_return", scored(&OfflineEpochEvaluation::mean_return));
   add("eval_cost", scored(&OfflineEpochEvaluation::mean_cost));
@@ -106,11 +106,11 @@ OfflineFamily::OfflineFamily(const RunConfig& config, const MpiContext& mpi, std
   min_episode_reward_ = reward_constant(dataset_, "min_episode_reward", ranges.min_episode_reward);
   max_episode_reward_ = reward_constant(dataset_, "max_episode_reward", ranges.max_episode_reward);
   if (!(max_episode_reward_ > min_episode_reward_)) {
-    throw std::invalid_argument("dataset " + config_.dataset + ": its episode rewards span no range (min " +
+    throw std::invalid_argument("dataset " + config_.offline.dataset + ": its episode rewards span no range (min " +
                                 std::to_string(min_episode_reward_) + ", max " + std::to_string(max_episode_reward_) +
                                 "), so DSRL's normalised reward is undefined");
   }
-  batches_.emplace(dataset_, offline_training_rows(config_, dataset_), config_.batch_size);
+  batches_.emplace(dataset_, offline_training_rows(config_, dataset_), config_.off_policy.batch_size);
   Rng init_rng(stream_seed(config_, SeedStream::network_init, 0));
   algorithm_ = make_offline_algorithm(config_, dataset_.observation_dim, dataset_.action_dim, batches_->scaling(),
                                       init_rng);
@@ -146,16 +146,16 @@ FamilyEpoch OfflineFamily::run_epoch(int epoch, bool /*checkpoint_follows: nothi
   const auto update_start = Clock::now();
   sample_rng_.seed(stream_seed(config_, SeedStream::minibatch_shuffle, static_cast<std::uint64_t>(epoch)));
   double loss_sum = 0.0;
-  for (int u = 0; u < config_.updates_per_epoch; ++u) {
+  for (int u = 0; u < config_.offline.updates_per_epoch; ++u) {
     batches_->sample(sample_rng_, batch_);
     loss_sum += algorithm_->update(batch_);
   }
-  loss_ = loss_sum / config_.updates_per_epoch;
+  loss_ = loss_sum / config_.offline.updates_per_epoch;
   check_finite(epoch, "behaviour-cloning loss", loss_);
   update_seconds_ = seconds_since(update_start);
 
   const bool evaluates = config_.eval_episodes > 0 &&
-                         ((epoch + 1) % config_.eval_every == 0 || epoch + 1 == config_.epochs);
+                         ((epoch + 1) % config_.offline.eval_every == 0 || epoch + 1 == config_.epochs);
   evaluation_.reset();
   if (evaluates) evaluation_ = evaluate_epoch();
 

@@ -190,7 +190,7 @@ SeveralConstraintsStart begin_several_constraints_update(const PolicyUpdateInput
   begun.violations = per_step_constraint_violations(constraints, inputs.mean_episode_length);  // c_j
   begun.start = begin_policy_update(inputs);
   begun.gradients = averaged_constraint_gradients(inputs);  // g, B
-  begun.natural = natural_gradient_step(begun.fisher, begun.gradients.reward, config.target_kl,
+  begun.natural = natural_gradient_step(begun.fisher, begun.gradients.reward, config.trust_region.target_kl,
                                         conjugate_gradient_options(config));  // x, q, eta, Delta_R
   return begun;
 }
@@ -218,7 +218,8 @@ PolicyUpdateResult Cpo::update_several(const PolicyUpdateInputs& inputs,
       conjugate_gradient_columns(begun.fisher, begun.gradients.costs, conjugate_gradient_options(config()));  // p_j
   const Eigen::VectorXd r = P.transpose() * begun.gradients.reward;  // r_j = g^T p_j
   const Eigen::MatrixXd S = begun.gradients.costs.transpose() * P;   // S_jk = b_j^T p_k
-  const CpoDualSolution dual = solve_cpo_dual(begun.natural.x_fisher_x, r, S, begun.violations, config().target_kl);
+  const CpoDualSolution dual =
+      solve_cpo_dual(begun.natural.x_fisher_x, r, S, begun.violations, config().trust_region.target_kl);
   // Delta = (x - sum_j nu_j p_j) / lambda*; infeasible: -sum_j nu_j p_j scaled to the trust region.
   const Eigen::VectorXd full_step =
       dual.direction_scale * (dual.reward_weight * begun.natural.direction - P * dual.nu);
@@ -248,9 +249,9 @@ PolicyUpdateResult Cpo::update(const PolicyUpdateInputs& inputs) {
   FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
                              fisher_vector_product_options(config()));
   CpoStepOptions step_options;
-  step_options.target_kl = config().target_kl;
-  step_options.r_sign = config().cpo_r_sign;
-  step_options.clamp_a = config().cpo_clamp_a;
+  step_options.target_kl = config().trust_region.target_kl;
+  step_options.r_sign = config().trust_region.cpo_r_sign;
+  step_options.clamp_a = config().trust_region.cpo_clamp_a;
   step_options.conjugate_gradient = conjugate_gradient_options(config());
   const CpoStep step = cpo_step(as_linear_operator(fisher), gradients.reward, gradients.cost, c, step_options);
 

@@ -20,16 +20,16 @@ int crpo_rectified_constraint(std::span<const ConstraintEstimate> constraints, d
 }
 
 Crpo::Crpo(const RunConfig& config) : TrustRegionAlgorithm(config) {
-  if (!std::isfinite(config.crpo_tolerance) || config.crpo_tolerance < 0.0) {
+  if (!std::isfinite(config.trust_region.crpo_tolerance) || config.trust_region.crpo_tolerance < 0.0) {
     throw std::invalid_argument("crpo: crpo_tolerance must be finite and >= 0, got " +
-                                std::to_string(config.crpo_tolerance));
+                                std::to_string(config.trust_region.crpo_tolerance));
   }
 }
 
 TrustRegionPlan Crpo::plan_step(const PolicyUpdateInputs& inputs) {
   check_mean_episode_cost(inputs, name());
   const std::vector<ConstraintEstimate> constraints = constraint_estimates(inputs, config());
-  const int rectified = crpo_rectified_constraint(constraints, config().crpo_tolerance);
+  const int rectified = crpo_rectified_constraint(constraints, config().trust_region.crpo_tolerance);
 
   TrustRegionPlan plan;  // rectified == 0: the reward surrogate, TRPO's step
   if (rectified > 0) {

@@ -77,7 +77,7 @@ PolicyUpdateResult Pcpo::update_several(const PolicyUpdateInputs& inputs,
   const Eigen::VectorXd& c = begun.violations;
   const Eigen::Index m = B.cols();
   // L^-1 b_j: CG(F, b_j) in the KL metric, b_j itself in L2.
-  const Eigen::MatrixXd directions = config().pcpo_projection == PcpoProjection::kl
+  const Eigen::MatrixXd directions = config().trust_region.pcpo_projection == PcpoProjection::kl
                                          ? conjugate_gradient_columns(begun.fisher, B, conjugate_gradient_options(config()))
                                          : B;
   // Only constraints with a usable gradient take part (the single constraint's b^T b > 1e-6 guard).
@@ -106,7 +106,7 @@ PolicyUpdateResult Pcpo::update_several(const PolicyUpdateInputs& inputs,
   }
 
   LineSearchResult search;
-  if (config().pcpo_line_search) {
+  if (config().trust_region.pcpo_line_search) {
     search = constrained_line_search_all(inputs, begun.start, full_step, c, (c.array() < 0.0).all(), config());
   } else {
     search.step = full_step;  // the paper's release: apply Delta directly
@@ -131,13 +131,13 @@ PolicyUpdateResult Pcpo::update(const PolicyUpdateInputs& inputs) {
   FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
                              fisher_vector_product_options(config()));
   PcpoStepOptions step_options;
-  step_options.target_kl = config().target_kl;
-  step_options.projection = config().pcpo_projection;
+  step_options.target_kl = config().trust_region.target_kl;
+  step_options.projection = config().trust_region.pcpo_projection;
   step_options.conjugate_gradient = conjugate_gradient_options(config());
   const PcpoStep step = pcpo_step(as_linear_operator(fisher), gradients.reward, gradients.cost, c, step_options);
 
   LineSearchResult search;
-  if (config().pcpo_line_search) {
+  if (config().trust_region.pcpo_line_search) {
     ConstrainedLineSearchInputs search_inputs;
     search_inputs.reward_loss_old = -start.before.reward_surrogate;
     search_inputs.cost_surrogate_old = start.before.cost_surrogate;

@@ -19,7 +19,7 @@ TrustRegionPlan Pdo::plan_step(const PolicyUpdateInputs& inputs) {
   // 1. Adam (or SGD, or PID) update of lambda on J_C - d, lambda >= 0; before the policy step.
   TrustRegionPlan plan;  // Q14: the acceptance test uses the reward-only loss l_R
   plan.lagrange_multipliers = update_multipliers(inputs);
-  plan.line_search = config().pdo_line_search;
+  plan.line_search = config().trust_region.pdo_line_search;
   return plan;
 }
 

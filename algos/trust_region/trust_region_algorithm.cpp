@@ -82,8 +82,9 @@ PolicyUpdateResult TrustRegionAlgorithm::update(const PolicyUpdateInputs& inputs
   // x = CG(F, g_w), q = x^T F x, alpha = sqrt(2 delta / (q + 1e-8)), Delta = alpha x
   FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
                              fisher_vector_product_options(config()));
-  const NaturalGradientStep step = natural_gradient_step(as_linear_operator(fisher), direction.gradient,
-                                                         config().target_kl, conjugate_gradient_options(config()));
+  const NaturalGradientStep step =
+      natural_gradient_step(as_linear_operator(fisher), direction.gradient, config().trust_region.target_kl,
+                            conjugate_gradient_options(config()));
 
   LineSearchResult search;
   if (plan.line_search) {

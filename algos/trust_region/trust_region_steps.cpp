@@ -8,23 +8,23 @@ namespace bsg::algos {
 
 ConjugateGradientOptions conjugate_gradient_options(const RunConfig& config) {
   ConjugateGradientOptions options;
-  options.iterations = config.cg_iters;
+  options.iterations = config.trust_region.cg_iters;
   return options;
 }
 
 FisherVectorProductOptions fisher_vector_product_options(const RunConfig& config) {
   FisherVectorProductOptions options;
-  options.damping_coeff = config.cg_damping;
-  options.subsample_stride = config.fvp_subsample;
+  options.damping_coeff = config.trust_region.cg_damping;
+  options.subsample_stride = config.trust_region.fvp_subsample;
   return options;
 }
 
 LineSearchOptions line_search_options(const RunConfig& config) {
   LineSearchOptions options;
-  options.budget = config.backtrack_budget;
-  options.decay = config.backtrack_decay;
-  options.target_kl = config.target_kl;
-  options.kl_accept_factor = config.kl_accept_factor;
+  options.budget = config.trust_region.backtrack_budget;
+  options.decay = config.trust_region.backtrack_decay;
+  options.target_kl = config.trust_region.target_kl;
+  options.kl_accept_factor = config.trust_region.kl_accept_factor;
   return options;
 }
 

@@ -168,28 +168,28 @@ inline std::vector<Algorithm> on_policy_algorithms() {
 inline RunConfig config_for(Algorithm alg) {
   RunConfig config;
   config.alg = alg;
-  config.target_kl = 0.01;
+  config.trust_region.target_kl = 0.01;
   config.cost_limit = 25.0;
   config.use_cost_value_function = !ignores_cost(alg);
   switch (alg) {
     case Algorithm::trpo: break;
     case Algorithm::lag_trpo:
-      config.lambda_optimizer = LambdaOptimizer::sgd;
-      config.lambda_lr = 0.05;
+      config.multiplier.lambda_optimizer = LambdaOptimizer::sgd;
+      config.multiplier.lambda_lr = 0.05;
       break;
-    case Algorithm::cpo: config.backtrack_budget = 20; break;
+    case Algorithm::cpo: config.trust_region.backtrack_budget = 20; break;
     case Algorithm::pdo:
-      config.lambda_optimizer = LambdaOptimizer::adam;
-      config.lambda_lr = 0.001;
+      config.multiplier.lambda_optimizer = LambdaOptimizer::adam;
+      config.multiplier.lambda_lr = 0.001;
       break;
-    case Algorithm::pcpo: config.backtrack_budget = 25; break;
+    case Algorithm::pcpo: config.trust_region.backtrack_budget = 25; break;
     case Algorithm::ppo:
     case Algorithm::ppo_lag:
     case Algorithm::focops:
     case Algorithm::cup:  // the first-order defaults of configs/algorithms (OmniSafe's)
-      config.target_kl = 0.02;
-      config.lambda_optimizer = LambdaOptimizer::adam;
-      config.lambda_lr = 0.035;
+      config.trust_region.target_kl = 0.02;
+      config.multiplier.lambda_optimizer = LambdaOptimizer::adam;
+      config.multiplier.lambda_lr = 0.035;
       break;
     default: break;  // the RunConfig defaults (TRPO's, crpo_tolerance 2); off-policy: no on-policy update
   }
@@ -240,15 +240,15 @@ inline bool bit_identical(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 template <class Update>
 void expect_pid_multiplier_steers_like_sgd(Algorithm algorithm) {
   RunConfig pid_config = testing::config_for(algorithm);
-  pid_config.lambda_optimizer = LambdaOptimizer::pid;
-  pid_config.lagrangian_multiplier_init = 0.001;
-  pid_config.pid_kp = 0.1;
-  pid_config.pid_ki = 0.05;
-  pid_config.pid_kd = 0.2;
+  pid_config.multiplier.lambda_optimizer = LambdaOptimizer::pid;
+  pid_config.multiplier.lagrangian_multiplier_init = 0.001;
+  pid_config.multiplier.pid_kp = 0.1;
+  pid_config.multiplier.pid_ki = 0.05;
+  pid_config.multiplier.pid_kd = 0.2;
   RunConfig sgd_config = testing::config_for(algorithm);
-  sgd_config.lambda_optimizer = LambdaOptimizer::sgd;
-  sgd_config.lagrangian_multiplier_init = 6.501;
-  sgd_config.lambda_lr = 0.05;
+  sgd_config.multiplier.lambda_optimizer = LambdaOptimizer::sgd;
+  sgd_config.multiplier.lagrangian_multiplier_init = 6.501;
+  sgd_config.multiplier.lambda_lr = 0.05;
 
   SyntheticBatch pid_batch(64, 3, 4);
   SyntheticBatch sgd_batch(64, 3, 4);

@@ -91,9 +91,9 @@ class BenchLearner {
     config.hidden_sizes = {hidden, hidden};
     config.dtype = dtype;
     config.activation = activation;
-    config.max_grad_norm = 0.0;  // FSRL's: no rescaling
-    config.auto_alpha = true;
-    config.policy_delay = 1;  // actor and temperature at every step, as the PyTorch script
+    config.first_order.max_grad_norm = 0.0;  // FSRL's: no rescaling
+    config.off_policy.auto_alpha = true;
+    config.off_policy.policy_delay = 1;  // actor and temperature at every step, as the PyTorch script
     return config;
   }
   void step() { learner_->update(batch_, lambdas_, rng_, mpi_); }

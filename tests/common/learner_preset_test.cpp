@@ -50,7 +50,7 @@ TEST(LearnerPreset, CorrectedTurnsOnEveryCorrectedSwitch) {
   EXPECT_TRUE(trpo.value_time_input);             // Q20
   EXPECT_EQ(trpo.exploration_anneal_epochs, 0);   // a change of protocol, not a correction
   EXPECT_FALSE(trpo.center_advantages);           // a choice (Q6), not a correction
-  EXPECT_EQ(trpo.cpo_r_sign, CpoRSign::original);  // Q10 is CPO's only
+  EXPECT_EQ(trpo.trust_region.cpo_r_sign, CpoRSign::original);  // Q10 is CPO's only
   // Everything else as without the preset.
   RunConfig expected = resolve("trpo", {});
   expected.learner = Learner::corrected;
@@ -60,7 +60,7 @@ TEST(LearnerPreset, CorrectedTurnsOnEveryCorrectedSwitch) {
   EXPECT_EQ(trpo, expected);
 
   const RunConfig cpo = resolve("cpo", {"learner=corrected"});
-  EXPECT_EQ(cpo.cpo_r_sign, CpoRSign::corrected);  // Q10
+  EXPECT_EQ(cpo.trust_region.cpo_r_sign, CpoRSign::corrected);  // Q10
   EXPECT_TRUE(cpo.rescale_value_output);
 }
 
@@ -85,7 +85,7 @@ TEST(LearnerPreset, AKeyNamedBesideThePresetKeepsItsValueAndOrigin) {
   request.run_file = run;
   const RunConfig cpo = resolve_run_config(request).config;
   std::filesystem::remove(run);
-  EXPECT_EQ(cpo.cpo_r_sign, CpoRSign::original);
+  EXPECT_EQ(cpo.trust_region.cpo_r_sign, CpoRSign::original);
   EXPECT_TRUE(cpo.zero_bias_init);
 }
 

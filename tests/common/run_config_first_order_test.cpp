@@ -26,30 +26,30 @@ TEST(FirstOrderConfig, ShippedDefaults) {
   for (const char* alg : {"ppo", "ppo-lag", "focops", "cup"}) {
     SCOPED_TRACE(alg);
     const RunConfig config = resolve_run_config(shipped(alg, {})).config;
-    EXPECT_EQ(config.actor_lr, 3e-4);
-    EXPECT_EQ(config.update_iters, 40);
-    EXPECT_EQ(config.policy_minibatch_size, 64);
-    EXPECT_EQ(config.target_kl, 0.02);
-    EXPECT_TRUE(config.kl_early_stop);
-    EXPECT_EQ(config.max_grad_norm, 40.0);
-    EXPECT_TRUE(config.learn_log_std);  // OmniSafe's learned log sigma (docs/algorithms.md#learned-log-sigma)
-    EXPECT_EQ(config.learned_std_init, 0.509);
+    EXPECT_EQ(config.first_order.actor_lr, 3e-4);
+    EXPECT_EQ(config.first_order.update_iters, 40);
+    EXPECT_EQ(config.first_order.policy_minibatch_size, 64);
+    EXPECT_EQ(config.trust_region.target_kl, 0.02);
+    EXPECT_TRUE(config.first_order.kl_early_stop);
+    EXPECT_EQ(config.first_order.max_grad_norm, 40.0);
+    EXPECT_TRUE(config.first_order.learn_log_std);  // OmniSafe's learned log sigma (docs/algorithms.md#learned-log-sigma)
+    EXPECT_EQ(config.first_order.learned_std_init, 0.509);
     EXPECT_TRUE(config.use_standardized_advantages);
     EXPECT_EQ(config.use_cost_value_function, std::string(alg) != "ppo");
     if (std::string(alg) != "ppo") {
-      EXPECT_EQ(config.lambda_optimizer, LambdaOptimizer::adam);
-      EXPECT_EQ(config.lambda_lr, 0.035);
-      EXPECT_EQ(config.lagrangian_multiplier_init, 0.001);
+      EXPECT_EQ(config.multiplier.lambda_optimizer, LambdaOptimizer::adam);
+      EXPECT_EQ(config.multiplier.lambda_lr, 0.035);
+      EXPECT_EQ(config.multiplier.lagrangian_multiplier_init, 0.001);
     }
   }
   const RunConfig focops = resolve_run_config(shipped("focops", {})).config;
-  EXPECT_EQ(focops.focops_lam, 1.5);
-  EXPECT_EQ(focops.focops_eta, 0.02);
-  EXPECT_EQ(focops.lagrangian_upper_bound, 2.0);
-  EXPECT_EQ(resolve_run_config(shipped("ppo", {})).config.clip, 0.2);
-  EXPECT_EQ(resolve_run_config(shipped("cup", {})).config.clip, 0.2);
+  EXPECT_EQ(focops.first_order.focops_lam, 1.5);
+  EXPECT_EQ(focops.first_order.focops_eta, 0.02);
+  EXPECT_EQ(focops.multiplier.lagrangian_upper_bound, 2.0);
+  EXPECT_EQ(resolve_run_config(shipped("ppo", {})).config.first_order.clip, 0.2);
+  EXPECT_EQ(resolve_run_config(shipped("cup", {})).config.first_order.clip, 0.2);
   // CPPO-PID is ppo-lag with the PID rule.
-  EXPECT_EQ(resolve_run_config(shipped("ppo-lag", {"lambda_optimizer=PID"})).config.lambda_optimizer,
+  EXPECT_EQ(resolve_run_config(shipped("ppo-lag", {"lambda_optimizer=PID"})).config.multiplier.lambda_optimizer,
             LambdaOptimizer::pid);
 }
 

@@ -30,14 +30,14 @@ TEST(PidConfig, ShippedDefaultsOfBothLagrangianAlgorithms) {
   for (const char* alg : {"lag-trpo", "pdo"}) {
     SCOPED_TRACE(alg);
     const RunConfig config = resolve_run_config(shipped(alg, {"lambda_optimizer=PID"})).config;
-    EXPECT_EQ(config.lambda_optimizer, LambdaOptimizer::pid);
-    EXPECT_EQ(config.pid_kp, 0.1);
-    EXPECT_EQ(config.pid_ki, 0.005);
-    EXPECT_EQ(config.pid_kd, 0.0);
-    EXPECT_EQ(config.pid_d_delay, 10);
-    EXPECT_EQ(config.pid_delta_p_ema_alpha, 0.0);
-    EXPECT_EQ(config.pid_delta_d_ema_alpha, 0.0);
-    EXPECT_EQ(config.pid_lambda_max, 0.0);
+    EXPECT_EQ(config.multiplier.lambda_optimizer, LambdaOptimizer::pid);
+    EXPECT_EQ(config.multiplier.pid_kp, 0.1);
+    EXPECT_EQ(config.multiplier.pid_ki, 0.005);
+    EXPECT_EQ(config.multiplier.pid_kd, 0.0);
+    EXPECT_EQ(config.multiplier.pid_d_delay, 10);
+    EXPECT_EQ(config.multiplier.pid_delta_p_ema_alpha, 0.0);
+    EXPECT_EQ(config.multiplier.pid_delta_d_ema_alpha, 0.0);
+    EXPECT_EQ(config.multiplier.pid_lambda_max, 0.0);
   }
 }
 
@@ -95,9 +95,9 @@ TEST(PidConfig, AResolvedPidConfigReadsBackAsARunFile) {
   request.run_file = run_file;
   const RunConfig again = resolve_run_config(request).config;
   EXPECT_EQ(again, config);
-  EXPECT_EQ(again.pid_d_delay, 3);
-  EXPECT_EQ(again.pid_delta_d_ema_alpha, 0.75);
-  EXPECT_EQ(again.pid_lambda_max, 8.0);
+  EXPECT_EQ(again.multiplier.pid_d_delay, 3);
+  EXPECT_EQ(again.multiplier.pid_delta_d_ema_alpha, 0.75);
+  EXPECT_EQ(again.multiplier.pid_lambda_max, 8.0);
 }
 
 }  // namespace

@@ -105,7 +105,7 @@ TEST_F(ScratchConfigs, LaterLayersWinAlgorithmThenEnvironmentThenRunFileThenSet)
   const RunConfig& c = resolved.config;
   EXPECT_EQ(c.gamma, 0.91);        // algorithm file only
   EXPECT_EQ(c.lam, 0.82);          // environment file beats algorithm file
-  EXPECT_EQ(c.target_kl, 0.023);   // run file beats both
+  EXPECT_EQ(c.trust_region.target_kl, 0.023);   // run file beats both
   EXPECT_EQ(c.vf_lr, 0.0034);      // --set beats all files
   EXPECT_EQ(c.epochs, 13);         // the last --set wins
   EXPECT_EQ(c.cost_limit, 7.5);
@@ -127,8 +127,8 @@ TEST_F(ScratchConfigs, SetAlgChoosesThatAlgorithmsDefaults) {
   const fs::path run = write_run(kTrpoRun);
   const RunConfig c = resolve_run_config(request(run, {"alg=cpo"})).config;
   EXPECT_EQ(c.alg, Algorithm::cpo);
-  EXPECT_EQ(c.target_kl, 1e-4);       // configs/algorithms/cpo.yaml
-  EXPECT_EQ(c.backtrack_budget, 20);  // Q11
+  EXPECT_EQ(c.trust_region.target_kl, 1e-4);       // configs/algorithms/cpo.yaml
+  EXPECT_EQ(c.trust_region.backtrack_budget, 20);  // Q11
   EXPECT_TRUE(c.use_cost_value_function);
 }
 
@@ -335,7 +335,7 @@ TEST_F(ScratchConfigs, AlgorithmFileMustListEveryKeyOfItsAlgorithm) {
   EXPECT_TRUE(contains(m, "key 'cg_iters' is not set"));
   EXPECT_TRUE(contains(m, alg_file("trpo").string()));
   // ... unless a later layer sets it.
-  EXPECT_EQ(resolve_run_config(request(write_run(kTrpoRun), {"cg_iters=7"})).config.cg_iters, 7);
+  EXPECT_EQ(resolve_run_config(request(write_run(kTrpoRun), {"cg_iters=7"})).config.trust_region.cg_iters, 7);
 }
 
 TEST_F(ScratchConfigs, EnvFromRegistryWithoutFileNeedsEnvironmentKeysFromTheRun) {

@@ -101,11 +101,11 @@ TEST(ShippedConfigs, OfflineAlgorithmsResolveOnEveryEnvironmentWithADatasetAndLi
       request.configs_dir = kShippedConfigs;
       request.set_arguments = {"env_id=" + env_id, "alg=" + alg, "dataset=data.hdf5"};
       const RunConfig c = resolve_run_config(request).config;
-      EXPECT_EQ(c.dataset, "data.hdf5");
+      EXPECT_EQ(c.offline.dataset, "data.hdf5");
       EXPECT_EQ(c.epochs, row.epochs);
       // OSRL's BC: actor_lr 1e-3, batch_size 512, a_hidden_sizes [256, 256].
-      EXPECT_EQ(c.actor_lr, 1e-3);
-      EXPECT_EQ(c.batch_size, 512);
+      EXPECT_EQ(c.first_order.actor_lr, 1e-3);
+      EXPECT_EQ(c.off_policy.batch_size, 512);
       EXPECT_EQ(c.hidden_sizes, (std::vector<int>{256, 256}));
     }
     const Algorithm id = alg == "bc-all" ? Algorithm::bc_all : Algorithm::bc_safe;
@@ -147,17 +147,17 @@ TEST(ShippedConfigs, AlgorithmDefaultsMatchTheSpec) {
   for (const auto& [alg, e] : expected) {
     SCOPED_TRACE(alg);
     const RunConfig c = resolve_shipped(alg, "SafetyBallCircle-v0");
-    EXPECT_EQ(c.target_kl, e.target_kl);
-    EXPECT_EQ(c.backtrack_budget, e.backtrack_budget);
+    EXPECT_EQ(c.trust_region.target_kl, e.target_kl);
+    EXPECT_EQ(c.trust_region.backtrack_budget, e.backtrack_budget);
     EXPECT_EQ(c.use_cost_value_function, e.use_cost_value_function);
     // Shared by all (report Table 2, docs/algorithms.md#hyper-parameters).
     EXPECT_EQ(c.gamma, 0.99);
     EXPECT_EQ(c.lam, 0.95);
     EXPECT_EQ(c.lam_c, 0.95);
-    EXPECT_EQ(c.cg_damping, 0.1);
-    EXPECT_EQ(c.cg_iters, 10);
-    EXPECT_EQ(c.backtrack_decay, 0.8);
-    EXPECT_EQ(c.kl_accept_factor, 1.5);
+    EXPECT_EQ(c.trust_region.cg_damping, 0.1);
+    EXPECT_EQ(c.trust_region.cg_iters, 10);
+    EXPECT_EQ(c.trust_region.backtrack_decay, 0.8);
+    EXPECT_EQ(c.trust_region.kl_accept_factor, 1.5);
     EXPECT_EQ(c.vf_lr, 1e-3);
     EXPECT_EQ(c.train_v_iterations, 5);
     EXPECT_EQ(c.num_mini_batches, 16);
@@ -174,18 +174,18 @@ TEST(ShippedConfigs, AlgorithmDefaultsMatchTheSpec) {
     EXPECT_EQ(c.eval_episodes, 128);
   }
   const RunConfig lag = resolve_shipped("lag-trpo", "SafetyBallCircle-v0");
-  EXPECT_EQ(lag.lambda_optimizer, LambdaOptimizer::sgd);
-  EXPECT_EQ(lag.lambda_lr, 0.05);
-  EXPECT_EQ(lag.lagrangian_multiplier_init, 0.001);
+  EXPECT_EQ(lag.multiplier.lambda_optimizer, LambdaOptimizer::sgd);
+  EXPECT_EQ(lag.multiplier.lambda_lr, 0.05);
+  EXPECT_EQ(lag.multiplier.lagrangian_multiplier_init, 0.001);
   const RunConfig pdo = resolve_shipped("pdo", "SafetyBallCircle-v0");
-  EXPECT_EQ(pdo.lambda_optimizer, LambdaOptimizer::adam);
-  EXPECT_EQ(pdo.lambda_lr, 0.001);
-  EXPECT_TRUE(pdo.pdo_line_search);
+  EXPECT_EQ(pdo.multiplier.lambda_optimizer, LambdaOptimizer::adam);
+  EXPECT_EQ(pdo.multiplier.lambda_lr, 0.001);
+  EXPECT_TRUE(pdo.trust_region.pdo_line_search);
   const RunConfig cpo = resolve_shipped("cpo", "SafetyBallCircle-v0");
-  EXPECT_EQ(cpo.cpo_r_sign, CpoRSign::original);
+  EXPECT_EQ(cpo.trust_region.cpo_r_sign, CpoRSign::original);
   const RunConfig pcpo = resolve_shipped("pcpo", "SafetyBallCircle-v0");
-  EXPECT_EQ(pcpo.pcpo_projection, PcpoProjection::kl);
-  EXPECT_TRUE(pcpo.pcpo_line_search);
+  EXPECT_EQ(pcpo.trust_region.pcpo_projection, PcpoProjection::kl);
+  EXPECT_TRUE(pcpo.trust_region.pcpo_line_search);
 }
 
 TEST(ShippedConfigs, DefaultConstructedRunConfigIsTrpoOnBallCircle) {

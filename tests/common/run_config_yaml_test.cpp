@@ -64,9 +64,9 @@ TEST(RunConfigYaml, RoundTripKeepsNonDefaultValuesExactly) {
   ASSERT_EQ(cpo.log_dir, "my runs/x: y");
   const RunConfig back = run_config_from_yaml(to_yaml(cpo), "resolved.yaml");
   EXPECT_EQ(back, cpo);
-  EXPECT_EQ(back.target_kl, 0.000123456789);
+  EXPECT_EQ(back.trust_region.target_kl, 0.000123456789);
   EXPECT_EQ(back.gamma, 0.3333333333333333);
-  EXPECT_EQ(back.cpo_r_sign, CpoRSign::corrected);
+  EXPECT_EQ(back.trust_region.cpo_r_sign, CpoRSign::corrected);
 
   const RunConfig pdo = shipped("pdo", "SafetyAntRun-v0",
                                 {"lambda_optimizer=SGD", "pdo_line_search=no", "lambda_lr=0.1"});

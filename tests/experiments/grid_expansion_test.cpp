@@ -68,8 +68,8 @@ TEST(GridExpansion, RunsResolveAgainstTheConfigsDirectory) {
   EXPECT_EQ(lag.alg, Algorithm::lag_trpo);
   EXPECT_EQ(lag.seed, 1);
   EXPECT_EQ(lag.epochs, 2);
-  EXPECT_DOUBLE_EQ(lag.target_kl, 0.0001);
-  EXPECT_DOUBLE_EQ(lag.lambda_lr, 0.1);  // the axis wins over the grid-wide fixed value
+  EXPECT_DOUBLE_EQ(lag.trust_region.target_kl, 0.0001);
+  EXPECT_DOUBLE_EQ(lag.multiplier.lambda_lr, 0.1);  // the axis wins over the grid-wide fixed value
   EXPECT_EQ(lag.steps_per_epoch, 32000);  // from configs/envs (Table 3)
   const RunConfig car = resolve_grid_run(runs.back(), kConfigs, "g.yaml");
   EXPECT_EQ(car.env_id, "SafetyCarRun-v0");
@@ -102,7 +102,7 @@ TEST(GridExpansion, TheReportGridHasTheAppendixConfigurationsOverSixteenEnvironm
   for (const GridRun& run : runs) {
     if (run.relative_dir().generic_string() == "SafetyAntReach-v0/cpo/target_kl=0.0005,lam_c=0.9/seed=3") {
       const RunConfig config = resolve_grid_run(run, kConfigs, "report.yaml");
-      EXPECT_DOUBLE_EQ(config.target_kl, 0.0005);
+      EXPECT_DOUBLE_EQ(config.trust_region.target_kl, 0.0005);
       EXPECT_DOUBLE_EQ(config.lam_c, 0.9);
       EXPECT_EQ(config.epochs, 1500);
       EXPECT_EQ(config.steps_per_epoch, 64000);
@@ -129,10 +129,10 @@ TEST(GridExpansion, ThePidGridRunsTheReportProtocolWithThePidMultiplier) {
   for (const GridRun& run : runs) {
     if (run.seed != 0) continue;
     const RunConfig config = resolve_grid_run(run, kConfigs, "pid.yaml");
-    EXPECT_EQ(config.lambda_optimizer, LambdaOptimizer::pid) << run.relative_dir();
+    EXPECT_EQ(config.multiplier.lambda_optimizer, LambdaOptimizer::pid) << run.relative_dir();
     if (run.relative_dir().generic_string() == "SafetyCarRun-v0/pdo/target_kl=0.01,pid_ki=0.001/seed=0") {
-      EXPECT_DOUBLE_EQ(config.target_kl, 0.01);
-      EXPECT_DOUBLE_EQ(config.pid_ki, 0.001);
+      EXPECT_DOUBLE_EQ(config.trust_region.target_kl, 0.01);
+      EXPECT_DOUBLE_EQ(config.multiplier.pid_ki, 0.001);
     }
   }
 }
@@ -152,7 +152,7 @@ TEST(GridExpansion, TheFirstOrderGridRunsTheReportProtocolWithTheFourConstrained
   for (const GridRun& run : runs) {
     if (run.seed != 0) continue;
     const RunConfig config = resolve_grid_run(run, kConfigs, "first_order.yaml");
-    pid += config.lambda_optimizer == LambdaOptimizer::pid;
+    pid += config.multiplier.lambda_optimizer == LambdaOptimizer::pid;
   }
   EXPECT_EQ(pid, 16);  // CPPO-PID on every environment
 }

@@ -217,13 +217,13 @@ TEST(LearnedLogStd, PpoTakesTheHandComputedAdamStepsOnMeanAndLogSigma) {
   PolicySurrogate surrogate(Eigen::MatrixXd{{obs[0]}, {obs[1]}}, Eigen::MatrixXd{{act[0]}, {act[1]}}, old_log_probs,
                             Eigen::VectorXd{{adv[0], adv[1]}}, Eigen::MatrixXd{{0.5}, {1.5}});
   RunConfig config = testing::config_for(Algorithm::ppo);
-  config.learn_log_std = true;
-  config.actor_lr = 0.05;
-  config.update_iters = 2;
-  config.policy_minibatch_size = 64;
-  config.kl_early_stop = false;
-  config.max_grad_norm = 0.0;
-  config.clip = 0.2;
+  config.first_order.learn_log_std = true;
+  config.first_order.actor_lr = 0.05;
+  config.first_order.update_iters = 2;
+  config.first_order.policy_minibatch_size = 64;
+  config.first_order.kl_early_stop = false;
+  config.first_order.max_grad_norm = 0.0;
+  config.first_order.clip = 0.2;
   Ppo ppo(config);
   Rng shuffle(3);
   ppo.update(PolicyUpdateInputs{policy, surrogate, 0.0, 100.0, testing::single_process(), {}, &shuffle});
@@ -276,10 +276,10 @@ TEST(LearnedLogStd, ResumingContinuesWithTheSameNumbers) {
     config.save_freq = 10;
     config.eval_episodes = 0;
     config.cost_limit = 5;
-    config.update_iters = 3;
-    config.policy_minibatch_size = 64;
-    config.learn_log_std = true;
-    config.learned_std_init = 0.6;
+    config.first_order.update_iters = 3;
+    config.first_order.policy_minibatch_size = 64;
+    config.first_order.learn_log_std = true;
+    config.first_order.learned_std_init = 0.6;
     OnPolicyTrainer whole(config, RunDirectory(dir.path() / "whole"), MpiContext::single_process(), {},
                           std::make_unique<testing::ScriptedEnv>(100));
     whole.run();

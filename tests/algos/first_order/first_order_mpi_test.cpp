@@ -28,9 +28,9 @@ PolicySurrogate rows_of(const SyntheticBatch& batch, Eigen::Index first, Eigen::
 
 RunConfig config_of(Algorithm alg) {
   RunConfig config = testing::config_for(alg);
-  config.update_iters = 6;
-  config.actor_lr = 0.01;
-  config.max_grad_norm = 0.05;  // acts on some steps
+  config.first_order.update_iters = 6;
+  config.first_order.actor_lr = 0.01;
+  config.first_order.max_grad_norm = 0.05;  // acts on some steps
   return config;
 }
 
@@ -41,7 +41,7 @@ TEST(FirstOrderMpi, TwoRanksWithHalvesTakeTheStepsOfOneProcessOnTheWholeBatch) {
   for (Algorithm alg : {Algorithm::ppo, Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup}) {
     SCOPED_TRACE(std::string(to_string(alg)) + (learned ? " learned log sigma" : ""));
     RunConfig config = config_of(alg);
-    config.policy_minibatch_size = 1000;  // one minibatch per pass
+    config.first_order.policy_minibatch_size = 1000;  // one minibatch per pass
     SyntheticBatch whole(64, 21, 22);
     SyntheticBatch half(64, 21, 22);  // same policy and data
     if (learned) {  // docs/algorithms.md#learned-log-sigma: s is averaged and stepped with theta
@@ -75,8 +75,8 @@ TEST(FirstOrderMpi, RanksWithDifferentDataStayInLockstepOverManyMinibatches) {
   for (Algorithm alg : {Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup}) {
     SCOPED_TRACE(std::string(to_string(alg)));
     RunConfig config = config_of(alg);
-    config.policy_minibatch_size = 16;  // 8 minibatches of 8 samples per rank
-    config.target_kl = 1e-4;            // the early stop acts
+    config.first_order.policy_minibatch_size = 16;  // 8 minibatches of 8 samples per rank
+    config.trust_region.target_kl = 1e-4;            // the early stop acts
     SyntheticBatch batch(32, 21, 100 + static_cast<std::uint64_t>(mpi.rank()));
     PolicySurrogate surrogate = batch.surrogate();
     Rng shuffle(7 + mpi.rank());

@@ -193,15 +193,15 @@ struct TinyBatch {
 
 RunConfig tiny_config(Algorithm alg) {
   RunConfig config = testing::config_for(alg);
-  config.actor_lr = 0.01;
-  config.update_iters = 2;
-  config.policy_minibatch_size = 64;  // one minibatch of both samples
-  config.kl_early_stop = false;
-  config.max_grad_norm = 0.0;
-  config.clip = 0.2;
-  config.lambda_optimizer = LambdaOptimizer::sgd;
-  config.lambda_lr = 0.05;
-  config.lagrangian_multiplier_init = 0.001;
+  config.first_order.actor_lr = 0.01;
+  config.first_order.update_iters = 2;
+  config.first_order.policy_minibatch_size = 64;  // one minibatch of both samples
+  config.first_order.kl_early_stop = false;
+  config.first_order.max_grad_norm = 0.0;
+  config.first_order.clip = 0.2;
+  config.multiplier.lambda_optimizer = LambdaOptimizer::sgd;
+  config.multiplier.lambda_lr = 0.05;
+  config.multiplier.lagrangian_multiplier_init = 0.001;
   return config;
 }
 
@@ -264,8 +264,8 @@ TEST(FirstOrderUpdates, PpoClipsASampleOnceItsRatioLeavesTheRange) {
   TinyBatch tiny;
   PolicySurrogate surrogate = tiny.surrogate();
   RunConfig config = tiny_config(Algorithm::ppo);
-  config.actor_lr = 0.2;
-  config.clip = 0.1;
+  config.first_order.actor_lr = 0.2;
+  config.first_order.clip = 0.1;
   Ppo ppo(config);
   Rng shuffle(3);
   ppo.update(PolicyUpdateInputs{tiny.policy, surrogate, 0.0, 100.0, testing::single_process(), {}, &shuffle});
@@ -280,8 +280,8 @@ TEST(FirstOrderUpdates, FocopsTakesTheHandComputedAdamSteps) {
   TinyBatch tiny;
   PolicySurrogate surrogate = tiny.surrogate();
   RunConfig config = tiny_config(Algorithm::focops);
-  config.focops_lam = 1.5;
-  config.focops_eta = 0.02;
+  config.first_order.focops_lam = 1.5;
+  config.first_order.focops_eta = 0.02;
   Focops focops(config);
   Rng shuffle(3);
   focops.update(PolicyUpdateInputs{tiny.policy, surrogate, 35.0, 100.0, testing::single_process(), {}, &shuffle});
@@ -316,7 +316,7 @@ TEST(FirstOrderUpdates, FocopsProjectsNuOntoItsUpperBound) {
   // min(2 + 0.05 * 10, 2) = 2 again; with J_C = 5 it falls to 2 - 0.05 * 20 = 1.
   TinyBatch tiny;
   RunConfig config = tiny_config(Algorithm::focops);
-  config.lagrangian_upper_bound = 2.0;
+  config.multiplier.lagrangian_upper_bound = 2.0;
   Focops focops(config);
   Rng shuffle(3);
   const double expected[] = {2.0, 2.0, 1.0};
@@ -332,7 +332,7 @@ TEST(FirstOrderUpdates, CupTakesThePerformanceThenTheProjectionStepsByHand) {
   TinyBatch tiny;
   PolicySurrogate surrogate = tiny.surrogate();
   RunConfig config = tiny_config(Algorithm::cup);
-  config.update_iters = 1;
+  config.first_order.update_iters = 1;
   config.gamma = 0.99;
   config.lam_c = 0.95;
   Cup cup(config);
@@ -367,9 +367,9 @@ TEST(FirstOrderUpdates, TheKlEarlyStopEndsThePassesOnceTheKlExceedsTheTarget) {
   TinyBatch tiny;
   PolicySurrogate surrogate = tiny.surrogate();
   RunConfig config = tiny_config(Algorithm::ppo);
-  config.update_iters = 50;
-  config.kl_early_stop = true;
-  config.target_kl = 1e-3;
+  config.first_order.update_iters = 50;
+  config.first_order.kl_early_stop = true;
+  config.trust_region.target_kl = 1e-3;
   Ppo ppo(config);
   Rng shuffle(3);
   const PolicyUpdateResult result =
@@ -394,8 +394,8 @@ TEST(FirstOrderUpdates, TheGradientIsRescaledToMaxGradNorm) {
   TinyBatch tiny;
   PolicySurrogate surrogate = tiny.surrogate();
   RunConfig config = tiny_config(Algorithm::ppo);
-  config.update_iters = 1;
-  config.max_grad_norm = 1e-8;
+  config.first_order.update_iters = 1;
+  config.first_order.max_grad_norm = 1e-8;
   Ppo ppo(config);
   Rng shuffle(3);
   const PolicyUpdateResult result =

@@ -58,9 +58,9 @@ TEST(OffPolicyGradientClipping, TwinCriticsTogetherAndEachCostCriticAloneBeforeT
   config.alg = Algorithm::sac_lag;
   config.hidden_sizes = {6, 5};
   config.dtype = Dtype::float64;
-  config.critic_lr = 1e-3;
+  config.off_policy.critic_lr = 1e-3;
   // Small enough that every clipped entry is near Adam's epsilon, where the step shows the scale.
-  config.max_grad_norm = 1e-7;
+  config.first_order.max_grad_norm = 1e-7;
   Rng init_rng(3);
   Rng probe_init_rng = init_rng;  // the same networks
   const auto owned_learner = make_off_policy_learner(config, kObs, kAct, 1, init_rng);
@@ -96,8 +96,8 @@ TEST(OffPolicyGradientClipping, TwinCriticsTogetherAndEachCostCriticAloneBeforeT
   }
   Eigen::VectorXd cost_gradient(probe.cost_critic(0).num_parameters());
   probe.critic_loss(probe.cost_critic(0), batch, cost_targets, cost_gradient);
-  const double twin_scale = config.max_grad_norm / std::sqrt(squared_norm);
-  const double cost_scale = config.max_grad_norm / cost_gradient.norm();
+  const double twin_scale = config.first_order.max_grad_norm / std::sqrt(squared_norm);
+  const double cost_scale = config.first_order.max_grad_norm / cost_gradient.norm();
   ASSERT_LT(twin_scale, 1e-3);
   ASSERT_LT(cost_scale, 1e-3);
 
@@ -105,11 +105,11 @@ TEST(OffPolicyGradientClipping, TwinCriticsTogetherAndEachCostCriticAloneBeforeT
   learner.update(batch, lambdas, step_rng, MpiContext::single_process());
   for (int k = 0; k < 2; ++k) {
     const Eigen::VectorXd moved = learner.reward_critic(k).parameters() - probe.reward_critic(k).parameters();
-    EXPECT_LT(relative_error(moved, first_adam_step(twin_scale * reward_gradients[k], config.critic_lr)), 1e-8)
+    EXPECT_LT(relative_error(moved, first_adam_step(twin_scale * reward_gradients[k], config.off_policy.critic_lr)), 1e-8)
         << "reward critic " << k;
   }
   const Eigen::VectorXd moved = learner.cost_critic(0).parameters() - probe.cost_critic(0).parameters();
-  EXPECT_LT(relative_error(moved, first_adam_step(cost_scale * cost_gradient, config.critic_lr)), 1e-8);
+  EXPECT_LT(relative_error(moved, first_adam_step(cost_scale * cost_gradient, config.off_policy.critic_lr)), 1e-8);
 }
 
 }  // namespace

@@ -53,8 +53,8 @@ RunConfig config_for(Algorithm alg) {
   config.alg = alg;
   config.hidden_sizes = {6, 5};
   config.dtype = Dtype::float64;
-  config.alpha_init = 0.3;
-  config.policy_delay = 1;
+  config.off_policy.alpha_init = 0.3;
+  config.off_policy.policy_delay = 1;
   return config;
 }
 
@@ -222,9 +222,9 @@ TEST(OffPolicyLearner, AutoAlphaLowersTheTemperatureWhenTheEntropyIsAboveTarget)
   config.alg = Algorithm::sac;
   config.hidden_sizes = {6, 5};
   config.dtype = Dtype::float64;
-  config.auto_alpha = true;
-  config.alpha_lr = 0.01;
-  config.policy_delay = 1;
+  config.off_policy.auto_alpha = true;
+  config.off_policy.alpha_lr = 0.01;
+  config.off_policy.policy_delay = 1;
   Rng rng(7);
   const auto owned_learner = make_off_policy_learner(config, kObs, kAct, 0, rng);
   OffPolicyLearner& learner = *owned_learner;
@@ -316,7 +316,7 @@ TEST(OffPolicyLearner, Td3UpdatesActorAndTargetsEveryPolicyDelaySteps) {
   config.alg = Algorithm::td3;
   config.hidden_sizes = {6, 5};
   config.dtype = Dtype::float64;
-  config.policy_delay = 2;
+  config.off_policy.policy_delay = 2;
   Rng rng(10);
   const auto owned_learner = make_off_policy_learner(config, kObs, kAct, 0, rng);
   OffPolicyLearner& learner = *owned_learner;
@@ -367,8 +367,8 @@ TEST(OffPolicyLearner, AGradientStepAllocatesNothingOnceSized) {
     RunConfig config;
     config.alg = alg;
     config.hidden_sizes = {32, 32};
-    config.auto_alpha = true;
-    config.policy_delay = 2;
+    config.off_policy.auto_alpha = true;
+    config.off_policy.policy_delay = 2;
     Rng rng(12);
     const auto owned_learner = make_off_policy_learner(config, kObs, kAct, 2, rng);
     OffPolicyLearner& learner = *owned_learner;

@@ -44,8 +44,8 @@ RunConfig config_for(Algorithm alg) {
   config.alg = alg;
   config.hidden_sizes = {6, 5};
   config.dtype = Dtype::float64;
-  config.alpha_init = 0.3;
-  config.policy_delay = 1;
+  config.off_policy.alpha_init = 0.3;
+  config.off_policy.policy_delay = 1;
   return config;
 }
 
@@ -104,7 +104,7 @@ TEST(OffPolicyLearners, ActDrawsTheirExplorationNoiseInActionOrder) {
   for (const Algorithm alg : {Algorithm::sac, Algorithm::td3, Algorithm::ddpg}) {
     SCOPED_TRACE(std::string(to_string(alg)));
     RunConfig config = config_for(alg);
-    config.exploration_noise = 0.4;
+    config.off_policy.exploration_noise = 0.4;
     Rng init(2);
     const auto learner = make_off_policy_learner(config, kObs, kAct, 0, init);
     const Eigen::VectorXd outputs = learner->actor().forward(observation);
@@ -128,8 +128,8 @@ TEST(OffPolicyLearners, ActDrawsTheirExplorationNoiseInActionOrder) {
 TEST(Td3Learner, TargetsTakeTheTwinMinimumAtTheSmoothedTargetAction) {
   Rng rng(4);
   RunConfig config = config_for(Algorithm::td3_lag);
-  config.policy_noise = 0.3;
-  config.noise_clip = 0.4;
+  config.off_policy.policy_noise = 0.3;
+  config.off_policy.noise_clip = 0.4;
   const auto owned = make_off_policy_learner(config, kObs, kAct, 1, rng);
   OffPolicyLearner& learner = *owned;
   perturb_targets(learner, rng);
@@ -182,7 +182,7 @@ TEST(OffPolicyLearners, DeterministicActorsFillTheCheckpointsTemperatureSlotWith
     SCOPED_TRACE(std::string(to_string(alg)));
     Rng rng(6);
     RunConfig config = config_for(alg);
-    config.alpha_init = 0.25;
+    config.off_policy.alpha_init = 0.25;
     const auto learner = make_off_policy_learner(config, kObs, kAct, 0, rng);
     const ReplayBatch batch = random_batch(rng, 0);
     learner->update(batch, {}, rng, MpiContext::single_process());

@@ -58,8 +58,8 @@ TEST(OffPolicyMpi, TwoRanksWithHalvesTakeTheStepsOfOneProcessOnTheWholeBatch) {
     config.alg = alg;
     config.hidden_sizes = {8, 8};
     config.dtype = Dtype::float64;
-    config.policy_noise = 0.0;
-    config.policy_delay = 2;
+    config.off_policy.policy_noise = 0.0;
+    config.off_policy.policy_delay = 2;
     Rng init_a(3), init_b(3), data(4);
     const auto owned_whole = make_off_policy_learner(config, 4, 2, 1, init_a);
     const auto owned_half = make_off_policy_learner(config, 4, 2, 1, init_b);
@@ -112,11 +112,11 @@ TEST(OffPolicyMpi, ARunOnTwoRanksKeepsTheirParametersEqual) {
   config.max_ep_len = 40;
   config.eval_episodes = 2;
   config.cost_limit = 1;
-  config.start_steps = 40;
-  config.update_every = 8;
-  config.batch_size = 16;
-  config.buffer_size = 100;
-  config.auto_alpha = true;
+  config.off_policy.start_steps = 40;
+  config.off_policy.update_every = 8;
+  config.off_policy.batch_size = 16;
+  config.off_policy.buffer_size = 100;
+  config.off_policy.auto_alpha = true;
   std::vector<std::unique_ptr<envs::Env>> envs;
   envs.push_back(std::make_unique<testing::ScriptedEnv>(40, std::nullopt, 3));
   OffPolicyTrainer trainer(config, RunDirectory(text), mpi, {}, std::move(envs));

@@ -37,11 +37,11 @@ bsg::RunConfig scripted_config(bsg::Algorithm alg) {
   config.save_freq = 10;         // only the stop and the end save
   config.eval_episodes = 0;
   config.cost_limit = 5;
-  config.update_iters = 3;
-  config.policy_minibatch_size = 64;
-  config.target_kl = 0.02;
-  config.lambda_optimizer = bsg::LambdaOptimizer::adam;
-  config.lambda_lr = 0.035;
+  config.first_order.update_iters = 3;
+  config.first_order.policy_minibatch_size = 64;
+  config.trust_region.target_kl = 0.02;
+  config.multiplier.lambda_optimizer = bsg::LambdaOptimizer::adam;
+  config.multiplier.lambda_lr = 0.035;
   return config;
 }
 

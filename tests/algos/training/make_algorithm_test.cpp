@@ -5,10 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "../algorithm_test_support.h"
+#include "algos/first_order/make_first_order_algorithm.h"
+#include "algos/trust_region/make_trust_region_algorithm.h"
 
 namespace bsg::algos {
 namespace {
@@ -99,6 +102,26 @@ TEST(MakeAlgorithm, StateRoundTripsForEveryAlgorithm) {
     restored->restore_state(original->state());
     EXPECT_EQ(restored->state(), original->state()) << original->name();
   }
+}
+
+// make_algorithm hands each algorithm to its family's factory; a family's factory builds only its own.
+TEST(MakeAlgorithm, EachFamilysFactoryBuildsItsOwnAlgorithmsOnly) {
+  for (const Algorithm alg : kAllAlgorithmsInOrder) {
+    SCOPED_TRACE(std::string(to_string(alg)));
+    const RunConfig config = testing::config_for(alg);
+    const bool trust_region = algorithm_info(alg).family == AlgorithmFamily::trust_region;
+    EXPECT_EQ(make_algorithm(config)->name(), to_string(alg));
+    if (trust_region) {
+      EXPECT_EQ(make_trust_region_algorithm(config)->name(), to_string(alg));
+      EXPECT_THROW(make_first_order_algorithm(config), std::invalid_argument);
+    } else {
+      EXPECT_EQ(make_first_order_algorithm(config)->name(), to_string(alg));
+      EXPECT_THROW(make_trust_region_algorithm(config), std::invalid_argument);
+    }
+  }
+  RunConfig off_policy = testing::config_for(Algorithm::trpo);
+  off_policy.alg = Algorithm::sac;
+  EXPECT_THROW(make_algorithm(off_policy), std::invalid_argument);
 }
 
 TEST(PolicyUpdateResult, ValueNamesTheMissingColumn) {

@@ -38,17 +38,17 @@ bsg::RunConfig scripted_config(bsg::Algorithm alg) {
   config.save_freq = 3;          // checkpoints (and cut episodes) after epochs 3 and 5
   config.eval_episodes = 2;
   config.cost_limit = 1;
-  config.num_envs = 2;
-  config.start_steps = 100;
-  config.update_every = 10;
-  config.updates_per_step = 0.35;  // 3.5 per round: the fraction is carried
-  config.batch_size = 32;
-  config.buffer_size = 300;        // wraps around within the run
-  config.n_step = 2;
-  config.policy_delay = 2;
-  config.auto_alpha = true;
-  config.lambda_optimizer = bsg::LambdaOptimizer::adam;
-  config.lambda_lr = 0.05;
+  config.off_policy.num_envs = 2;
+  config.off_policy.start_steps = 100;
+  config.off_policy.update_every = 10;
+  config.off_policy.updates_per_step = 0.35;  // 3.5 per round: the fraction is carried
+  config.off_policy.batch_size = 32;
+  config.off_policy.buffer_size = 300;        // wraps around within the run
+  config.off_policy.n_step = 2;
+  config.off_policy.policy_delay = 2;
+  config.off_policy.auto_alpha = true;
+  config.multiplier.lambda_optimizer = bsg::LambdaOptimizer::adam;
+  config.multiplier.lambda_lr = 0.05;
   config.dtype = bsg::Dtype::float64;
   return config;
 }
@@ -201,8 +201,8 @@ TEST(OffPolicyTrainer, EpochsShorterThanAnEpisodeCarryItsEpisodesOn) {
   config.epochs = 8;
   config.steps_per_epoch = 20;
   config.save_freq = 5;
-  config.start_steps = 40;
-  config.update_every = 5;
+  config.off_policy.start_steps = 40;
+  config.off_policy.update_every = 5;
   EXPECT_NO_THROW(bsg::check_run_config_for_ranks(config, 1));
   bsg::algos::OffPolicyTrainer trainer(config, bsg::algos::RunDirectory(dir.path() / "run"),
                                        bsg::MpiContext::single_process(), {}, scripted_envs(2));
@@ -253,7 +253,7 @@ TEST(OffPolicyConfig, RejectsBadValuesAndKeysOfOtherFamiliesWithOneLine) {
     }
   }
   request.set_arguments = {"env_id=SafetyBallCircle-v0", "alg=td3-lag", "noise_clip=0.3"};
-  EXPECT_EQ(bsg::resolve_run_config(request).config.noise_clip, 0.3);
+  EXPECT_EQ(bsg::resolve_run_config(request).config.off_policy.noise_clip, 0.3);
 }
 
 // Mean of a column over epochs [first, last).

@@ -102,9 +102,9 @@ TEST(TrainerSmoke, LagTrpoImprovesTheReturnAndDrivesTheCostDown) {
   expect_cost_moves_towards_limit(run.progress, "25");
   const std::vector<double>& lambda = run.progress.at("lagrange_multiplier");
   const std::vector<double>& costs = run.progress.at("episode_cost_mean");
-  double previous = run.config.lagrangian_multiplier_init;
+  double previous = run.config.multiplier.lagrangian_multiplier_init;
   for (std::size_t k = 0; k < lambda.size(); ++k) {
-    const double expected = std::max(0.0, previous + run.config.lambda_lr * (costs[k] - kCostLimit));
+    const double expected = std::max(0.0, previous + run.config.multiplier.lambda_lr * (costs[k] - kCostLimit));
     EXPECT_NEAR(lambda[k], expected, 1e-9 * (1.0 + expected)) << "epoch " << k;
     previous = lambda[k];
   }

@@ -108,11 +108,11 @@ std::string error_of(const std::function<void()>& action) {
 // TRPO-L with the PID multiplier: its integral, EMAs and delay queue are saved.
 bsg::RunConfig pid_config() {
   bsg::RunConfig config = lag_trpo_config();
-  config.lambda_optimizer = bsg::LambdaOptimizer::pid;
-  config.pid_kd = 0.2;
-  config.pid_d_delay = 3;
-  config.pid_delta_p_ema_alpha = 0.5;
-  config.pid_delta_d_ema_alpha = 0.5;
+  config.multiplier.lambda_optimizer = bsg::LambdaOptimizer::pid;
+  config.multiplier.pid_kd = 0.2;
+  config.multiplier.pid_d_delay = 3;
+  config.multiplier.pid_delta_p_ema_alpha = 0.5;
+  config.multiplier.pid_delta_d_ema_alpha = 0.5;
   return config;
 }
 
@@ -144,7 +144,7 @@ TEST_P(TrainingCheckpointOfEveryMultiplier, SaveThenLoadRestoresEverythingExactl
   EXPECT_EQ(loaded_progress.progress_log, progress.progress_log);
   expect_same(saved, loaded);
   EXPECT_EQ(algorithm->state(), loaded_algorithm->state());
-  EXPECT_EQ(algorithm->state().size(), config.lambda_optimizer == bsg::LambdaOptimizer::pid ? 1u + 3u + 3u : 1u);
+  EXPECT_EQ(algorithm->state().size(), config.multiplier.lambda_optimizer == bsg::LambdaOptimizer::pid ? 1u + 3u + 3u : 1u);
   // Saving the loaded state reproduces the file byte for byte.
   EXPECT_EQ(bsg::algos::encode_training_checkpoint(config, progress, saved, *algorithm),
             bsg::algos::encode_training_checkpoint(config, loaded_progress, loaded, *loaded_algorithm));
@@ -160,7 +160,7 @@ TEST(TrainingCheckpoint, ACheckpointOfAnotherConfigurationIsRejected) {
   bsg::algos::save_training_checkpoint(path, config, {}, ac, *algorithm);
 
   bsg::RunConfig other = config;
-  other.target_kl = 0.02;
+  other.trust_region.target_kl = 0.02;
   auto other_algorithm = bsg::algos::make_algorithm(other);
   const std::string message =
       error_of([&] { bsg::algos::load_training_checkpoint(path, other, ac, *other_algorithm); });

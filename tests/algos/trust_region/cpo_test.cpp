@@ -127,7 +127,7 @@ TEST(Cpo, EndToEndStepPassesTheConstrainedTests) {
   for (const double mean_episode_cost : {10.0, 40.0}) {
     SyntheticBatch batch(64, 3, 4);
     RunConfig config = testing::config_for(Algorithm::cpo);
-    config.target_kl = 0.01;
+    config.trust_region.target_kl = 0.01;
     const double c = (mean_episode_cost - 25.0) / (100.0 + 1e-8);
     const testing::BeforeConstrainedUpdate before(batch);
 
@@ -141,7 +141,7 @@ TEST(Cpo, EndToEndStepPassesTheConstrainedTests) {
     EXPECT_EQ(result.value("Misc/OptimCase") >= 2.0, c < 0.0);
     if (result.value("Misc/AcceptanceStep") == 0.0) continue;
     ++accepted_updates;
-    testing::expect_passes_constrained_tests(batch, before, c, config.target_kl);
+    testing::expect_passes_constrained_tests(batch, before, c, config.trust_region.target_kl);
   }
   EXPECT_EQ(accepted_updates, 2);
 }
@@ -149,8 +149,8 @@ TEST(Cpo, EndToEndStepPassesTheConstrainedTests) {
 TEST(Cpo, RejectedLineSearchLeavesParametersBitIdentical) {
   SyntheticBatch batch(64, 3, 4);
   RunConfig config = testing::config_for(Algorithm::cpo);
-  config.kl_accept_factor = 1e-30;
-  config.backtrack_budget = 2;
+  config.trust_region.kl_accept_factor = 1e-30;
+  config.trust_region.backtrack_budget = 2;
   const Eigen::VectorXd theta_old = batch.policy.mean_net().parameters();
   PolicySurrogate surrogate = batch.surrogate();
   Cpo cpo(config);

@@ -83,7 +83,7 @@ TEST(Crpo, BeyondTheToleranceTakesTheTrpoStepOnTheNegatedCostAdvantages) {
   EXPECT_NEAR(result.value("Loss/Pi"), cost_before, 1e-12);
   EXPECT_NEAR(result.value("Loss/DeltaPi"), crpo_batch.cost_surrogate() - cost_before, 1e-12);
   EXPECT_LT(crpo_batch.cost_surrogate(), cost_before);
-  EXPECT_LE(crpo_batch.kl_from(old_means), 1.5 * config.target_kl);
+  EXPECT_LE(crpo_batch.kl_from(old_means), 1.5 * config.trust_region.target_kl);
 }
 
 TEST(Crpo, WithSeveralConstraintsStepsOnTheMostViolatedOne) {
@@ -143,7 +143,7 @@ TEST(Crpo, BadToleranceKeysAreRefusedNamingTheKey) {
   request.configs_dir = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
   request.set_arguments = {"alg=crpo", "env_id=SafetyBallCircle-v0"};
   const RunConfig shipped = resolve_run_config(request).config;
-  EXPECT_EQ(shipped.crpo_tolerance, 2.0);  // OmniSafe's distance
+  EXPECT_EQ(shipped.trust_region.crpo_tolerance, 2.0);  // OmniSafe's distance
   EXPECT_TRUE(shipped.use_cost_value_function);
 
   const std::string negative = resolve_error({"alg=crpo", "env_id=SafetyBallCircle-v0", "crpo_tolerance=-1"});
@@ -157,7 +157,7 @@ TEST(Crpo, BadToleranceKeysAreRefusedNamingTheKey) {
   EXPECT_NE(misspelt.find("crpo_tolerance"), std::string::npos) << misspelt;  // the suggestion
 
   RunConfig direct = testing::config_for(Algorithm::crpo);
-  direct.crpo_tolerance = std::numeric_limits<double>::quiet_NaN();
+  direct.trust_region.crpo_tolerance = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(Crpo{direct}, std::invalid_argument);
 }
 

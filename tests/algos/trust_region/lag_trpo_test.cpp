@@ -30,8 +30,8 @@ TEST(LagTrpo, WithLambdaZeroTakesExactlyTheTrpoStep) {
   SyntheticBatch trpo_batch(64, 3, 4);
   SyntheticBatch lag_batch(64, 3, 4);
   RunConfig config = testing::config_for(Algorithm::lag_trpo);
-  config.lagrangian_multiplier_init = 0.0;  // 1e-5 after the original's max(init, 1e-5)
-  config.lambda_lr = 0.01;                  // J_C = 0 < d drives lambda to max(0, 1e-5 - 0.25) = 0
+  config.multiplier.lagrangian_multiplier_init = 0.0;  // 1e-5 after the original's max(init, 1e-5)
+  config.multiplier.lambda_lr = 0.01;                  // J_C = 0 < d drives lambda to max(0, 1e-5 - 0.25) = 0
 
   PolicySurrogate trpo_surrogate = trpo_batch.surrogate();
   Trpo trpo(testing::config_for(Algorithm::trpo));
@@ -50,8 +50,8 @@ TEST(LagTrpo, WithLambdaZeroTakesExactlyTheTrpoStep) {
 TEST(LagTrpo, UpdatesLambdaBeforeThePolicyStepAndImprovesTheLagrangian) {
   SyntheticBatch batch(64, 3, 4);
   RunConfig config = testing::config_for(Algorithm::lag_trpo);
-  config.lagrangian_multiplier_init = 0.001;
-  config.lambda_lr = 0.1;
+  config.multiplier.lagrangian_multiplier_init = 0.001;
+  config.multiplier.lambda_lr = 0.1;
   const double mean_episode_cost = 45.0;                        // J_C - d = 20
   const double lambda = 0.001 + 0.1 * (mean_episode_cost - 25.0);  // 2.001, used by this epoch's step
   const auto lagrangian_loss = [&] {                               // l_L = (-L_R + lambda L_C) / (1 + lambda)
@@ -69,7 +69,7 @@ TEST(LagTrpo, UpdatesLambdaBeforeThePolicyStepAndImprovesTheLagrangian) {
   EXPECT_NEAR(lag_trpo.lagrange_multiplier(), lambda, 1e-15);
   EXPECT_NEAR(result.value("Loss/Pi"), loss_before, 1e-12);  // the loss uses the updated lambda
   ASSERT_GE(result.value("Misc/AcceptanceStep"), 1.0);
-  EXPECT_LE(batch.kl_from(old_means), 1.5 * config.target_kl);
+  EXPECT_LE(batch.kl_from(old_means), 1.5 * config.trust_region.target_kl);
   EXPECT_LE(lagrangian_loss(), loss_before);
   EXPECT_NEAR(result.value("Loss/DeltaPi"), lagrangian_loss() - loss_before, 1e-12);
   // With lambda = 2 the cost surrogate weighs heavily: this batch's step lowers it.

@@ -113,7 +113,7 @@ TEST(Pcpo, EndToEndStepPassesTheConstrainedTests) {
     for (const double mean_episode_cost : {10.0, 40.0}) {
       SyntheticBatch batch(64, 3, 4);
       RunConfig config = testing::config_for(Algorithm::pcpo);
-      config.pcpo_projection = projection;
+      config.trust_region.pcpo_projection = projection;
       const double c = (mean_episode_cost - 25.0) / (100.0 + 1e-8);
       const testing::BeforeConstrainedUpdate before(batch);
 
@@ -124,7 +124,7 @@ TEST(Pcpo, EndToEndStepPassesTheConstrainedTests) {
       EXPECT_EQ(result.value("Misc/OptimCase"), c >= 0.0 ? 1.0 : 2.0);
       if (result.value("Misc/AcceptanceStep") == 0.0) continue;
       ++accepted_updates;
-      testing::expect_passes_constrained_tests(batch, before, c, config.target_kl);
+      testing::expect_passes_constrained_tests(batch, before, c, config.trust_region.target_kl);
     }
   }
   EXPECT_EQ(accepted_updates, 4);
@@ -133,8 +133,8 @@ TEST(Pcpo, EndToEndStepPassesTheConstrainedTests) {
 TEST(Pcpo, WithoutLineSearchAppliesTheProjectedStep) {
   SyntheticBatch batch(64, 3, 4);
   RunConfig config = testing::config_for(Algorithm::pcpo);
-  config.pcpo_line_search = false;
-  config.kl_accept_factor = 1e-30;  // would reject every trial if the search ran
+  config.trust_region.pcpo_line_search = false;
+  config.trust_region.kl_accept_factor = 1e-30;  // would reject every trial if the search ran
   const Eigen::VectorXd theta_old = batch.policy.mean_net().parameters();
   PolicySurrogate surrogate = batch.surrogate();
   Pcpo pcpo(config);
@@ -148,8 +148,8 @@ TEST(Pcpo, WithoutLineSearchAppliesTheProjectedStep) {
 TEST(Pcpo, RejectedLineSearchLeavesParametersBitIdentical) {
   SyntheticBatch batch(64, 3, 4);
   RunConfig config = testing::config_for(Algorithm::pcpo);
-  config.kl_accept_factor = 1e-30;
-  config.backtrack_budget = 2;
+  config.trust_region.kl_accept_factor = 1e-30;
+  config.trust_region.backtrack_budget = 2;
   const Eigen::VectorXd theta_old = batch.policy.mean_net().parameters();
   PolicySurrogate surrogate = batch.surrogate();
   Pcpo pcpo(config);

@@ -27,7 +27,7 @@ TEST(Pdo, WithLambdaZeroTakesExactlyTheTrpoStep) {
   SyntheticBatch trpo_batch(64, 3, 4);
   SyntheticBatch pdo_batch(64, 3, 4);
   RunConfig config = testing::config_for(Algorithm::pdo);
-  config.lagrangian_multiplier_init = 0.0;  // 1e-5; the Adam step of size ~lr on J_C < d clamps it to 0
+  config.multiplier.lagrangian_multiplier_init = 0.0;  // 1e-5; the Adam step of size ~lr on J_C < d clamps it to 0
 
   PolicySurrogate trpo_surrogate = trpo_batch.surrogate();
   Trpo trpo(testing::config_for(Algorithm::trpo));
@@ -45,8 +45,8 @@ TEST(Pdo, WithLambdaZeroTakesExactlyTheTrpoStep) {
 TEST(Pdo, AdamMultiplierFirstThenRewardOnlyLineSearch) {
   SyntheticBatch batch(64, 3, 4);
   RunConfig config = testing::config_for(Algorithm::pdo);
-  config.lagrangian_multiplier_init = 0.001;
-  config.lambda_lr = 0.5;  // lambda_1 = 0.001 + 0.5 (Adam's first step has size lr)
+  config.multiplier.lagrangian_multiplier_init = 0.001;
+  config.multiplier.lambda_lr = 0.5;  // lambda_1 = 0.001 + 0.5 (Adam's first step has size lr)
   const double reward_before = batch.reward_surrogate();
   const Eigen::MatrixXd old_means = batch.means();
 
@@ -56,7 +56,7 @@ TEST(Pdo, AdamMultiplierFirstThenRewardOnlyLineSearch) {
 
   EXPECT_NEAR(result.value("LagrangeMultiplier"), 0.001 + 0.5 * 5.0 / (5.0 + 1e-8), 1e-12);
   ASSERT_GE(result.value("Misc/AcceptanceStep"), 1.0);
-  EXPECT_LE(batch.kl_from(old_means), 1.5 * config.target_kl);
+  EXPECT_LE(batch.kl_from(old_means), 1.5 * config.trust_region.target_kl);
   EXPECT_GE(batch.reward_surrogate(), reward_before);  // Q14: the reward surrogate must not decrease
   EXPECT_NEAR(result.value("Loss/Pi"), -reward_before, 1e-12);
   EXPECT_GT(result.value("Misc/cost_gradient_norm"), 0.0);
@@ -65,8 +65,8 @@ TEST(Pdo, AdamMultiplierFirstThenRewardOnlyLineSearch) {
 TEST(Pdo, WithoutLineSearchAppliesTheFullStep) {
   SyntheticBatch batch(64, 3, 4);
   RunConfig config = testing::config_for(Algorithm::pdo);
-  config.pdo_line_search = false;
-  config.kl_accept_factor = 1e-30;  // would reject every trial if the search ran
+  config.trust_region.pdo_line_search = false;
+  config.trust_region.kl_accept_factor = 1e-30;  // would reject every trial if the search ran
   const Eigen::VectorXd theta_old = batch.policy.mean_net().parameters();
 
   PolicySurrogate surrogate = batch.surrogate();
@@ -82,8 +82,8 @@ TEST(Pdo, WithoutLineSearchAppliesTheFullStep) {
 TEST(Pdo, RejectedLineSearchLeavesParametersBitIdentical) {
   SyntheticBatch batch(64, 3, 4);
   RunConfig config = testing::config_for(Algorithm::pdo);
-  config.kl_accept_factor = 1e-30;
-  config.backtrack_budget = 2;
+  config.trust_region.kl_accept_factor = 1e-30;
+  config.trust_region.backtrack_budget = 2;
   const Eigen::VectorXd theta_old = batch.policy.mean_net().parameters();
   PolicySurrogate surrogate = batch.surrogate();
   Pdo pdo(config);

@@ -132,9 +132,9 @@ TEST(SeveralConstraintsSurrogate, EachCostSurrogateAndTheWeightedGradient) {
 TEST(SeveralConstraintsMultipliers, SgdSequencesByHandAndTheirState) {
   RunConfig config;
   config.alg = Algorithm::lag_trpo;
-  config.lambda_optimizer = LambdaOptimizer::sgd;
-  config.lagrangian_multiplier_init = 0.001;
-  config.lambda_lr = 0.05;
+  config.multiplier.lambda_optimizer = LambdaOptimizer::sgd;
+  config.multiplier.lagrangian_multiplier_init = 0.001;
+  config.multiplier.lambda_lr = 0.05;
   config.constraints = {{{"a"}, 20.0}, {{"b"}, 5.0}};
   LagrangeMultipliers multipliers(config);
   // lambda_j <- max(0, lambda_j + 0.05 (J_j - d_j))
@@ -167,8 +167,8 @@ TEST(SeveralConstraintsMultipliers, AdamAndPidKeepOneOptimiserStatePerConstraint
   for (const LambdaOptimizer optimizer : {LambdaOptimizer::adam, LambdaOptimizer::pid}) {
     RunConfig config;
     config.alg = Algorithm::pdo;
-    config.lambda_optimizer = optimizer;
-    config.lagrangian_multiplier_init = 0.001;
+    config.multiplier.lambda_optimizer = optimizer;
+    config.multiplier.lagrangian_multiplier_init = 0.001;
     config.constraints = {{{"a"}, 1.0}, {{"b"}, 1.0}};
     LagrangeMultipliers two(config);
     RunConfig one_config = config;
@@ -206,7 +206,7 @@ RunConfig two_constraint_config(Algorithm alg) {
   config.max_ep_len = 200;
   config.save_freq = 1;
   config.eval_episodes = 2;
-  config.target_kl = 0.001;
+  config.trust_region.target_kl = 0.001;
   config.constraints = {{{"cost_outside_bounds"}, 20.0}, {{"cost_velocity_violation"}, 5.0}};
   return config;
 }

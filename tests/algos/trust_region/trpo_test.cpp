@@ -48,12 +48,12 @@ TEST(Trpo, FullStepHasFisherNormTwoDeltaAndAcceptedStepKeepsKlAndImproves) {
   // Delta = 0.8^(j-1) alpha x with alpha^2 x^T F x = 2 delta q / (q + 1e-8).
   const double q = result.value("Misc/xHx");
   const double shrink = std::pow(0.8, acceptance_step - 1);
-  EXPECT_NEAR(step.dot(fisher * step), shrink * shrink * 2.0 * config.target_kl * q / (q + 1e-8), 1e-10);
+  EXPECT_NEAR(step.dot(fisher * step), shrink * shrink * 2.0 * config.trust_region.target_kl * q / (q + 1e-8), 1e-10);
   EXPECT_NEAR(step.norm(), result.value("Misc/FinalStepNorm"), 1e-12);
   EXPECT_NEAR(step.norm(), shrink * result.value("Misc/Alpha") * result.value("Misc/H_inv_g"), 1e-6 * step.norm());
 
   const double kl = batch.kl_from(old_means);
-  EXPECT_LE(kl, 1.5 * config.target_kl);
+  EXPECT_LE(kl, 1.5 * config.trust_region.target_kl);
   EXPECT_NEAR(result.value("KL"), kl, 1e-12);
   EXPECT_GE(batch.reward_surrogate() - reward_before, 0.0);
   EXPECT_NEAR(result.value("Loss/Pi"), -reward_before, 1e-12);
@@ -64,8 +64,8 @@ TEST(Trpo, FullStepHasFisherNormTwoDeltaAndAcceptedStepKeepsKlAndImproves) {
 TEST(Trpo, RejectedLineSearchLeavesParametersBitIdentical) {
   SyntheticBatch batch(64, 3, 4);
   RunConfig config = testing::config_for(Algorithm::trpo);
-  config.kl_accept_factor = 1e-30;  // every trial with a non-zero step exceeds the KL tolerance
-  config.backtrack_budget = 3;
+  config.trust_region.kl_accept_factor = 1e-30;  // every trial with a non-zero step exceeds the KL tolerance
+  config.trust_region.backtrack_budget = 3;
   const Eigen::VectorXd theta_old = batch.policy.mean_net().parameters();
 
   PolicySurrogate surrogate = batch.surrogate();

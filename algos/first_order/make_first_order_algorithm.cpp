@@ -1,0 +1,24 @@
+#include "algos/first_order/make_first_order_algorithm.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "algos/first_order/cup.h"
+#include "algos/first_order/focops.h"
+#include "algos/first_order/ppo.h"
+
+namespace bsg::algos {
+
+std::unique_ptr<OnPolicyAlgorithm> make_first_order_algorithm(const RunConfig& config) {
+  switch (config.alg) {
+    case Algorithm::ppo:
+    case Algorithm::ppo_lag: return std::make_unique<Ppo>(config);
+    case Algorithm::focops: return std::make_unique<Focops>(config);
+    case Algorithm::cup: return std::make_unique<Cup>(config);
+    default: break;
+  }
+  throw std::invalid_argument("make_first_order_algorithm: " + std::string(to_string(config.alg)) +
+                              " is not a first-order algorithm");
+}
+
+}  // namespace bsg::algos

@@ -1,0 +1,49 @@
+// The rows of FirstOrderKeys (common/first_order_keys.h) in the key table,
+// after the trust-region variants' rows. A first-order variant's own key is a
+// member of FirstOrderKeys and a row here applying to algorithm_bit(Algorithm::<its name>).
+#include "common/first_order_keys.h"
+
+#include <vector>
+
+#include "common/config_key_rows.h"
+
+namespace bsg::key_rows {
+
+namespace {
+constexpr AlgorithmSet kClipped = algorithms_where(&AlgorithmInfo::clipped_surrogate);
+}  // namespace
+
+// clang-format off
+std::vector<ConfigKeyRow> first_order_rows() {
+  using L = ConfigLayer;
+  using R = RunConfig;
+  using N = NumericRange;
+  using K = FirstOrderKeys;
+  return {
+    // --- first-order updates (docs/algorithms.md#first-order-updates) ---
+    real("actor_lr", field<&R::first_order, &K::actor_lr>(), L::algorithm, N::above(0), kFirstOrder | kOffPolicy | kOffline,
+         "Adam step size on the policy (first-order and off-policy updates)"),
+    integer("update_iters", field<&R::first_order, &K::update_iters>(), L::algorithm, N::closed(1, 10000), kFirstOrder,
+            "passes over the batch per policy update (fewer after a KL early stop)"),
+    integer("policy_minibatch_size", field<&R::first_order, &K::policy_minibatch_size>(), L::algorithm, N::closed(1, kIntMax), kFirstOrder,
+            "samples per policy minibatch, summed over ranks: floor(B / size) minibatches per pass"),
+    boolean("kl_early_stop", field<&R::first_order, &K::kl_early_stop>(), L::algorithm, kFirstOrder,
+            "end the passes after one whose mean KL to the update's start exceeds target_kl"),
+    real("max_grad_norm", field<&R::first_order, &K::max_grad_norm>(), L::algorithm, N::at_least(0), kFirstOrder | kOffPolicy,
+         "rescale the rank-averaged gradient of each step (first-order: the policy's; off-policy: the twin "
+         "reward critics' together, each cost critic's, the actor's) to at most this norm; 0 = never"),
+    real("clip", field<&R::first_order, &K::clip>(), L::algorithm, N::open(0, 1), kClipped,
+         "epsilon of PPO's clipped surrogate (ppo, ppo-lag, cup's performance step)"),
+    real("focops_lam", field<&R::first_order, &K::focops_lam>(), L::algorithm, N::above(0), algorithm_bit(Algorithm::focops),
+         "FOCOPS's temperature lambda: the loss is KL - rho (A - nu A^C) / lambda"),
+    real("focops_eta", field<&R::first_order, &K::focops_eta>(), L::algorithm, N::above(0), algorithm_bit(Algorithm::focops),
+         "FOCOPS's mask: samples whose KL to the old policy exceeds eta leave the loss"),
+    boolean("learn_log_std", field<&R::first_order, &K::learn_log_std>(), L::algorithm, kFirstOrder,
+            "learn a log sigma per action dimension with the policy's Adam (replaces the annealed sigma)"),
+    real("learned_std_init", field<&R::first_order, &K::learned_std_init>(), L::algorithm, N::above(0), kFirstOrder,
+         "initial sigma of every dimension with learn_log_std"),
+  };
+}
+// clang-format on
+
+}  // namespace bsg::key_rows
