@@ -98,10 +98,9 @@ std::unique_ptr<algos::Trainer> allocate_trainer(const RunConfig& config, const 
         envs::make(config.env_id, {.physics = config.physics});
     const TrainingMemoryEstimate estimate =
         estimate_training_memory(config, env->spec().observation_dim, env->spec().action_dim, mpi.size());
-    throw std::runtime_error("out of memory while allocating the networks (hidden_sizes) and the rollout buffer (" +
-                             std::to_string(config.steps_per_epoch / mpi.size()) +
-                             " steps per rank): the estimate is " + format_bytes(estimate.bytes) + " per rank of " +
-                             available_memory().description);
+    throw std::runtime_error("out of memory while allocating the networks (hidden_sizes) and " +
+                             training_buffer(config, mpi.size()).description + ": the estimate is " +
+                             format_bytes(estimate.bytes) + " per rank of " + available_memory().description);
   }
 }
 

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "common/config_error.h"
 #include "common/message_text.h"
@@ -219,6 +221,29 @@ AvailableMemory available_memory() {
   return available;
 }
 
+TrainingBuffer training_buffer(const RunConfig& config, int num_ranks) {
+  const int ranks = std::max(num_ranks, 1);
+  switch (algorithm_info(config.alg).family) {
+    case AlgorithmFamily::trust_region:
+    case AlgorithmFamily::first_order:
+      return {"steps_per_epoch = " + std::to_string(config.steps_per_epoch),
+              "the rollout buffer (" + std::to_string(config.steps_per_epoch / ranks) + " steps per rank)",
+              std::to_string(config.steps_per_epoch / ranks) + " steps per rank",
+              "steps_per_epoch or run on more ranks"};
+    case AlgorithmFamily::off_policy:
+      return {"buffer_size = " + std::to_string(config.off_policy.buffer_size),
+              "the replay buffer (" + std::to_string(config.off_policy.buffer_size) + " transitions per rank)",
+              "a replay buffer of " + std::to_string(config.off_policy.buffer_size) + " transitions per rank",
+              "buffer_size"};
+    case AlgorithmFamily::offline:
+      return {"batch_size = " + std::to_string(config.off_policy.batch_size),
+              "the batches (" + std::to_string(config.off_policy.batch_size) + " rows)",
+              "batches of " + std::to_string(config.off_policy.batch_size) + " rows",
+              "batch_size"};
+  }
+  throw std::invalid_argument("training_buffer: unknown family of alg " + std::string(to_string(config.alg)));
+}
+
 void check_training_memory(const RunConfig& config, int observation_dim, int action_dim, int num_ranks,
                            const AvailableMemory& available) {
   const TrainingMemoryEstimate estimate = estimate_training_memory(config, observation_dim, action_dim, num_ranks);
@@ -226,60 +251,38 @@ void check_training_memory(const RunConfig& config, int observation_dim, int act
   std::string hidden;
   for (const int width : config.hidden_sizes) hidden += (hidden.empty() ? "" : ", ") + std::to_string(width);
   const bool network = estimate.network_bytes >= estimate.batch_bytes;
-  throw ConfigError(std::string(network ? "hidden_sizes = [" + hidden + "]" :
-                                          "steps_per_epoch = " + std::to_string(config.steps_per_epoch)) +
-                    " needs an estimated " + format_bytes(estimate.bytes) + " per rank (" +
-                    std::to_string(config.steps_per_epoch / std::max(num_ranks, 1)) +
-                    " steps per rank, hidden_sizes [" + hidden + "]), more than the " +
-                    format_bytes(available.bytes) + " available (the smaller of " + available.description +
-                    "): reduce " + (network ? "hidden_sizes" : "steps_per_epoch or run on more ranks"));
+  const TrainingBuffer buffer = training_buffer(config, num_ranks);
+  throw ConfigError((network ? "hidden_sizes = [" + hidden + "]" : buffer.key) + " needs an estimated " +
+                    format_bytes(estimate.bytes) + " per rank (" + buffer.size + ", hidden_sizes [" + hidden +
+                    "]), more than the " + format_bytes(available.bytes) + " available (the smaller of " +
+                    available.description + "): reduce " + (network ? "hidden_sizes" : buffer.advice));
 }
 
-void check_run_config_for_ranks(const RunConfig& config, int num_ranks) {
-  if (num_ranks < 1) {
-    throw ConfigError("number of MPI ranks must be at least 1, got " + std::to_string(num_ranks));
+namespace {
+
+// Every rank would take the same gradient steps on the same dataset: there is nothing to split.
+void check_offline_ranks(const RunConfig& config, const std::string& ranks, int num_ranks) {
+  if (num_ranks > 1) {
+    throw ConfigError("alg '" + std::string(to_string(config.alg)) + "' trains on one rank, not " + ranks +
+                      ": an offline run learns from one dataset in memory and steps no environment, so there "
+                      "is no data to split over ranks; run it without mpirun (or with -np 1)");
   }
-  const std::string ranks = std::to_string(num_ranks);
-  if (is_offline(config.alg)) {
-    // Every rank would take the same gradient steps on the same dataset: there is nothing to split.
-    if (num_ranks > 1) {
-      throw ConfigError("alg '" + std::string(to_string(config.alg)) + "' trains on one rank, not " + ranks +
-                        ": an offline run learns from one dataset in memory and steps no environment, so there "
-                        "is no data to split over ranks; run it without mpirun (or with -np 1)");
-    }
-    return;
-  }
+}
+
+void check_steps_divide(const RunConfig& config, const std::string& ranks, int num_ranks) {
   if (config.steps_per_epoch % num_ranks != 0) {
     throw ConfigError("steps_per_epoch = " + std::to_string(config.steps_per_epoch) +
                       " is not divisible by the " + ranks + " MPI ranks");
   }
-  const int local_steps = config.steps_per_epoch / num_ranks;
-  if (!is_off_policy(config.alg) && config.max_ep_len > local_steps) {
+}
+
+// Each rank's batch must complete an episode and fill the value nets' minibatches.
+void check_on_policy_ranks(const RunConfig& config, const std::string& ranks, int local_steps) {
+  if (config.max_ep_len > local_steps) {
     throw ConfigError("max_ep_len = " + std::to_string(config.max_ep_len) +
                       " exceeds the local steps per rank steps_per_epoch / ranks = " +
                       std::to_string(local_steps) + " with " + ranks +
                       " ranks: reduce the ranks or increase steps_per_epoch");
-  }
-  if (is_off_policy(config.alg)) {
-    // The off-policy loop steps num_envs environments in turn and has no value-net minibatches.
-    if (local_steps % config.off_policy.num_envs != 0) {
-      throw ConfigError("steps_per_epoch / ranks = " + std::to_string(local_steps) + " with " + ranks +
-                        " ranks is not a multiple of num_envs = " + std::to_string(config.off_policy.num_envs));
-    }
-    // Episodes run on across epochs but a checkpoint cuts them (docs/algorithms.md#off-policy-checkpoints),
-    // so each environment needs max_ep_len steps between checkpoints for an episode to end.
-    const long long steps_between_checkpoints =
-        static_cast<long long>(config.save_freq) * (local_steps / config.off_policy.num_envs);
-    if (steps_between_checkpoints < config.max_ep_len) {
-      throw ConfigError("each environment steps save_freq * steps_per_epoch / (ranks * num_envs) = " +
-                        std::to_string(config.save_freq) + " * " + std::to_string(config.steps_per_epoch) + " / (" +
-                        ranks + " * " + std::to_string(config.off_policy.num_envs) + ") = " +
-                        std::to_string(steps_between_checkpoints) +
-                        " steps between checkpoints, which cut episodes; that is fewer than max_ep_len = " +
-                        std::to_string(config.max_ep_len) +
-                        ", so no episode would end: raise save_freq or steps_per_epoch, or lower num_envs");
-    }
-    return;
   }
   const int minibatch = local_steps / config.num_mini_batches;
   if (minibatch < 16) {
@@ -287,6 +290,47 @@ void check_run_config_for_ranks(const RunConfig& config, int num_ranks) {
                       "num_mini_batches = " + std::to_string(config.num_mini_batches) +
                       ") = " + std::to_string(minibatch) + " is below 16 samples with " + ranks +
                       " ranks: increase steps_per_epoch or reduce num_mini_batches");
+  }
+}
+
+// The off-policy loop steps num_envs environments in turn and has no value-net minibatches.
+void check_off_policy_ranks(const RunConfig& config, const std::string& ranks, int local_steps) {
+  const int num_envs = config.off_policy.num_envs;
+  if (local_steps % num_envs != 0) {
+    throw ConfigError("steps_per_epoch / ranks = " + std::to_string(local_steps) + " with " + ranks +
+                      " ranks is not a multiple of num_envs = " + std::to_string(num_envs));
+  }
+  // Episodes run on across epochs but a checkpoint cuts them (docs/algorithms.md#off-policy-checkpoints),
+  // so each environment needs max_ep_len steps between checkpoints for an episode to end.
+  const long long steps_between_checkpoints = static_cast<long long>(config.save_freq) * (local_steps / num_envs);
+  if (steps_between_checkpoints < config.max_ep_len) {
+    throw ConfigError("each environment steps save_freq * steps_per_epoch / (ranks * num_envs) = " +
+                      std::to_string(config.save_freq) + " * " + std::to_string(config.steps_per_epoch) + " / (" +
+                      ranks + " * " + std::to_string(num_envs) + ") = " + std::to_string(steps_between_checkpoints) +
+                      " steps between checkpoints, which cut episodes; that is fewer than max_ep_len = " +
+                      std::to_string(config.max_ep_len) +
+                      ", so no episode would end: raise save_freq or steps_per_epoch, or lower num_envs");
+  }
+}
+
+}  // namespace
+
+void check_run_config_for_ranks(const RunConfig& config, int num_ranks) {
+  if (num_ranks < 1) {
+    throw ConfigError("number of MPI ranks must be at least 1, got " + std::to_string(num_ranks));
+  }
+  const std::string ranks = std::to_string(num_ranks);
+  switch (algorithm_info(config.alg).family) {
+    case AlgorithmFamily::trust_region:
+    case AlgorithmFamily::first_order:
+      check_steps_divide(config, ranks, num_ranks);
+      check_on_policy_ranks(config, ranks, config.steps_per_epoch / num_ranks);
+      return;
+    case AlgorithmFamily::off_policy:
+      check_steps_divide(config, ranks, num_ranks);
+      check_off_policy_ranks(config, ranks, config.steps_per_epoch / num_ranks);
+      return;
+    case AlgorithmFamily::offline: check_offline_ranks(config, ranks, num_ranks); return;
   }
 }
 

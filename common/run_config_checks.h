@@ -61,6 +61,19 @@ struct TrainingMemoryEstimate {
 TrainingMemoryEstimate estimate_training_memory(const RunConfig& config, int observation_dim, int action_dim,
                                                 int num_ranks);
 
+// What holds a run's training data, named for messages about memory: its key
+// ("steps_per_epoch = 32000"), what it is ("the rollout buffer (16000 steps per rank)"),
+// its size alone ("16000 steps per rank") and what to reduce ("steps_per_epoch or run
+// on more ranks"). On-policy: the rollout buffer; off-policy: the replay buffer; offline:
+// the batches (the dataset itself is read whole).
+struct TrainingBuffer {
+  std::string key;
+  std::string description;
+  std::string size;
+  std::string advice;
+};
+TrainingBuffer training_buffer(const RunConfig& config, int num_ranks);
+
 // The memory a process can use: the smaller of physical memory and its
 // address-space limit (RLIMIT_AS), and how each was found, for messages.
 struct AvailableMemory {

@@ -61,12 +61,13 @@ TEST(ConfigKeyGroups, EachGroupsRowsKeepTheirPlaceInTheTable) {
     return -1L;
   };
   // The runs of rows, each key followed by the next: RunConfig's leading rows, the trust-region
-  // tools, the multipliers, the trust-region variants, the first-order and off-policy rows, and
-  // RunConfig's trailing rows.
+  // tools, the multipliers, the trust-region variants, the first-order, off-policy and offline
+  // rows, and RunConfig's trailing rows.
   const std::vector<std::pair<std::string_view, std::string_view>> seams = {
       {"value_time_input", "target_kl"},         {"kl_accept_factor", "lagrangian_multiplier_init"},
       {"pid_lambda_max", "cpo_r_sign"},          {"crpo_tolerance", "actor_lr"},
-      {"learned_std_init", "num_envs"},          {"alpha_lr", "use_cost_value_function"}};
+      {"learned_std_init", "num_envs"},          {"alpha_lr", "dataset"},
+      {"eval_every", "use_cost_value_function"}};
   for (const auto& [before, after] : seams) EXPECT_EQ(position(before) + 1, position(after)) << before;
   EXPECT_EQ(keys.front(), "env_id");
   EXPECT_EQ(keys.back(), "sampled_evaluation");
