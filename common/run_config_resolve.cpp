@@ -33,7 +33,7 @@ const ConfigEntry& choosing_entry(const std::vector<ConfigEntry>& run_entries,
   if (const ConfigEntry* entry = find_last_entry(set_entries, key)) return *entry;
   if (const ConfigEntry* entry = find_last_entry(run_entries, key)) return *entry;
   const std::string where = request.run_file.empty()
-                                ? std::string("no run file was given")
+                                ? std::string("no run file was given to")
                                 : "the run file " + request.run_file.string() + " does not";
   throw ConfigError("no '" + key + "' given (" + where + " name it); set it in the run file or " +
                     "with --set " + key + "=...; valid values: " + valid_values);
