@@ -13,6 +13,7 @@
 #include "../../common/finite_differences.h"
 #include "../../heap_counter.h"
 #include "algos/off_policy/make_off_policy_learner.h"
+#include "learner_test_support.h"
 #include "algos/off_policy/polyak.h"
 #include "algos/off_policy/squashed_gaussian.h"
 #include "algos/off_policy/target_smoothing.h"
@@ -21,18 +22,16 @@
 namespace bsg::algos {
 namespace {
 
+using learner_test::config_for;
+using learner_test::perturb_targets;
+using learner_test::random_matrix;
+
 using testing::finite_difference_gradient;
 using testing::relative_error;
 
 constexpr int kObs = 3;
 constexpr int kAct = 2;
 constexpr int kRows = 7;
-
-Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng, double scale = 1.0) {
-  Eigen::MatrixXd m(rows, cols);
-  for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = scale * uniform(rng, -1.0, 1.0);
-  return m;
-}
 
 ReplayBatch random_batch(Rng& rng, int cost_count) {
   ReplayBatch batch;
@@ -46,23 +45,6 @@ ReplayBatch random_batch(Rng& rng, int cost_count) {
   batch.terminals = Eigen::VectorXd::Zero(kRows);
   batch.terminals(4) = 1.0;
   return batch;
-}
-
-RunConfig config_for(Algorithm alg) {
-  RunConfig config;
-  config.alg = alg;
-  config.hidden_sizes = {6, 5};
-  config.dtype = Dtype::float64;
-  config.off_policy.alpha_init = 0.3;
-  config.off_policy.policy_delay = 1;
-  return config;
-}
-
-// Random (not initial) targets so that they differ from the online nets.
-void perturb_targets(OffPolicyLearner& learner, Rng& rng) {
-  for (Mlp* net : learner.all_networks()) {
-    net->set_parameters(net->parameters() + random_matrix(net->num_parameters(), 1, rng, 0.3));
-  }
 }
 
 TEST(SquashedGaussian, LogProbabilityIsTheGaussiansMinusTheSquashingsLogDeterminant) {
