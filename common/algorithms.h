@@ -20,7 +20,7 @@ namespace bsg {
 // (`trpo | lag-trpo | ...`) and of the key table's algorithm column follows the enum.
 enum class Algorithm {
   trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag, crpo,
-  bc_all, bc_safe
+  bc_all, bc_safe, p3o, ipo, rcpo
 };
 
 // Which update the policy takes: the natural-gradient step with a line search
@@ -68,6 +68,11 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
     // constrains by its choice of data).
     {Algorithm::bc_all,   "bc-all",   "BC-All",   "",           AlgorithmFamily::offline,      false, false, false, "sienna"},
     {Algorithm::bc_safe,  "bc-safe",  "BC-Safe",  "",           AlgorithmFamily::offline,      true,  false, false, "seagreen"},
+    // The penalty methods of OmniSafe's on-policy table: P3O's exact ReLU penalty and IPO's log
+    // barrier over PPO, RCPO's multiplier folded into the reward over the natural-gradient step.
+    {Algorithm::p3o,      "p3o",      "P3O",      "",           AlgorithmFamily::first_order,  true,  false, true,  "darkcyan"},
+    {Algorithm::ipo,      "ipo",      "IPO",      "",           AlgorithmFamily::first_order,  true,  false, true,  "orchid"},
+    {Algorithm::rcpo,     "rcpo",     "RCPO",     "RCPO-PID",   AlgorithmFamily::trust_region, true,  true,  false, "maroon"},
 });
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }

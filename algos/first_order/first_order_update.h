@@ -142,6 +142,10 @@ class PolicyAdam {
   std::optional<Adam> adam_;
 };
 
+// Called before each minibatch step with the batch and the minibatch's rows, on every rank
+// (collective): an update whose loss depends on the whole minibatch (P3O's ReLU of a mean) reads it here.
+using MinibatchStepHook = std::function<void(SampleLossBatch& batch, std::span<const Eigen::Index> rows)>;
+
 // What the minibatch passes did.
 struct MinibatchPassesResult {
   int passes = 0;              // passes completed (<= update_iters; fewer after an early stop)
@@ -152,10 +156,11 @@ struct MinibatchPassesResult {
 // per pass, the rank's batch shuffled by inputs.minibatch_rng and cut into
 // K = max(1, floor(N_all / minibatch_size)) nearly equal minibatches (N_all:
 // the batch summed over ranks), and per minibatch the rank-averaged gradient of
-// its mean l_i, rescaled to max_grad_norm, and one Adam step; after each pass,
-// stop if kl_early_stop and the rank-averaged mean KL_i exceeds target_kl.
+// its mean l_i, rescaled to max_grad_norm, and one Adam step (before_step, if given,
+// first); after each pass, stop if kl_early_stop and the rank-averaged mean KL_i exceeds target_kl.
 MinibatchPassesResult minibatch_passes(const PolicyUpdateInputs& inputs, const FirstOrderOptions& options,
-                                       PolicyAdam& adam, SampleLossBatch& batch, const SampleLossFunction& sample_loss);
+                                       PolicyAdam& adam, SampleLossBatch& batch, const SampleLossFunction& sample_loss,
+                                       const MinibatchStepHook& before_step = {});
 
 // The progress columns every first-order update adds after the common ones:
 // Misc/StopIter (passes completed) and Misc/gradient_norm.

@@ -1,4 +1,4 @@
-// What TRPO-L and PDO share over the trust-region base: one Lagrange multiplier per
+// What TRPO-L, PDO and RCPO share over the trust-region base: one Lagrange multiplier per
 // constraint (algos/lagrange/constraint_multipliers.h), stepped on this epoch's J_Cj before
 // the policy step, logged after every other column and kept in the checkpoint
 // (docs/algorithms.md#lagrange-multipliers). A variant calls update_multipliers() in its

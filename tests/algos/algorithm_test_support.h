@@ -186,8 +186,14 @@ inline RunConfig config_for(Algorithm alg) {
     case Algorithm::ppo:
     case Algorithm::ppo_lag:
     case Algorithm::focops:
-    case Algorithm::cup:  // the first-order defaults of configs/algorithms (OmniSafe's)
+    case Algorithm::cup:
+    case Algorithm::p3o:
+    case Algorithm::ipo:  // the first-order defaults of configs/algorithms (OmniSafe's)
       config.trust_region.target_kl = 0.02;
+      config.multiplier.lambda_optimizer = LambdaOptimizer::adam;
+      config.multiplier.lambda_lr = 0.035;
+      break;
+    case Algorithm::rcpo:  // OmniSafe's RCPO.yaml
       config.multiplier.lambda_optimizer = LambdaOptimizer::adam;
       config.multiplier.lambda_lr = 0.035;
       break;
