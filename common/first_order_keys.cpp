@@ -33,7 +33,7 @@ std::vector<ConfigKeyRow> first_order_rows() {
          "rescale the rank-averaged gradient of each step (first-order: the policy's; off-policy: the twin "
          "reward critics' together, each cost critic's, the actor's) to at most this norm; 0 = never"),
     real("clip", field<&R::first_order, &K::clip>(), L::algorithm, N::open(0, 1), kClipped,
-         "epsilon of PPO's clipped surrogate (ppo, ppo-lag, cup's performance step, p3o, ipo)"),
+         "epsilon of PPO's clipped surrogate (ppo, ppo-lag, cup's performance step)"),
     real("focops_lam", field<&R::first_order, &K::focops_lam>(), L::algorithm, N::above(0), algorithm_bit(Algorithm::focops),
          "FOCOPS's temperature lambda: the loss is KL - rho (A - nu A^C) / lambda"),
     real("focops_eta", field<&R::first_order, &K::focops_eta>(), L::algorithm, N::above(0), algorithm_bit(Algorithm::focops),

@@ -206,6 +206,7 @@ TEST(P3o, OneStepIsAdamsFirstStepOnTheHandWrittenLossAndLogsThePenalty) {
 }
 
 TEST(IpoPenalties, AreKappaOverTheSlackClampedAtTheMaximum) {
+  // p = kappa / (d - J_C + 1e-8), the 1e-8 OmniSafe's guard against a zero slack.
   const std::vector<ConstraintEstimate> constraints = {
       {15.0, 25.0},     // 0.01 / 10 = 0.001
       {24.995, 25.0},   // 0.01 / 0.005 = 2 > p_max: 1
@@ -214,12 +215,13 @@ TEST(IpoPenalties, AreKappaOverTheSlackClampedAtTheMaximum) {
       {1.0, 5.0}};      // 0.01 / 4 = 0.0025
   const std::vector<double> p = ipo_penalties(constraints, 0.01, 1.0);
   ASSERT_EQ(p.size(), 5u);
-  EXPECT_NEAR(p[0], 0.001, 1e-12);
+  EXPECT_NEAR(p[0], 0.01 / (10 + 1e-8), 1e-15);
   EXPECT_EQ(p[1], 1.0);
   EXPECT_EQ(p[2], 1.0);
   EXPECT_EQ(p[3], 1.0);
-  EXPECT_NEAR(p[4], 0.0025, 1e-12);
-  EXPECT_NEAR(ipo_penalties(std::vector<ConstraintEstimate>{{20.0, 25.0}}, 2.0, 0.5)[0], 0.4, 1e-12);
+  EXPECT_NEAR(p[4], 0.01 / (4 + 1e-8), 1e-15);
+  EXPECT_NEAR(ipo_penalties(std::vector<ConstraintEstimate>{{20.0, 25.0}}, 2.0, 0.5)[0], 2.0 / (5 + 1e-8), 1e-15);
+  EXPECT_EQ(ipo_penalties(std::vector<ConstraintEstimate>{{22.0, 25.0}}, 2.0, 0.5)[0], 0.5);  // 2 / 3 > 0.5
 }
 
 TEST(Ipo, OneStepIsAdamsFirstStepOnTheClippedLossOfTheHandPenalisedAdvantage) {
@@ -227,7 +229,7 @@ TEST(Ipo, OneStepIsAdamsFirstStepOnTheClippedLossOfTheHandPenalisedAdvantage) {
     SCOPED_TRACE(cost);
     SyntheticBatch batch(64, 5, 6);
     const RunConfig config = one_step_config(Algorithm::ipo);
-    const double p = cost < config.cost_limit ? 0.01 / (config.cost_limit - cost) : 1.0;
+    const double p = cost < config.cost_limit ? 0.01 / (config.cost_limit - cost + 1e-8) : 1.0;
     const Eigen::VectorXd a_hat = (batch.advantages - p * batch.cost_advantages) / (1.0 + p);
     const Eigen::VectorXd theta_old = batch.policy.mean_net().parameters();
     const std::vector<Eigen::Index> rows = testing::all_rows(64);
@@ -239,7 +241,7 @@ TEST(Ipo, OneStepIsAdamsFirstStepOnTheClippedLossOfTheHandPenalisedAdvantage) {
     inputs.minibatch_rng = &shuffle;
     Ipo ipo(config);
     const PolicyUpdateResult result = ipo.update(inputs);
-    EXPECT_NEAR(result.value("ipo_penalty"), p, 1e-12);
+    EXPECT_NEAR(result.value("ipo_penalty"), p, 1e-15);
     EXPECT_NEAR(result.value("Loss/Pi"), -a_hat.mean(), 1e-12);  // the loss of A_hat at theta_old (rho = 1)
     expect_first_adam_step_on(theta_old, batch.policy.mean_net().parameters(), fd, config.first_order.actor_lr);
   }
@@ -262,10 +264,11 @@ TEST(Ipo, EachConstraintHasItsOwnPenaltyAndColumn) {
   EXPECT_EQ(names[names.size() - 2], "constraint_1_ipo_penalty");
   EXPECT_EQ(names.back(), "constraint_2_ipo_penalty");
   const PolicyUpdateResult result = ipo.update(inputs);
-  EXPECT_NEAR(result.value("constraint_1_ipo_penalty"), 0.002, 1e-12);
+  const double p1 = 0.01 / (5 + 1e-8);
+  EXPECT_NEAR(result.value("constraint_1_ipo_penalty"), p1, 1e-15);
   EXPECT_EQ(result.value("constraint_2_ipo_penalty"), 1.0);
-  // Loss/Pi at theta_old: -mean((A - 0.002 A^C1 - A^C2) / 2.002).
-  const Eigen::VectorXd a_hat = (batch.advantages - 0.002 * costs.col(0) - costs.col(1)) / 2.002;
+  // Loss/Pi at theta_old: -mean((A - p1 A^C1 - A^C2) / (2 + p1)).
+  const Eigen::VectorXd a_hat = (batch.advantages - p1 * costs.col(0) - costs.col(1)) / (2.0 + p1);
   EXPECT_NEAR(result.value("Loss/Pi"), -a_hat.mean(), 1e-12);
 }
 

@@ -98,12 +98,12 @@ TEST(Rcpo, StepsOnTheAdvantageOfThePenalisedRewardWithoutALineSearch) {
 }
 
 TEST(Rcpo, TakesTheFullStepWhereTrpoLsLineSearchBacktracks) {
-  // A trust region so large that the quadratic model fails: TRPO-L backtracks, RCPO does not.
+  // TRPO-L accepting only a KL of half the trust region backtracks from the full step (whose KL is
+  // about delta); RCPO, which has no line search, applies it.
   RunConfig lag_config = sgd_config();
   lag_config.alg = Algorithm::lag_trpo;
-  lag_config.trust_region.target_kl = 2.0;
-  RunConfig rcpo_config = sgd_config();
-  rcpo_config.trust_region.target_kl = 2.0;
+  lag_config.trust_region.kl_accept_factor = 0.5;
+  const RunConfig rcpo_config = sgd_config();
   SyntheticBatch lag_batch(64, 3, 4);
   SyntheticBatch rcpo_batch(64, 3, 4);
   const Eigen::VectorXd theta_old = rcpo_batch.policy.mean_net().parameters();
@@ -148,11 +148,12 @@ TEST(Rcpo, ShippedDefaultsAndRefusedKeys) {
   EXPECT_EQ(shipped.trust_region.cg_iters, 15);
   EXPECT_EQ(shipped.trust_region.fvp_subsample, 1);
   EXPECT_TRUE(shipped.use_cost_value_function);
-  for (const std::string setting : {"backtrack_budget=10", "backtrack_decay=0.5", "kl_accept_factor=2", "clip=0.2",
+  for (const std::string& setting : std::vector<std::string>{"backtrack_budget=10", "backtrack_decay=0.5", "kl_accept_factor=2", "clip=0.2",
                                     "actor_lr=0.001", "p3o_kappa=1"}) {
     SCOPED_TRACE(setting);
     const std::string m = testing::config_error_of(testing::shipped_request("SafetyBallCircle-v0", "rcpo", {setting}));
-    EXPECT_TRUE(testing::contains(m, "'" + setting.substr(0, setting.find('=')) + "' does not apply to alg 'rcpo'")) << m;
+    const std::string key = setting.substr(0, setting.find('='));
+    EXPECT_TRUE(testing::contains(m, "'" + key + "' does not apply to alg 'rcpo'")) << m;
     EXPECT_EQ(m.find('\n'), std::string::npos) << m;
   }
   // The PID rule is a multiplier rule like the others: RCPO-PID.
