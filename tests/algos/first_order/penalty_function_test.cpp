@@ -25,6 +25,7 @@ namespace bsg::algos {
 namespace {
 
 using testing::SyntheticBatch;
+using testing::central_difference_gradient;
 
 // -1/n sum_i min(rho_i A_i, clip(rho_i) A_i) over `rows`.
 double hand_reward_loss(const Eigen::VectorXd& rho, const Eigen::VectorXd& a, double eps,
@@ -55,25 +56,6 @@ double hand_p3o_loss(const SyntheticBatch& batch, const Eigen::MatrixXd& cost_ad
     loss += kappa * std::max(0.0, hand_cost_surrogate(rho, column, eps, clipped, rows) + violations[j]);
   }
   return loss;
-}
-
-// Central differences of `loss` in the policy mean net's parameters.
-template <class Loss>
-Eigen::VectorXd finite_difference_gradient(SyntheticBatch& batch, const Loss& loss) {
-  const Eigen::VectorXd theta = batch.policy.mean_net().parameters();
-  Eigen::VectorXd gradient(theta.size());
-  const double h = 1e-6;
-  for (Eigen::Index k = 0; k < theta.size(); ++k) {
-    Eigen::VectorXd shifted = theta;
-    shifted[k] += h;
-    batch.policy.mean_net().set_parameters(shifted);
-    const double up = loss();
-    shifted[k] = theta[k] - h;
-    batch.policy.mean_net().set_parameters(shifted);
-    gradient[k] = (up - loss()) / (2 * h);
-  }
-  batch.policy.mean_net().set_parameters(theta);
-  return gradient;
 }
 
 // Moves the policy off the one that drew the batch so that ratios leave the clip range.
@@ -126,7 +108,7 @@ TEST(P3oLoss, MatchesTheHandWrittenLossAndFiniteDifferencesWithOneReluOnAndOneOf
     const double expected = hand_p3o_loss(batch, costs, violations, kappa, eps, clipped, rows);
     EXPECT_NEAR(sample_part + kappa * violations[0], expected, 1e-12);
     EXPECT_NEAR(hand_reward_loss(rho, batch.advantages, eps, rows) + penalty_value, expected, 1e-12);
-    const Eigen::VectorXd fd = finite_difference_gradient(
+    const Eigen::VectorXd fd = central_difference_gradient(
         batch, [&] { return hand_p3o_loss(batch, costs, violations, kappa, eps, clipped, rows); });
     EXPECT_LT((gradient - fd).norm(), 1e-6 * fd.norm()) << gradient.transpose() << "\n" << fd.transpose();
     // The cost term moves the gradient: without it, PPO's gradient differs.
@@ -176,6 +158,17 @@ RunConfig one_step_config(Algorithm alg) {
   return config;
 }
 
+// One update of a fresh `Update` on the batch with one constraint at J_C = cost.
+template <class Update>
+PolicyUpdateResult one_update(SyntheticBatch& batch, const RunConfig& config, double cost) {
+  PolicySurrogate surrogate = batch.surrogate();
+  Rng shuffle(1);
+  PolicyUpdateInputs inputs = testing::inputs_for(batch, surrogate, cost, 100.0);
+  inputs.minibatch_rng = &shuffle;
+  Update update(config);
+  return update.update(inputs);
+}
+
 TEST(P3o, OneStepIsAdamsFirstStepOnTheHandWrittenLossAndLogsThePenalty) {
   for (const double cost : {31.0, 12.0}) {  // d = 25: the ReLU on, then off
     SCOPED_TRACE(cost);
@@ -188,16 +181,11 @@ TEST(P3o, OneStepIsAdamsFirstStepOnTheHandWrittenLossAndLogsThePenalty) {
     const auto hand_loss = [&] {
       return hand_p3o_loss(batch, costs, violation, config.first_order.p3o_kappa, config.first_order.clip, true, rows);
     };
-    const Eigen::VectorXd fd = finite_difference_gradient(batch, hand_loss);
+    const Eigen::VectorXd fd = central_difference_gradient(batch, hand_loss);
     // At theta_old every rho is 1: L_C = mean A^C, the penalty kappa max(0, mean A^C + J_C - d).
     const double penalty = config.first_order.p3o_kappa * std::max(0.0, batch.cost_advantages.mean() + violation[0]);
     ASSERT_EQ(penalty > 0.0, cost > config.cost_limit);
-    PolicySurrogate surrogate = batch.surrogate();
-    Rng shuffle(1);
-    PolicyUpdateInputs inputs = testing::inputs_for(batch, surrogate, cost, 100.0);
-    inputs.minibatch_rng = &shuffle;
-    P3o p3o(config);
-    const PolicyUpdateResult result = p3o.update(inputs);
+    const PolicyUpdateResult result = one_update<P3o>(batch, config, cost);
     EXPECT_NEAR(result.value("p3o_penalty"), penalty, 1e-12);
     EXPECT_NEAR(result.value("Loss/Pi"), -batch.advantages.mean(), 1e-12);  // l_R at theta_old
     EXPECT_EQ(result.value("Misc/StopIter"), 1.0);
@@ -233,14 +221,9 @@ TEST(Ipo, OneStepIsAdamsFirstStepOnTheClippedLossOfTheHandPenalisedAdvantage) {
     const Eigen::VectorXd a_hat = (batch.advantages - p * batch.cost_advantages) / (1.0 + p);
     const Eigen::VectorXd theta_old = batch.policy.mean_net().parameters();
     const std::vector<Eigen::Index> rows = testing::all_rows(64);
-    const Eigen::VectorXd fd = finite_difference_gradient(
+    const Eigen::VectorXd fd = central_difference_gradient(
         batch, [&] { return hand_reward_loss(batch.ratios(), a_hat, config.first_order.clip, rows); });
-    PolicySurrogate surrogate = batch.surrogate();
-    Rng shuffle(1);
-    PolicyUpdateInputs inputs = testing::inputs_for(batch, surrogate, cost, 100.0);
-    inputs.minibatch_rng = &shuffle;
-    Ipo ipo(config);
-    const PolicyUpdateResult result = ipo.update(inputs);
+    const PolicyUpdateResult result = one_update<Ipo>(batch, config, cost);
     EXPECT_NEAR(result.value("ipo_penalty"), p, 1e-15);
     EXPECT_NEAR(result.value("Loss/Pi"), -a_hat.mean(), 1e-12);  // the loss of A_hat at theta_old (rho = 1)
     expect_first_adam_step_on(theta_old, batch.policy.mean_net().parameters(), fd, config.first_order.actor_lr);
