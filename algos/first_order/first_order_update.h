@@ -1,11 +1,12 @@
-// The first-order policy update of PPO, PPO-Lag, FOCOPS and CUP
+// The first-order policy update of PPO, PPO-Lag, FOCOPS, CUP, P3O and IPO
 // (docs/algorithms.md#first-order-updates), beside the trust-region one: several
 // passes over shuffled minibatches of the batch, one Adam step on the policy
 // per minibatch with the gradient averaged over ranks (so `mpirun -np N` takes
 // the steps one process takes on the same data), an optional early stop once
 // the KL to the update's anchor policy exceeds target_kl.
 //
-// Every loss here is a mean over the minibatch of a per-sample loss
+// Every loss here is a mean over the minibatch of a per-sample loss (P3O's, whose ReLU holds a
+// minibatch mean, is one once a step's hook has evaluated that mean: MinibatchStepHook)
 // l_i(rho_i, KL_i) of
 //   rho_i = exp(log pi_theta(a_i|s_i) - log pi_old,i)   pi_old: the policy that collected the batch
 //   KL_i  = KL(pi_theta || pi_anchor)[s_i] = sum_j (mu_ij - mu_anchor,ij)^2 / (2 sigma^2)
