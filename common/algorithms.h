@@ -20,7 +20,7 @@ namespace bsg {
 // (`trpo | lag-trpo | ...`) and of the key table's algorithm column follows the enum.
 enum class Algorithm {
   trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag, crpo,
-  bc_all, bc_safe
+  bc_all, bc_safe, cpq
 };
 
 // Which update the policy takes: the natural-gradient step with a line search
@@ -68,6 +68,9 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
     // constrains by its choice of data).
     {Algorithm::bc_all,   "bc-all",   "BC-All",   "",           AlgorithmFamily::offline,      false, false, false, "sienna"},
     {Algorithm::bc_safe,  "bc-safe",  "BC-Safe",  "",           AlgorithmFamily::offline,      true,  false, false, "seagreen"},
+    // Constraints penalised Q-learning (Xu et al. 2022, OSRL's cpq.py): its multiplier is its own (alpha
+    // on the out-of-distribution cost), not the Lagrangian keys'.
+    {Algorithm::cpq,      "cpq",      "CPQ",      "",           AlgorithmFamily::offline,      true,  false, false, "darkcyan"},
 });
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }
