@@ -122,7 +122,12 @@ int dataset_info(const DatasetInfoArguments& args) {
     for (const std::string& name : dataset.constraint_names) std::cout << " " << name;
     std::cout << "\n";
   }
-  std::cout << "policies:\n  " << text("policies") << "\n";
+  // One policy a line (algos/offline/collection.h), each indented under the heading.
+  std::string policies = text("policies");
+  for (std::size_t at = policies.find('\n'); at != std::string::npos; at = policies.find('\n', at + 3)) {
+    policies.replace(at, 1, "\n  ");
+  }
+  std::cout << "policies:\n  " << policies << "\n";
   if (!args.plot.empty()) std::cout << "wrote " << args.plot << "\n";
   return 0;
 }

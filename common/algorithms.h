@@ -20,7 +20,7 @@ namespace bsg {
 // (`trpo | lag-trpo | ...`) and of the key table's algorithm column follows the enum.
 enum class Algorithm {
   trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag, crpo,
-  bc_all, bc_safe, p3o, ipo, rcpo
+  bc_all, bc_safe, p3o, ipo, rcpo, cpq
 };
 
 // Which update the policy takes: the natural-gradient step with a line search
@@ -73,6 +73,9 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
     {Algorithm::p3o,      "p3o",      "P3O",      "",           AlgorithmFamily::first_order,  true,  false, true,  "darkcyan"},
     {Algorithm::ipo,      "ipo",      "IPO",      "",           AlgorithmFamily::first_order,  true,  false, true,  "orchid"},
     {Algorithm::rcpo,     "rcpo",     "RCPO",     "RCPO-PID",   AlgorithmFamily::trust_region, true,  true,  false, "maroon"},
+    // Constraints penalised Q-learning (Xu et al. 2022, OSRL's cpq.py): its multiplier is its own (alpha
+    // on the out-of-distribution cost), not the Lagrangian keys'.
+    {Algorithm::cpq,      "cpq",      "CPQ",      "",           AlgorithmFamily::offline,      true,  false, false, "slategray"},
 });
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }

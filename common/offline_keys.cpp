@@ -15,6 +15,7 @@ std::vector<ConfigKeyRow> offline_rows() {
   using R = RunConfig;
   using N = NumericRange;
   using K = OfflineKeys;
+  constexpr AlgorithmSet kCpq = algorithm_bit(Algorithm::cpq);
   return {
     // --- offline (docs/datasets.md#offline-runs) ---
     text("dataset", field<&R::offline, &K::dataset>(), L::run,
@@ -24,6 +25,26 @@ std::vector<ConfigKeyRow> offline_rows() {
             "offline: gradient steps per epoch, each on batch_size rows drawn uniformly with replacement"),
     integer("eval_every", field<&R::offline, &K::eval_every>(), L::algorithm, N::closed(1, kIntMax), kOffline,
             "offline: evaluate online (eval_episodes episodes) after every eval_every-th epoch and the last"),
+    // --- CPQ (algos/offline/cpq.h); OSRL's names: reward_scale, cost_scale, vae_lr, beta,
+    // vae_hidden_sizes, sample_action_num, qc_scalar, alpha_lr ---
+    real("reward_scale", field<&R::offline, &K::reward_scale>(), L::algorithm, N::above(0), kCpq,
+         "cpq: rewards are multiplied by reward_scale in the reward critics' targets"),
+    real("cost_scale", field<&R::offline, &K::cost_scale>(), L::algorithm, N::above(0), kCpq,
+         "cpq: costs are multiplied by cost_scale in the cost critics' targets"),
+    real("vae_lr", field<&R::offline, &K::vae_lr>(), L::algorithm, N::above(0), kCpq,
+         "cpq: Adam step size of the behaviour policy's conditional VAE"),
+    real("vae_kl_weight", field<&R::offline, &K::vae_kl_weight>(), L::algorithm, N::at_least(0), kCpq,
+         "cpq: beta, the weight of the VAE's KL term in its loss"),
+    integer("vae_hidden_size", field<&R::offline, &K::vae_hidden_size>(), L::algorithm, N::closed(1, 100000), kCpq,
+            "cpq: units of each of the two hidden layers of the VAE's encoder and decoder"),
+    integer("cpq_sampled_actions", field<&R::offline, &K::cpq_sampled_actions>(), L::algorithm, N::closed(1, 1000), kCpq,
+            "cpq: policy actions sampled per row; those whose VAE latent KL is in the top quarter are out of "
+            "distribution"),
+    real("cpq_qc_scalar", field<&R::offline, &K::cpq_qc_scalar>(), L::algorithm, N::above(0), kCpq,
+         "cpq: the cost critics are pushed to value out-of-distribution actions above cpq_qc_scalar times the "
+         "threshold l = cost_limit (1 - gamma^T) / ((1 - gamma) T), T = max_ep_len"),
+    real("cpq_alpha_lr", field<&R::offline, &K::cpq_alpha_lr>(), L::algorithm, N::above(0), kCpq,
+         "cpq: step size of log alpha, the multiplier of the out-of-distribution term (clamped to [-5, 5])"),
   };
 }
 // clang-format on

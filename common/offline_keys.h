@@ -8,9 +8,15 @@
 // zero_bias_init, dtype, cost_limit (BC-Safe's episodes), epochs,
 // eval_episodes, save_freq and seed.
 //
+// CPQ (algos/offline/cpq.h) reads its own keys here and, of other groups, gamma,
+// polyak and critic_lr.
+//
 // Parameters (the member initialisers; a run takes its algorithm's from
 // configs/algorithms/<alg>.yaml):
 //   dataset = "" (required), updates_per_epoch = 200, eval_every = 1
+//   reward_scale = 0.1, cost_scale = 1, vae_lr = 0.001, vae_kl_weight = 0.5,
+//   vae_hidden_size = 400, cpq_sampled_actions = 10, cpq_qc_scalar = 1.5,
+//   cpq_alpha_lr = 0.0001                                            cpq
 #pragma once
 
 #include <string>
@@ -21,6 +27,14 @@ struct OfflineKeys {
   std::string dataset;          // the HDF5 file (DSRL's layout) the policy learns from
   int updates_per_epoch = 200;  // gradient steps per epoch
   int eval_every = 1;           // online evaluation after every eval_every-th epoch (and the last)
+  double reward_scale = 0.1;    // CPQ: rewards times reward_scale in the critics' targets
+  double cost_scale = 1.0;      // CPQ: costs times cost_scale in the cost critics' targets
+  double vae_lr = 0.001;        // CPQ: Adam step size of the behaviour VAE
+  double vae_kl_weight = 0.5;   // CPQ: beta, the weight of the VAE's KL term
+  int vae_hidden_size = 400;    // CPQ: units of each of the VAE's two hidden layers (encoder and decoder)
+  int cpq_sampled_actions = 10;   // CPQ: policy actions sampled per row for the out-of-distribution term
+  double cpq_qc_scalar = 1.5;     // CPQ: the out-of-distribution cost is pushed above qc_scalar times l
+  double cpq_alpha_lr = 0.0001;   // CPQ: step size of log alpha, the out-of-distribution multiplier
 
   bool operator==(const OfflineKeys&) const = default;
 };

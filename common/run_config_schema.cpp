@@ -76,7 +76,8 @@ std::vector<ConfigKeyRow> leading_rows() {
            "value fits): float32 (the original's PyTorch default; faster, learning within seed spread) or "
            "float64; parameters, optimiser moments and CG vectors stay float64"),
     // --- returns, advantages, normalisation (docs/algorithms.md#normalisers, #rollout-and-gae) ---
-    real("gamma", field<&R::gamma>(), L::algorithm, N::open_closed(0, 1), all & ~kOffline,
+    real("gamma", field<&R::gamma>(), L::algorithm, N::open_closed(0, 1),
+         all & ~(algorithm_bit(Algorithm::bc_all) | algorithm_bit(Algorithm::bc_safe)),
          "discount factor for rewards and costs"),
     real("lam", field<&R::lam>(), L::algorithm, N::closed(0, 1), kOnPolicy,
          "GAE lambda for reward advantages"),

@@ -6,7 +6,7 @@
 
 #include "algos/core/adam_state.h"
 #include "algos/core/gradient_norm_clipping.h"
-#include "algos/off_policy/polyak.h"
+#include "algos/core/polyak.h"
 
 namespace bsg::algos {
 namespace {

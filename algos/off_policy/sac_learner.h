@@ -11,7 +11,7 @@
 #pragma once
 
 #include "algos/off_policy/off_policy_learner.h"
-#include "algos/off_policy/squashed_gaussian.h"
+#include "algos/core/squashed_gaussian.h"
 #include "algos/off_policy/temperature.h"
 
 namespace bsg::algos {

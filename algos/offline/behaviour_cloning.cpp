@@ -56,7 +56,7 @@ BehaviourCloning::BehaviourCloning(std::string name, int observation_size, int a
   }
 }
 
-double BehaviourCloning::update(const OfflineBatch& batch) {
+double BehaviourCloning::update(const OfflineBatch& batch, Rng& /*draws nothing*/) {
   if (batch.observations.cols() != network_.input_size() || batch.actions.cols() != network_.output_size() ||
       batch.observations.rows() != batch.actions.rows() || batch.observations.rows() < 1) {
     throw std::invalid_argument(name_ + ": a batch of " + std::to_string(batch.observations.rows()) + " x " +
@@ -127,7 +127,7 @@ BehaviourCloningResult train_behaviour_cloning(const OfflineDataset& dataset, co
   double loss = 0.0;
   for (int update = 0; update < options.updates; ++update) {
     batches.sample(rng, batch);
-    loss = learner.update(batch);
+    loss = learner.update(batch, rng);
   }
   BehaviourCloningResult result;
   result.policy = std::make_unique<ClonedPolicy>(learner.network(), batches.scaling().mean, batches.scaling().std, name);

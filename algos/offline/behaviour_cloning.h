@@ -51,7 +51,7 @@ class BehaviourCloning final : public OfflineAlgorithm {
   BehaviourCloning& operator=(const BehaviourCloning&) = delete;
 
   std::string_view name() const override { return name_; }
-  double update(const OfflineBatch& batch) override;
+  double update(const OfflineBatch& batch, Rng& noise) override;  // draws nothing
   ActingPolicy& acting() override { return acting_; }
   void save(BinaryWriter& writer) const override;
   void load(BinaryReader& reader) override;

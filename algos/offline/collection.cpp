@@ -69,6 +69,7 @@ OfflineDataset collect_dataset(envs::Env& env, const std::vector<SharedPolicy>& 
   Eigen::VectorXd step_costs(m);
 
   std::uint64_t episode = 0;
+  std::vector<bool> episode_whole;  // false for an episode cut at a policy's quota of transitions
   std::string policy_lines;
   for (std::size_t p = 0; p < policies.size(); ++p) {
     CollectionPolicy& policy = *policies[p].policy;
@@ -82,6 +83,7 @@ OfflineDataset collect_dataset(envs::Env& env, const std::vector<SharedPolicy>& 
       std::copy(first.begin(), first.end(), observation.begin());
       policy.start_episode(derive_seed(plan.seed, SeedStream::action_noise, 0, episode));
       bool done = false;
+      bool cut = false;
       while (!done) {
         policy.act(observation, action);
         for (double& a : action) a = std::clamp(a, spec.action_low, spec.action_high);
@@ -96,12 +98,14 @@ OfflineDataset collect_dataset(envs::Env& env, const std::vector<SharedPolicy>& 
           for (int i = 0; i < m; ++i) data.constraint_costs.push_back(static_cast<float>(step_costs[i]));
         }
         ++transitions_done;
-        const bool cut = plan.unit == CollectionUnit::transitions && transitions_done >= quotas[p];
+        const bool quota_reached = plan.unit == CollectionUnit::transitions && transitions_done >= quotas[p];
         data.terminals.push_back(step.terminated ? 1.0f : 0.0f);
-        data.timeouts.push_back(!step.terminated && (step.truncated || cut) ? 1.0f : 0.0f);
-        done = step.terminated || step.truncated || cut;
+        data.timeouts.push_back(!step.terminated && (step.truncated || quota_reached) ? 1.0f : 0.0f);
+        done = step.terminated || step.truncated || quota_reached;
+        cut = done && !step.terminated && !step.truncated;
         std::copy(step.observation.begin(), step.observation.end(), observation.begin());
       }
+      episode_whole.push_back(!cut);
       ++episodes_done;
       ++episode;
     }
@@ -114,11 +118,22 @@ OfflineDataset collect_dataset(envs::Env& env, const std::vector<SharedPolicy>& 
   data.text_attributes["seed"] = std::to_string(plan.seed);  // text: exact beyond a double's 2^53
   data.number_attributes["count"] = static_cast<double>(plan.count);
   data.number_attributes["episodes"] = static_cast<double>(episode);
-  const ReturnRanges ranges = return_ranges(dataset_episodes(data));
-  data.number_attributes["min_episode_reward"] = ranges.min_episode_reward;
-  data.number_attributes["max_episode_reward"] = ranges.max_episode_reward;
-  data.number_attributes["min_episode_cost"] = ranges.min_episode_cost;
-  data.number_attributes["max_episode_cost"] = ranges.max_episode_cost;
+  // The normalisation constants range over the whole episodes only: a cut
+  // episode's returns are those of a fragment (one row of a random policy
+  // would set max_episode_reward near 0). Without a whole episode the file
+  // has no constants, and its readers say so.
+  const std::vector<DatasetEpisode> episodes = dataset_episodes(data);
+  std::vector<DatasetEpisode> whole;
+  for (std::size_t e = 0; e < episodes.size(); ++e) {
+    if (episode_whole[e]) whole.push_back(episodes[e]);
+  }
+  if (!whole.empty()) {
+    const ReturnRanges ranges = return_ranges(whole);
+    data.number_attributes["min_episode_reward"] = ranges.min_episode_reward;
+    data.number_attributes["max_episode_reward"] = ranges.max_episode_reward;
+    data.number_attributes["min_episode_cost"] = ranges.min_episode_cost;
+    data.number_attributes["max_episode_cost"] = ranges.max_episode_cost;
+  }
   return data;
 }
 

@@ -42,7 +42,8 @@ std::vector<std::int64_t> split_by_shares(std::int64_t total, const std::vector<
 // transitions unit, each policy's last episode is cut at its quota and its
 // last row marked as a timeout (D4RL's convention). Fills the attributes
 // `policies`, `seed`, `unit`, `count`, `episodes` and the normalisation
-// constants of return_ranges; the caller adds the rest. Throws
+// constants of return_ranges over the whole episodes (those not cut; none
+// when every episode was cut); the caller adds the rest. Throws
 // std::invalid_argument for a count < 1 or bad shares.
 OfflineDataset collect_dataset(envs::Env& env, const std::vector<SharedPolicy>& policies, const CollectionPlan& plan,
                                const StepCostSelector& costs = StepCostSelector(),

@@ -182,6 +182,19 @@ namespace {
 const char* const kRequiredKeys[] = {"observations", "next_observations", "actions", "rewards",
                                      "costs",        "terminals",         "timeouts"};
 
+// Whether HDF5 converts the element type to float by value: reals and
+// integers of any width and byte order (D4RL's and DSRL's float32 and
+// float64, int64 or uint8 flags), and enumerations over an integer, which is
+// how h5py stores NumPy's bool (FALSE = 0, TRUE = 1): D4RL's terminals and
+// timeouts, and most likely DSRL's.
+bool holds_numbers(hid_t type) {
+  const H5T_class_t type_class = H5Tget_class(type);
+  if (type_class == H5T_FLOAT || type_class == H5T_INTEGER) return true;
+  if (type_class != H5T_ENUM) return false;
+  Handle base(H5Tget_super(type), H5Tclose);
+  return base.valid() && H5Tget_class(base.get()) == H5T_INTEGER;
+}
+
 // Reads `name` as float32; `columns` is 0 for a vector, else the expected
 // second dimension (-1: take it from the file). Returns the rows and columns.
 std::vector<float> read_array(hid_t file, const std::filesystem::path& path, const char* name, int rank,
@@ -194,9 +207,8 @@ std::vector<float> read_array(hid_t file, const std::filesystem::path& path, con
   Handle dataset(H5Dopen2(file, name, H5P_DEFAULT), H5Dclose);
   if (!dataset.valid()) fail(path, std::string("'") + name + "' is not an array");
   Handle type(H5Dget_type(dataset.get()), H5Tclose);
-  const H5T_class_t type_class = H5Tget_class(type.get());
-  if (type_class != H5T_FLOAT && type_class != H5T_INTEGER) {
-    fail(path, std::string("'") + name + "' holds neither real numbers nor integers");
+  if (!holds_numbers(type.get())) {
+    fail(path, std::string("'") + name + "' holds neither real numbers, integers nor booleans");
   }
   Handle space(H5Dget_space(dataset.get()), H5Sclose);
   const int file_rank = H5Sget_simple_extent_ndims(space.get());

@@ -19,8 +19,9 @@ namespace bsg::algos {
 // std::runtime_error naming the path on failure.
 void write_dataset_file(const std::filesystem::path& path, const OfflineDataset& dataset);
 
-// Reads a file written by write_dataset_file or by DSRL. Arrays of any real or
-// integer type are converted to float32. Throws std::runtime_error with one
+// Reads a file written by write_dataset_file, by DSRL or by D4RL. Arrays of
+// any real or integer type, or booleans as h5py writes NumPy's bool (an HDF5
+// enumeration over int8), are converted to float32 by value. Throws std::runtime_error with one
 // line naming the file and what is wrong: missing, not HDF5, a missing key,
 // an array of the wrong rank or length.
 OfflineDataset read_dataset_file(const std::filesystem::path& path);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "algos/offline/behaviour_cloning.h"
+#include "algos/offline/cpq.h"
 
 namespace bsg::algos {
 namespace {
@@ -14,10 +15,32 @@ namespace {
 
 }  // namespace
 
+CpqOptions cpq_options(const RunConfig& config) {
+  CpqOptions options;
+  options.hidden_sizes = config.hidden_sizes;
+  options.mlp = {.zero_bias_init = config.zero_bias_init, .dtype = config.dtype, .activation = config.activation};
+  options.vae_hidden_size = config.offline.vae_hidden_size;
+  options.gamma = config.gamma;
+  options.tau = config.off_policy.polyak;
+  options.actor_lr = config.first_order.actor_lr;
+  options.critic_lr = config.off_policy.critic_lr;
+  options.vae_lr = config.offline.vae_lr;
+  options.alpha_lr = config.offline.cpq_alpha_lr;
+  options.vae_kl_weight = config.offline.vae_kl_weight;
+  options.sampled_actions = config.offline.cpq_sampled_actions;
+  options.qc_scalar = config.offline.cpq_qc_scalar;
+  options.reward_scale = config.offline.reward_scale;
+  options.cost_scale = config.offline.cost_scale;
+  options.cost_limit = config.cost_limit;
+  options.episode_length = config.max_ep_len;
+  return options;
+}
+
 TrainingRows offline_training_rows(const RunConfig& config, const OfflineDataset& dataset) {
   switch (config.alg) {
     case Algorithm::bc_all: return all_rows(dataset);
     case Algorithm::bc_safe: return rows_within_cost_limit(dataset, config.cost_limit);
+    case Algorithm::cpq: return all_rows(dataset);
     default: not_offline(config);
   }
 }
@@ -33,6 +56,7 @@ std::unique_ptr<OfflineAlgorithm> make_offline_algorithm(const RunConfig& config
       return std::make_unique<BehaviourCloning>(std::string(algorithm_info(config.alg).label), observation_size,
                                                 action_size, scaling, config.hidden_sizes, network, config.first_order.actor_lr,
                                                 init_rng);
+    case Algorithm::cpq: return std::make_unique<Cpq>(observation_size, action_size, scaling, cpq_options(config), init_rng);
     default: not_offline(config);
   }
 }

@@ -5,6 +5,7 @@
 
 #include <memory>
 
+#include "algos/offline/cpq.h"
 #include "algos/offline/offline_algorithm.h"
 #include "algos/offline/offline_batches.h"
 #include "algos/offline/offline_dataset.h"
@@ -13,7 +14,11 @@
 
 namespace bsg::algos {
 
-// bc-all: every row; bc-safe: the episodes with cost return <= cost_limit. Throws
+// CPQ's options from a run: hidden_sizes, activation, zero_bias_init and dtype for every network;
+// gamma, polyak, actor_lr, critic_lr, cost_limit, max_ep_len (T) and the offline group's CPQ keys.
+CpqOptions cpq_options(const RunConfig& config);
+
+// bc-all and cpq: every row; bc-safe: the episodes with cost return <= cost_limit. Throws
 // std::invalid_argument if there is none, or if config.alg is not offline.
 TrainingRows offline_training_rows(const RunConfig& config, const OfflineDataset& dataset);
 

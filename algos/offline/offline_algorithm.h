@@ -14,24 +14,29 @@
 #include "algos/core/acting_policy.h"
 #include "algos/core/algorithm.h"
 #include "common/binary_io.h"
+#include "common/random.h"
 
 namespace bsg::algos {
 
-// One minibatch, row i a transition of the dataset: the observation standardised with the training
-// rows' mean and standard deviation (offline_batches.h), and the action as the dataset holds it.
-// Later algorithms that need rewards, costs or next observations add them here.
+// One minibatch, row i a transition of the dataset: the observations standardised with the training
+// rows' mean and standard deviation (offline_batches.h), the rest as the dataset holds it.
 struct OfflineBatch {
-  Eigen::MatrixXd observations;  // batch x observation size, standardised
-  Eigen::MatrixXd actions;       // batch x action size
+  Eigen::MatrixXd observations;       // batch x observation size, standardised
+  Eigen::MatrixXd actions;            // batch x action size
+  Eigen::MatrixXd next_observations;  // batch x observation size, standardised as the observations
+  Eigen::VectorXd rewards;            // batch
+  Eigen::VectorXd costs;              // batch (the dataset's costs: with several constraints their sum)
+  Eigen::VectorXd terminals;          // batch, 1 where the environment ended the episode (no bootstrap)
 };
 
 class OfflineAlgorithm {
  public:
   virtual ~OfflineAlgorithm() = default;
-  // "BC-All", "BC-Safe".
+  // "BC-All", "BC-Safe", "CPQ".
   virtual std::string_view name() const = 0;
-  // One gradient step on `batch`; returns its loss (the batch's, before the step).
-  virtual double update(const OfflineBatch& batch) = 0;
+  // One gradient step on `batch`, drawing any noise it needs (sampled actions, a VAE's latent) from
+  // `noise`, the family's batch stream; returns its loss (the batch's, before the step).
+  virtual double update(const OfflineBatch& batch, Rng& noise) = 0;
   // The policy as it acts now (on raw observations; its standardisation inside).
   virtual ActingPolicy& acting() = 0;
   // The learner's whole state (networks, optimisers, standardisation), for the checkpoint; load

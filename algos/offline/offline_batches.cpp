@@ -6,9 +6,10 @@
 namespace bsg::algos {
 namespace {
 
-Eigen::VectorXd observation_of(const OfflineDataset& dataset, std::size_t row) {
+Eigen::VectorXd observation_of(const OfflineDataset& dataset, std::size_t row,
+                               const std::vector<float> OfflineDataset::*array = &OfflineDataset::observations) {
   const int obs = dataset.observation_dim;
-  return Eigen::Map<const Eigen::VectorXf>(dataset.observations.data() + row * static_cast<std::size_t>(obs), obs)
+  return Eigen::Map<const Eigen::VectorXf>((dataset.*array).data() + row * static_cast<std::size_t>(obs), obs)
       .cast<double>();
 }
 
@@ -66,6 +67,10 @@ void OfflineBatches::sample(Rng& rng, OfflineBatch& batch) const {
   const int act = dataset_.action_dim;
   batch.observations.resize(batch_size_, obs);
   batch.actions.resize(batch_size_, act);
+  batch.next_observations.resize(batch_size_, obs);
+  batch.rewards.resize(batch_size_);
+  batch.costs.resize(batch_size_);
+  batch.terminals.resize(batch_size_);
   for (Eigen::Index i = 0; i < batch_size_; ++i) {
     const std::size_t row = rows_.rows[uniform_index(rng, rows_.rows.size())];
     batch.observations.row(i) = (observation_of(dataset_, row) - scaling_.mean).cwiseQuotient(scaling_.std).transpose();
@@ -73,6 +78,13 @@ void OfflineBatches::sample(Rng& rng, OfflineBatch& batch) const {
         Eigen::Map<const Eigen::VectorXf>(dataset_.actions.data() + row * static_cast<std::size_t>(act), act)
             .cast<double>()
             .transpose();
+    batch.next_observations.row(i) =
+        (observation_of(dataset_, row, &OfflineDataset::next_observations) - scaling_.mean)
+            .cwiseQuotient(scaling_.std)
+            .transpose();
+    batch.rewards(i) = dataset_.rewards[row];
+    batch.costs(i) = dataset_.costs[row];
+    batch.terminals(i) = dataset_.terminals[row];
   }
 }
 

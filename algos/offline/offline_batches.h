@@ -40,7 +40,8 @@ class OfflineBatches {
 
   const TrainingRows& rows() const { return rows_; }
   const ObservationScaling& scaling() const { return scaling_; }
-  // Fills `batch` with batch_size rows, each uniform_index(rng, rows) in turn.
+  // Fills `batch` with batch_size rows, each uniform_index(rng, rows) in turn (every field; the next
+  // observations standardised with the observations' constants).
   void sample(Rng& rng, OfflineBatch& batch) const;
 
  private:

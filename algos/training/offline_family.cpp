@@ -148,7 +148,7 @@ FamilyEpoch OfflineFamily::run_epoch(int epoch, bool /*checkpoint_follows: nothi
   double loss_sum = 0.0;
   for (int u = 0; u < config_.offline.updates_per_epoch; ++u) {
     batches_->sample(sample_rng_, batch_);
-    loss_sum += algorithm_->update(batch_);
+    loss_sum += algorithm_->update(batch_, sample_rng_);
   }
   loss_ = loss_sum / config_.offline.updates_per_epoch;
   check_finite(epoch, "behaviour-cloning loss", loss_);

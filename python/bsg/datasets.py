@@ -10,7 +10,8 @@ them (docs/datasets.md).
 ``load`` reads every array of the file and runs the checks DSRL's
 ``OfflineEnv.get_dataset`` runs (keys present, one row per transition,
 ``(N, 1)`` vectors flattened, float32 arrays); it raises ValueError with one
-line naming the file and the fault. It needs h5py (Debian's python3-h5py),
+line naming the file and the fault, a truncated or corrupted file included
+(h5py's own OSError names neither). It needs h5py (Debian's python3-h5py),
 imported only when a file is read, so that ``import bsg`` works without it.
 
 This file imports nothing else of the package (docs/python.md#the-package).
@@ -32,13 +33,22 @@ def _h5py():
     return h5py
 
 
+def _unreadable(path, error):
+    """ValueError naming the file for h5py's error on a damaged one (a truncated copy, flipped bytes)."""
+    detail = " ".join(str(error).split())
+    return ValueError(f"dataset file {path}: truncated or corrupted ({detail})")
+
+
 def _open(path):
     h5py = _h5py()
     if not os.path.isfile(path):
         raise ValueError(f"dataset file {path}: no such file")
     if not h5py.is_hdf5(path):
         raise ValueError(f"dataset file {path}: not an HDF5 file")
-    return h5py.File(path, "r")
+    try:
+        return h5py.File(path, "r")
+    except OSError as error:
+        raise _unreadable(path, error) from error
 
 
 def load(path):
@@ -49,7 +59,10 @@ def load(path):
         def visit(name, item):
             if isinstance(item, h5py.Dataset):
                 data[name] = item[()]
-        f.visititems(visit)
+        try:
+            f.visititems(visit)
+        except OSError as error:  # a chunk that does not inflate, an object header cut off
+            raise _unreadable(path, error) from error
     for key in REQUIRED_KEYS:
         if key not in data:
             raise ValueError(f"dataset file {path}: missing key '{key}' (a DSRL dataset has "
@@ -78,7 +91,11 @@ def attributes(path):
     """The file's attributes (how it was made, the normalisation constants) as a dict of str and float."""
     with _open(path) as f:
         out = {}
-        for name, value in f.attrs.items():
+        try:
+            items = list(f.attrs.items())
+        except OSError as error:
+            raise _unreadable(path, error) from error
+        for name, value in items:
             if isinstance(value, bytes):
                 value = value.decode("utf-8")
             elif isinstance(value, np.generic):

@@ -206,9 +206,27 @@ TEST(DatasetCommand, InfoCountsEpisodesAndDrawsThePlot) {
   ASSERT_EQ(info.exit_code, 0) << info.output;
   EXPECT_NE(info.output.find("transitions 600, complete episodes 3 (0 ended by the environment)"), std::string::npos)
       << info.output;
+  EXPECT_NE(info.output.find("policies:\n  random: share 1.000000, 3 episodes, 600 transitions\n"), std::string::npos)
+      << info.output;
   const std::string bytes = bsg::testing::read_text_file(png);
   ASSERT_GE(bytes.size(), 8u);
   EXPECT_EQ(bytes.substr(1, 3), "PNG");
+}
+
+TEST(DatasetCommand, InfoIndentsEveryPolicyLine) {
+  TemporaryDirectory dir("dataset_info");
+  const std::string file = (dir.path() / "d.hdf5").string();
+  ASSERT_EQ(
+      run_bsg("collect --out " + file + " --env SafetyBallCircle-v0 --policy random --policy random=3 --transitions 8")
+          .exit_code,
+      0);
+  const auto info = run_bsg("dataset info " + file);
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  // Shares 1:3 of 8 transitions: 2 and 6, each one cut episode.
+  EXPECT_NE(info.output.find("policies:\n  random: share 1.000000, 1 episodes, 2 transitions\n"
+                             "  random: share 3.000000, 1 episodes, 6 transitions\n"),
+            std::string::npos)
+      << info.output;
 }
 
 TEST(DatasetCommand, BadInputIsOneLine) {

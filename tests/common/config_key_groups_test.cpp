@@ -45,6 +45,7 @@ TEST(ConfigKeyGroups, AFlatKeyReachesItsGroupsMemberOnly) {
   expect_key_reaches("focops_eta", "0.1", [](RunConfig& c) { c.first_order.focops_eta = 0.1; });
   expect_key_reaches("batch_size", "64", [](RunConfig& c) { c.off_policy.batch_size = 64; });
   expect_key_reaches("auto_alpha", "true", [](RunConfig& c) { c.off_policy.auto_alpha = true; });
+  expect_key_reaches("cpq_sampled_actions", "4", [](RunConfig& c) { c.offline.cpq_sampled_actions = 4; });
   // RunConfig's own keys are reached as before.
   expect_key_reaches("gamma", "0.9", [](RunConfig& c) { c.gamma = 0.9; });
   expect_key_reaches("hidden_sizes", "[8, 8]", [](RunConfig& c) { c.hidden_sizes = {8, 8}; });
@@ -67,7 +68,7 @@ TEST(ConfigKeyGroups, EachGroupsRowsKeepTheirPlaceInTheTable) {
       {"value_time_input", "target_kl"},         {"kl_accept_factor", "lagrangian_multiplier_init"},
       {"pid_lambda_max", "cpo_r_sign"},          {"crpo_tolerance", "actor_lr"},
       {"learned_std_init", "num_envs"},          {"alpha_lr", "dataset"},
-      {"eval_every", "use_cost_value_function"}};
+      {"cpq_alpha_lr", "use_cost_value_function"}};
   for (const auto& [before, after] : seams) EXPECT_EQ(position(before) + 1, position(after)) << before;
   EXPECT_EQ(keys.front(), "env_id");
   EXPECT_EQ(keys.back(), "sampled_evaluation");

@@ -93,7 +93,7 @@ TEST(ShippedConfigs, AllSixteenEnvironmentsResolveWithEveryAlgorithm) {
 }
 
 TEST(ShippedConfigs, OfflineAlgorithmsResolveOnEveryEnvironmentWithADatasetAndListTheirKeys) {
-  ASSERT_EQ(kOfflineAlgorithms, (std::vector<std::string>{"bc-all", "bc-safe"}));
+  ASSERT_EQ(kOfflineAlgorithms, (std::vector<std::string>{"bc-all", "bc-safe", "cpq"}));
   for (const std::string& alg : kOfflineAlgorithms) {
     for (const auto& [env_id, row] : kTable3) {
       SCOPED_TRACE(env_id + " / " + alg);
@@ -103,12 +103,12 @@ TEST(ShippedConfigs, OfflineAlgorithmsResolveOnEveryEnvironmentWithADatasetAndLi
       const RunConfig c = resolve_run_config(request).config;
       EXPECT_EQ(c.offline.dataset, "data.hdf5");
       EXPECT_EQ(c.epochs, row.epochs);
-      // OSRL's BC: actor_lr 1e-3, batch_size 512, a_hidden_sizes [256, 256].
-      EXPECT_EQ(c.first_order.actor_lr, 1e-3);
+      // OSRL's BC: actor_lr 1e-3; its CPQ: actor_lr 1e-4; both batch_size 512, a_hidden_sizes [256, 256].
+      EXPECT_EQ(c.first_order.actor_lr, alg == "cpq" ? 1e-4 : 1e-3);
       EXPECT_EQ(c.off_policy.batch_size, 512);
       EXPECT_EQ(c.hidden_sizes, (std::vector<int>{256, 256}));
     }
-    const Algorithm id = alg == "bc-all" ? Algorithm::bc_all : Algorithm::bc_safe;
+    const Algorithm id = alg == "bc-all" ? Algorithm::bc_all : alg == "bc-safe" ? Algorithm::bc_safe : Algorithm::cpq;
     std::set<std::string> listed;
     for (const ConfigEntry& entry : read_config_file(algorithm_config_path(kShippedConfigs, id))) {
       listed.insert(entry.key);

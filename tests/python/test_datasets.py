@@ -106,3 +106,26 @@ def test_bad_files_are_one_line(tmp_path):
             f[key] = np.zeros(4, np.float32)
     with pytest.raises(ValueError, match="missing key 'timeouts'"):
         datasets.load(str(partial))
+
+
+def test_truncated_or_corrupted_files_are_one_line_naming_the_file(bsg_binary, tmp_path):
+    whole = tmp_path / "whole.hdf5"
+    subprocess.run([bsg_binary, "collect", "--out", str(whole), "--env", "SafetyBallCircle-v0", "--policy",
+                    "random", "--episodes", "20", "--seed", "1"], check=True, capture_output=True)
+    size = whole.stat().st_size
+    # The first half, as `head -c` leaves it.
+    half = tmp_path / "half.hdf5"
+    subprocess.run(f"head -c {size // 2} {whole} > {half}", shell=True, check=True)
+    # The whole length with 4 KiB of its middle overwritten: the gzip chunks there no longer inflate.
+    flipped = tmp_path / "flipped.hdf5"
+    data = bytearray(whole.read_bytes())
+    data[size // 3:size // 3 + 4096] = b"\xab" * 4096
+    flipped.write_bytes(bytes(data))
+    for damaged in (half, flipped):
+        with pytest.raises(ValueError) as caught:
+            datasets.load(str(damaged))
+        message = str(caught.value)
+        assert message.startswith(f"dataset file {damaged}: truncated or corrupted (")
+        assert "\n" not in message
+    with pytest.raises(ValueError, match=r"^dataset file .*half.hdf5: truncated or corrupted \("):
+        datasets.attributes(str(half))

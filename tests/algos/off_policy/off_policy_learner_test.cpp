@@ -14,8 +14,8 @@
 #include "../../heap_counter.h"
 #include "algos/off_policy/make_off_policy_learner.h"
 #include "learner_test_support.h"
-#include "algos/off_policy/polyak.h"
-#include "algos/off_policy/squashed_gaussian.h"
+#include "algos/core/polyak.h"
+#include "algos/core/squashed_gaussian.h"
 #include "algos/off_policy/target_smoothing.h"
 #include "algos/off_policy/temperature.h"
 

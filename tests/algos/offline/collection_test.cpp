@@ -93,9 +93,32 @@ TEST(Collection, TerminalsAndTimeoutsAtTheRightSteps) {
     EXPECT_EQ(d.terminals[t], 0.0f) << t;
     EXPECT_EQ(d.timeouts[t], (t == 4 || t == 9 || t == 11) ? 1.0f : 0.0f) << t;
   }
-  // Rewards are 1 + 0.01 k at episode step k: the range over the three episodes.
+  // Rewards are 1 + 0.01 k at episode step k: the two whole episodes return
+  // 1.01 + ... + 1.05 = 5.15 each; the cut third (1.01 + 1.02 = 2.03) sets no constant.
   EXPECT_NEAR(d.number_attributes.at("max_episode_reward"), 5.15, 1e-5);
-  EXPECT_NEAR(d.number_attributes.at("min_episode_reward"), 2.03, 1e-5);
+  EXPECT_NEAR(d.number_attributes.at("min_episode_reward"), 5.15, 1e-5);
+}
+
+TEST(Collection, ConstantsRangeOverWholeEpisodesOnly) {
+  testing::ScriptedEnv truncating(5);
+  std::unique_ptr<CollectionPolicy> random = make_random_policy(2, -1.0, 1.0);
+  // 10 transitions end where the second episode's time limit ends it: both
+  // are whole, 5.15 each.
+  OfflineDataset d = collect_dataset(truncating, {{random.get(), 1.0}}, {CollectionUnit::transitions, 10, 0});
+  EXPECT_NEAR(d.number_attributes.at("min_episode_reward"), 5.15, 1e-5);
+  // Two policies of 7 transitions each: each has one whole episode and one
+  // cut after 2 rows; only the whole ones count.
+  std::unique_ptr<CollectionPolicy> other = make_random_policy(2, -1.0, 1.0);
+  d = collect_dataset(truncating, {{random.get(), 1.0}, {other.get(), 1.0}}, {CollectionUnit::transitions, 14, 0});
+  ASSERT_EQ(d.size(), 14u);
+  EXPECT_NEAR(d.number_attributes.at("min_episode_reward"), 5.15, 1e-5);
+  EXPECT_NEAR(d.number_attributes.at("max_episode_reward"), 5.15, 1e-5);
+  // 3 transitions: one cut episode and no whole one, so no constants.
+  d = collect_dataset(truncating, {{random.get(), 1.0}}, {CollectionUnit::transitions, 3, 0});
+  for (const char* key : {"min_episode_reward", "max_episode_reward", "min_episode_cost", "max_episode_cost"}) {
+    EXPECT_EQ(d.number_attributes.count(key), 0u) << key;
+  }
+  EXPECT_EQ(d.number_attributes.at("episodes"), 1.0);
 }
 
 TEST(Collection, ActionsAreClippedToTheDeclaredBounds) {

@@ -1,12 +1,17 @@
 // The dataset file (algos/offline/dataset_file.h): a hand-made dataset written
 // and read back is the same, value for value; the file has DSRL's keys,
 // shapes and float32 type (checked with the HDF5 library directly, not through
-// our reader); a file that is not HDF5 or lacks a key is refused with one line.
+// our reader); files written by h5py with the element types DSRL and D4RL
+// use (bool flags, float64, float16, big-endian, integers, (N, 1) vectors)
+// read by value; a file that is not HDF5 or lacks a key is refused with one line.
 #include "algos/offline/dataset_file.h"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <sys/wait.h>
+
+#include <cstdlib>
 #include <fstream>
 
 #include "../../test_support.h"
@@ -121,6 +126,95 @@ TEST(DatasetFile, EpisodesAndReturnRanges) {
   EXPECT_DOUBLE_EQ(r.max_episode_reward, 4.0);
   EXPECT_DOUBLE_EQ(r.min_episode_cost, 1.0);
   EXPECT_DOUBLE_EQ(r.max_episode_cost, 1.0);
+}
+
+// One file per case, written by h5py with Debian's /usr/bin/python3 in one run: the small dataset's
+// three rows, each array with the NumPy type its case gives ({key: dtype} as Python text, float32
+// for the keys it leaves out), the vectors of shape `flat_shape`. Exit code 77: no h5py.
+struct H5pyCase {
+  const char* types;
+  const char* flat_shape;  // "(3,)" or "(3, 1)"
+};
+int write_with_h5py(const std::filesystem::path& directory, const std::vector<H5pyCase>& cases) {
+  const std::filesystem::path script = directory / "write.py";
+  std::ofstream out(script);
+  out << "import sys\n"
+      << "try:\n    import h5py, numpy as np\nexcept ImportError:\n    sys.exit(77)\n"
+      << "values = {'observations': [[0, 1, 2], [3, 4, 5], [6, 7, 8]],\n"
+      << "          'next_observations': [[3, 4, 5], [6.5, 7, 8], [9, 10, 11]],\n"
+      << "          'actions': [[0.5, -0.5], [1, -1], [0.25, 0]],\n"
+      << "          'rewards': [1.5, -2, 4], 'costs': [0, 1, 1],\n"
+      << "          'terminals': [False, True, False], 'timeouts': [False, False, True]}\n"
+      << "def write(name, types, flat_shape):\n"
+      << "    with h5py.File(name, 'w') as f:\n"
+      << "        for key, value in values.items():\n"
+      << "            array = np.array(value, dtype=types.get(key, np.float32))\n"
+      << "            f.create_dataset(key, data=array if array.ndim == 2 else array.reshape(flat_shape),\n"
+      << "                             compression='gzip')\n"
+      << "        f.attrs['env_id'] = 'SafetyBallCircle-v0'\n"
+      << "        f.attrs['cost_limit'] = 10.0\n";
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    out << "write('" << (directory / ("d" + std::to_string(i) + ".hdf5")).string() << "', " << cases[i].types << ", "
+        << cases[i].flat_shape << ")\n";
+  }
+  out.close();
+  const int status = std::system(("/usr/bin/python3 " + script.string() + " >/dev/null 2>&1").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(DatasetFile, ReadsTheTypesH5pyWritesForDsrlAndD4rl) {
+  testing::TemporaryDirectory dir("dataset_file");
+  const std::vector<H5pyCase> cases = {
+      // D4RL's and DSRL's own: float32 arrays, NumPy bool flags (an HDF5 enum over int8).
+      {"{'terminals': np.bool_, 'timeouts': np.bool_}", "(3,)"},
+      // The same flags as (N, 1) columns, which DSRL's loader flattens.
+      {"{'terminals': np.bool_, 'timeouts': np.bool_}", "(3, 1)"},
+      // float64 observations and rewards, float16 actions, big-endian costs, integer flags.
+      {"{'observations': np.float64, 'next_observations': np.float64, 'actions': np.float16,"
+       " 'rewards': np.float64, 'costs': '>f4', 'terminals': np.int64, 'timeouts': np.uint8}",
+       "(3,)"},
+      // Integer costs, as a count of violations might be stored; int8 flags.
+      {"{'costs': np.int32, 'terminals': np.int8, 'timeouts': np.int8}", "(3,)"},
+  };
+  const int status = write_with_h5py(dir.path(), cases);
+  if (status == 77 || status == 127) GTEST_SKIP() << "no h5py for /usr/bin/python3 (Debian: python3-h5py)";
+  ASSERT_EQ(status, 0);
+  // h5py stores NumPy's bool as an enumeration of one byte, the type the reader once refused.
+  EXPECT_EQ(array_info(dir.path() / "d0.hdf5", "terminals").type_class, H5T_ENUM);
+  EXPECT_EQ(array_info(dir.path() / "d0.hdf5", "terminals").type_size, 1u);
+  const OfflineDataset expected = small_dataset();
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const OfflineDataset back = read_dataset_file(dir.path() / ("d" + std::to_string(i) + ".hdf5"));
+    const char* types = cases[i].types;
+    EXPECT_EQ(back.observation_dim, 3) << types;
+    EXPECT_EQ(back.action_dim, 2) << types;
+    // Every value of small_dataset() is exact in float16 and float32.
+    EXPECT_EQ(back.observations, expected.observations) << types;
+    EXPECT_EQ(back.next_observations, expected.next_observations) << types;
+    EXPECT_EQ(back.actions, expected.actions) << types;
+    EXPECT_EQ(back.rewards, expected.rewards) << types;
+    EXPECT_EQ(back.costs, expected.costs) << types;
+    EXPECT_EQ(back.terminals, expected.terminals) << types;
+    EXPECT_EQ(back.timeouts, expected.timeouts) << types;
+    EXPECT_EQ(back.text_attributes.at("env_id"), "SafetyBallCircle-v0");
+    EXPECT_EQ(back.number_attributes.at("cost_limit"), 10.0);
+  }
+}
+
+TEST(DatasetFile, RefusesAnArrayOfText) {
+  testing::TemporaryDirectory dir("dataset_file");
+  // Fixed-length text: b'False' and b'True'.
+  const int status = write_with_h5py(dir.path(), {{"{'terminals': 'S5'}", "(3,)"}});
+  if (status == 77 || status == 127) GTEST_SKIP() << "no h5py for /usr/bin/python3 (Debian: python3-h5py)";
+  ASSERT_EQ(status, 0);
+  const std::filesystem::path file = dir.path() / "d0.hdf5";
+  try {
+    read_dataset_file(file);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "dataset file " + file.string() +
+                                         ": 'terminals' holds neither real numbers, integers nor booleans");
+  }
 }
 
 TEST(DatasetFile, RefusesANonHdf5File) {

@@ -109,7 +109,8 @@ TEST(BehaviourCloningAlgorithm, LossAndFirstAdamStepMatchTheHandGradient) {
     grad_w += (2.0 / 6.0) * e * s.transpose();
     grad_b += (2.0 / 6.0) * e;
   }
-  EXPECT_NEAR(bc.update(batch), loss, 1e-12);
+  Rng no_draws(0);
+  EXPECT_NEAR(bc.update(batch, no_draws), loss, 1e-12);
 
   // Adam's first step: m = (1 - b1) g, v = (1 - b2) g^2, bias-corrected to g and g^2, so every
   // parameter moves by -lr g / (|g| + eps): -lr sign(g) for gradients far above eps.
@@ -148,7 +149,7 @@ TEST(BehaviourCloningAlgorithm, SavedStateLoadsIntoAFreshOneAndActsAlike) {
   OfflineBatch batch;
   for (int u = 0; u < 10; ++u) {
     batches.sample(sample, batch);
-    trained.update(batch);
+    trained.update(batch, sample);
   }
   BinaryWriter writer;
   trained.save(writer);
@@ -162,7 +163,7 @@ TEST(BehaviourCloningAlgorithm, SavedStateLoadsIntoAFreshOneAndActsAlike) {
   EXPECT_EQ(loaded.network().parameters(), trained.network().parameters());
   EXPECT_EQ(loaded.scaling().mean, trained.scaling().mean);
   // The optimiser state came along: one more step on the same batch agrees too.
-  EXPECT_EQ(loaded.update(batch), trained.update(batch));
+  EXPECT_EQ(loaded.update(batch, sample), trained.update(batch, sample));
   EXPECT_EQ(loaded.network().parameters(), trained.network().parameters());
 
   BehaviourCloning safe("BC-Safe", 2, 1, placeholder, {5, 5}, MlpOptions{}, 1e-2, other);

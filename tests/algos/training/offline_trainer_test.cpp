@@ -144,25 +144,30 @@ TEST(OfflineTrainer, AResumedRunWritesTheUninterruptedRunsFiles) {
   const TemporaryDirectory dir("offline");
   const fs::path file = dir.path() / "data.h5";
   write_dataset_file(file, make_dataset(12, [](int e) { return 0.1 * (e % 4) - 0.1; }, [](int e) { return e % 3; }));
-  const RunConfig config = offline_config("bc-safe", file);
-  OfflineTrainer whole(config, RunDirectory(dir.path() / "whole"), MpiContext::single_process(), {});
-  ASSERT_TRUE(whole.run().finished);
-  TrainerOptions stop;
-  stop.stop_after_epochs = 1;
-  {
-    OfflineTrainer first(config, RunDirectory(dir.path() / "split"), MpiContext::single_process(), stop);
-    EXPECT_EQ(first.run().epochs_completed, 1);
-  }
-  TrainerOptions resume;
-  resume.resume = true;
-  OfflineTrainer second(config, RunDirectory(dir.path() / "split"), MpiContext::single_process(), resume);
-  ASSERT_EQ(second.epochs_completed(), 1);
-  ASSERT_TRUE(second.run().finished);
-  EXPECT_EQ(without_times(dir.path() / "split" / "progress.csv"), without_times(dir.path() / "whole" / "progress.csv"));
-  for (const char* name : {"evaluation.json", "returns.csv", "costs.csv"}) {
-    EXPECT_EQ(bsg::testing::read_text_file(dir.path() / "split" / name),
-              bsg::testing::read_text_file(dir.path() / "whole" / name))
-        << name;
+  // CPQ draws noise from the batch stream too, and keeps critics, targets, a VAE and alpha.
+  for (const std::string alg : {"bc-safe", "cpq"}) {
+    SCOPED_TRACE(alg);
+    const fs::path root = dir.path() / alg;
+    const RunConfig config = offline_config(alg, file, alg == "cpq" ? std::vector<std::string>{
+        "vae_hidden_size=8", "cpq_sampled_actions=2"} : std::vector<std::string>{});
+    OfflineTrainer whole(config, RunDirectory(root / "whole"), MpiContext::single_process(), {});
+    ASSERT_TRUE(whole.run().finished);
+    TrainerOptions stop;
+    stop.stop_after_epochs = 1;
+    {
+      OfflineTrainer first(config, RunDirectory(root / "split"), MpiContext::single_process(), stop);
+      EXPECT_EQ(first.run().epochs_completed, 1);
+    }
+    TrainerOptions resume;
+    resume.resume = true;
+    OfflineTrainer second(config, RunDirectory(root / "split"), MpiContext::single_process(), resume);
+    ASSERT_EQ(second.epochs_completed(), 1);
+    ASSERT_TRUE(second.run().finished);
+    EXPECT_EQ(without_times(root / "split" / "progress.csv"), without_times(root / "whole" / "progress.csv"));
+    for (const char* name : {"evaluation.json", "returns.csv", "costs.csv"}) {
+      EXPECT_EQ(bsg::testing::read_text_file(root / "split" / name), bsg::testing::read_text_file(root / "whole" / name))
+          << name;
+    }
   }
 }
 
@@ -199,6 +204,21 @@ TEST(OfflineTrainer, ErrorsNameWhatIsWrong) {
   EXPECT_THROW(resolve_run_config(request), ConfigError);
   request.set_arguments = {"env_id=" + std::string(kEnv), "alg=sac", "dataset=x.h5"};
   EXPECT_THROW(resolve_run_config(request), ConfigError);
+  // CPQ's keys: refused on another algorithm, and out of their range, each with one line naming the key.
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"alg=bc-all", "cpq_sampled_actions=3"}, {"alg=cpq", "cpq_sampled_actions=0"},
+        {"alg=cpq", "vae_kl_weight=-1"}, {"alg=cpq", "reward_scale=0"}}) {
+    request.set_arguments = {"env_id=" + std::string(kEnv), "dataset=x.h5"};
+    request.set_arguments.insert(request.set_arguments.end(), bad.begin(), bad.end());
+    try {
+      resolve_run_config(request);
+      FAIL() << bad[1];
+    } catch (const ConfigError& e) {
+      const std::string key = bad[1].substr(0, bad[1].find('='));
+      EXPECT_TRUE(bsg::testing::contains(e.what(), key)) << e.what();
+      EXPECT_FALSE(bsg::testing::contains(e.what(), "\n")) << e.what();
+    }
+  }
 
   const RunConfig missing = offline_config("bc-all", dir.path() / "nowhere.h5");
   try {

@@ -1,4 +1,4 @@
-#include "algos/off_policy/squashed_gaussian.h"
+#include "algos/core/squashed_gaussian.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "algos/off_policy/polyak.h"
+#include "algos/core/polyak.h"
 
 #include <stdexcept>
 
