@@ -20,7 +20,7 @@ namespace bsg {
 // (`trpo | lag-trpo | ...`) and of the key table's algorithm column follows the enum.
 enum class Algorithm {
   trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag, crpo,
-  bc_all, bc_safe,
+  bc_all, bc_safe, p3o, ipo, rcpo,
   ppo_saute, trpo_saute, ppo_early_terminated, trpo_early_terminated
 };
 
@@ -69,6 +69,11 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
     // constrains by its choice of data).
     {Algorithm::bc_all,   "bc-all",   "BC-All",   "",           AlgorithmFamily::offline,      false, false, false, "sienna"},
     {Algorithm::bc_safe,  "bc-safe",  "BC-Safe",  "",           AlgorithmFamily::offline,      true,  false, false, "seagreen"},
+    // The penalty methods of OmniSafe's on-policy table: P3O's exact ReLU penalty and IPO's log
+    // barrier over PPO, RCPO's multiplier folded into the reward over the natural-gradient step.
+    {Algorithm::p3o,      "p3o",      "P3O",      "",           AlgorithmFamily::first_order,  true,  false, true,  "darkcyan"},
+    {Algorithm::ipo,      "ipo",      "IPO",      "",           AlgorithmFamily::first_order,  true,  false, true,  "orchid"},
+    {Algorithm::rcpo,     "rcpo",     "RCPO",     "RCPO-PID",   AlgorithmFamily::trust_region, true,  true,  false, "maroon"},
     // PPO and TRPO on an environment whose budget decorator (algos/training/budget_decorator.h)
     // changes what the learner sees: Saute's budget in the observation, or the episode cut when
     // the budget is spent. OmniSafe's names (saute/, early_terminated/).
@@ -77,7 +82,7 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
     {Algorithm::ppo_early_terminated, "ppo-early-terminated", "PPOEarlyTerminated", "",
                                                                 AlgorithmFamily::first_order,  true,  false, true,  "mediumseagreen"},
     {Algorithm::trpo_early_terminated, "trpo-early-terminated", "TRPOEarlyTerminated", "",
-                                                                AlgorithmFamily::trust_region, true,  false, false, "orchid"},
+                                                                AlgorithmFamily::trust_region, true,  false, false, "slateblue"},
 });
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }

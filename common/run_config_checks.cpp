@@ -8,6 +8,8 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "common/config_error.h"
 #include "common/message_text.h"
@@ -108,6 +110,20 @@ void check_saute_budgets(const RunConfig& config, const ConfigOrigins& origins) 
   }
 }
 
+// The on-policy algorithms that constrain their cost, as "a, b or c" (the table's order).
+std::string constrained_on_policy_algorithms() {
+  std::vector<std::string_view> names;
+  for (const AlgorithmInfo& info : kAlgorithms) {
+    if (info.constrained && uses_on_policy_batches(info.alg)) names.push_back(info.name);
+  }
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) text += i + 1 == names.size() ? " or " : ", ";
+    text += names[i];
+  }
+  return text;
+}
+
 }  // namespace
 
 void check_run_config_relations(const RunConfig& config, const ConfigOrigins& origins) {
@@ -115,8 +131,8 @@ void check_run_config_relations(const RunConfig& config, const ConfigOrigins& or
     const std::string alg(to_string(config.alg));
     throw ConfigError(origin_of(origins, "constraints") + ": key 'constraints' lists " +
                       std::to_string(config.constraints.size()) + " constraints, but alg '" + alg +
-                      "' ignores cost (it maximises the return alone); use lag-trpo, pdo, cpo, pcpo, ppo-lag, "
-                      "focops or cup, or give one constraint to judge the policy by");
+                      "' ignores cost (it maximises the return alone); use " + constrained_on_policy_algorithms() +
+                      ", or give one constraint to judge the policy by");
   }
   if (is_offline(config.alg)) check_offline_relations(config, origins);
   if (keeps_saute_budgets(config.alg)) check_saute_budgets(config, origins);

@@ -18,6 +18,11 @@ std::string_view to_string(PcpoProjection projection) {
 
 namespace key_rows {
 
+namespace {
+// The line search's keys: RCPO takes the natural-gradient step without one (OmniSafe's NaturalPG).
+constexpr AlgorithmSet kLineSearching = kTrustRegion & ~algorithm_bit(Algorithm::rcpo);
+}  // namespace
+
 // clang-format off
 std::vector<ConfigKeyRow> trust_region_tool_rows() {
   using L = ConfigLayer;
@@ -35,11 +40,11 @@ std::vector<ConfigKeyRow> trust_region_tool_rows() {
             "conjugate-gradient iterations"),
     integer("fvp_subsample", field<&R::trust_region, &K::fvp_subsample>(), L::algorithm, N::closed(1, 1000), kTrustRegion,
             "the Fisher-vector product uses every k-th observation of the batch"),
-    integer("backtrack_budget", field<&R::trust_region, &K::backtrack_budget>(), L::algorithm, N::closed(1, 1000), kTrustRegion,
+    integer("backtrack_budget", field<&R::trust_region, &K::backtrack_budget>(), L::algorithm, N::closed(1, 1000), kLineSearching,
             "Q11: line-search steps (original: 15, CPO 20; report: CPO and PCPO 25)"),
-    real("backtrack_decay", field<&R::trust_region, &K::backtrack_decay>(), L::algorithm, N::open(0, 1), kTrustRegion,
+    real("backtrack_decay", field<&R::trust_region, &K::backtrack_decay>(), L::algorithm, N::open(0, 1), kLineSearching,
          "line-search step shrink factor"),
-    real("kl_accept_factor", field<&R::trust_region, &K::kl_accept_factor>(), L::algorithm, N::above(0), kTrustRegion,
+    real("kl_accept_factor", field<&R::trust_region, &K::kl_accept_factor>(), L::algorithm, N::above(0), kLineSearching,
          "Q13: the line search accepts a step with KL <= kl_accept_factor * target_kl"),
   };
 }

@@ -21,11 +21,8 @@ PolicyUpdateResult Cup::update(const PolicyUpdateInputs& inputs) {
   const FirstOrderOptions options = first_order_options(config());
 
   // 1. Performance step: PPO on the reward advantage, KL to pi_k.
-  const PolicyUpdateStart start = begin_policy_update(inputs);
-  SampleLossBatch performance_batch(inputs.surrogate, inputs.surrogate.reference_means(), inputs.policy.log_stds());
-  const MinibatchPassesResult performance =
-      minibatch_passes(inputs, options, adam(), performance_batch,
-                       clipped_surrogate_loss(inputs.surrogate.advantages(), config().first_order.clip));
+  const PassesFromStart performance =
+      passes_from_start(inputs, clipped_surrogate_loss(inputs.surrogate.advantages(), config().first_order.clip));
 
   // 2. Projection step from pi_{k+1/2}: l_i = KL_i + c rho_i sum_j nu_j A^Cj_i.
   const double c = (1.0 - config().gamma * config().lam_c) / (1.0 - config().gamma);
@@ -38,7 +35,7 @@ PolicyUpdateResult Cup::update(const PolicyUpdateInputs& inputs) {
       minibatch_passes(inputs, options, adam(), projection_batch, cup_projection_loss(weighted_cost_advantages));
 
   // Loss/Pi: the reward loss l_R.
-  return make_result(common_diagnostics(inputs, start.before, 1.0, 0.0), performance,
+  return make_result(common_diagnostics(inputs, performance.start.before, 1.0, 0.0), performance.passes,
                      {{"Misc/SecondStepStopIter", static_cast<double>(projection.passes)}});
 }
 

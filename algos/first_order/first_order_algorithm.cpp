@@ -45,6 +45,15 @@ std::vector<double> FirstOrderAlgorithm::update_multipliers(const PolicyUpdateIn
   return multipliers_.update(inputs, config(), name());
 }
 
+FirstOrderAlgorithm::PassesFromStart FirstOrderAlgorithm::passes_from_start(const PolicyUpdateInputs& inputs,
+                                                                            const SampleLossFunction& sample_loss,
+                                                                            const MinibatchStepHook& before_step) {
+  PassesFromStart result{begin_policy_update(inputs), {}};
+  SampleLossBatch batch(inputs.surrogate, inputs.surrogate.reference_means(), inputs.policy.log_stds());  // KL_i to theta_old
+  result.passes = minibatch_passes(inputs, first_order_options(config()), adam_, batch, sample_loss, before_step);
+  return result;
+}
+
 PolicyUpdateResult FirstOrderAlgorithm::make_result(std::vector<NamedScalar> common,
                                                     const MinibatchPassesResult& passes,
                                                     std::vector<NamedScalar> own) const {

@@ -1,4 +1,4 @@
-// What PPO, PPO-Lag, FOCOPS and CUP share around their losses
+// What PPO, PPO-Lag, FOCOPS, CUP, P3O and IPO share around their losses
 // (docs/algorithms.md#first-order-updates): the policy's Adam, the Lagrange
 // multipliers of the constrained ones (one per constraint, updated before
 // the policy, constraint_multipliers.h), their columns and their saved state.
@@ -36,6 +36,15 @@ class FirstOrderAlgorithm : public OnPolicyAlgorithm {
   // Every multiplier's step on its J_Cj (constrained algorithms only); returns lambda_1..lambda_m.
   std::vector<double> update_multipliers(const PolicyUpdateInputs& inputs);
   PolicyAdam& adam() { return adam_; }
+
+  // The passes of an update that starts at theta_old: begin_policy_update (theta_old and the
+  // surrogates before), then minibatch_passes of `sample_loss` with KL_i to theta_old.
+  struct PassesFromStart {
+    PolicyUpdateStart start;
+    MinibatchPassesResult passes;
+  };
+  PassesFromStart passes_from_start(const PolicyUpdateInputs& inputs, const SampleLossFunction& sample_loss,
+                                    const MinibatchStepHook& before_step = {});
 
   // The update's columns: `common` (common_diagnostics), the passes', `own` (in
   // own_columns order), then the multipliers'.

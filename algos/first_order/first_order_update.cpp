@@ -245,7 +245,8 @@ void PolicyAdam::restore_state(std::span<const NamedScalar> saved) {
 }
 
 MinibatchPassesResult minibatch_passes(const PolicyUpdateInputs& inputs, const FirstOrderOptions& options,
-                                       PolicyAdam& adam, SampleLossBatch& batch, const SampleLossFunction& sample_loss) {
+                                       PolicyAdam& adam, SampleLossBatch& batch, const SampleLossFunction& sample_loss,
+                                       const MinibatchStepHook& before_step) {
   if (inputs.minibatch_rng == nullptr) {
     throw std::invalid_argument("minibatch_passes: the update needs a minibatch RNG (PolicyUpdateInputs::minibatch_rng)");
   }
@@ -267,8 +268,9 @@ MinibatchPassesResult minibatch_passes(const PolicyUpdateInputs& inputs, const F
       // Minibatch k: permutation[floor(k N / K), floor((k + 1) N / K)).
       const Eigen::Index begin = k * n / minibatches;
       const Eigen::Index end = (k + 1) * n / minibatches;
-      batch.loss(inputs.policy, std::span<const Eigen::Index>(permutation.data() + begin, static_cast<std::size_t>(end - begin)),
-                 sample_loss, &gradient);
+      const std::span<const Eigen::Index> rows(permutation.data() + begin, static_cast<std::size_t>(end - begin));
+      if (before_step) before_step(batch, rows);
+      batch.loss(inputs.policy, rows, sample_loss, &gradient);
       inputs.mpi.average_in_place(gradient);  // one allreduce per step
       result.gradient_norm = clip_gradient_norm(gradient, options.max_grad_norm);  // on the averaged gradient
       adam.step(inputs.policy, gradient);

@@ -1,11 +1,12 @@
-// The first-order policy update of PPO, PPO-Lag, FOCOPS and CUP
+// The first-order policy update of PPO, PPO-Lag, FOCOPS, CUP, P3O and IPO
 // (docs/algorithms.md#first-order-updates), beside the trust-region one: several
 // passes over shuffled minibatches of the batch, one Adam step on the policy
 // per minibatch with the gradient averaged over ranks (so `mpirun -np N` takes
 // the steps one process takes on the same data), an optional early stop once
 // the KL to the update's anchor policy exceeds target_kl.
 //
-// Every loss here is a mean over the minibatch of a per-sample loss
+// Every loss here is a mean over the minibatch of a per-sample loss (P3O's, whose ReLU holds a
+// minibatch mean, is one once a step's hook has evaluated that mean: MinibatchStepHook)
 // l_i(rho_i, KL_i) of
 //   rho_i = exp(log pi_theta(a_i|s_i) - log pi_old,i)   pi_old: the policy that collected the batch
 //   KL_i  = KL(pi_theta || pi_anchor)[s_i] = sum_j (mu_ij - mu_anchor,ij)^2 / (2 sigma^2)
@@ -142,6 +143,10 @@ class PolicyAdam {
   std::optional<Adam> adam_;
 };
 
+// Called before each minibatch step with the batch and the minibatch's rows, on every rank
+// (collective): an update whose loss depends on the whole minibatch (P3O's ReLU of a mean) reads it here.
+using MinibatchStepHook = std::function<void(SampleLossBatch& batch, std::span<const Eigen::Index> rows)>;
+
 // What the minibatch passes did.
 struct MinibatchPassesResult {
   int passes = 0;              // passes completed (<= update_iters; fewer after an early stop)
@@ -152,10 +157,11 @@ struct MinibatchPassesResult {
 // per pass, the rank's batch shuffled by inputs.minibatch_rng and cut into
 // K = max(1, floor(N_all / minibatch_size)) nearly equal minibatches (N_all:
 // the batch summed over ranks), and per minibatch the rank-averaged gradient of
-// its mean l_i, rescaled to max_grad_norm, and one Adam step; after each pass,
-// stop if kl_early_stop and the rank-averaged mean KL_i exceeds target_kl.
+// its mean l_i, rescaled to max_grad_norm, and one Adam step (before_step, if given,
+// first); after each pass, stop if kl_early_stop and the rank-averaged mean KL_i exceeds target_kl.
 MinibatchPassesResult minibatch_passes(const PolicyUpdateInputs& inputs, const FirstOrderOptions& options,
-                                       PolicyAdam& adam, SampleLossBatch& batch, const SampleLossFunction& sample_loss);
+                                       PolicyAdam& adam, SampleLossBatch& batch, const SampleLossFunction& sample_loss,
+                                       const MinibatchStepHook& before_step = {});
 
 // The progress columns every first-order update adds after the common ones:
 // Misc/StopIter (passes completed) and Misc/gradient_norm.

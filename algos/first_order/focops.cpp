@@ -19,13 +19,11 @@ PolicyUpdateResult Focops::update(const PolicyUpdateInputs& inputs) {
   for (double nu : update_multipliers(inputs)) cost_weights.push_back(-nu);
   const Eigen::VectorXd advantages = combined_advantages(inputs.surrogate, 1.0, cost_weights);
 
-  const PolicyUpdateStart start = begin_policy_update(inputs);
-  SampleLossBatch batch(inputs.surrogate, inputs.surrogate.reference_means(), inputs.policy.log_stds());  // KL_i to pi_theta_k
-  // 1. The masked loss's minibatch passes.
-  const MinibatchPassesResult passes =
-      minibatch_passes(inputs, first_order_options(config()), adam(), batch,
-                       focops_loss(advantages, config().first_order.focops_lam, config().first_order.focops_eta));
-  return make_result(common_diagnostics(inputs, start.before, 1.0, std::span<const double>(cost_weights)), passes, {});
+  // 1. The masked loss's minibatch passes, KL_i to pi_theta_k.
+  const PassesFromStart update = passes_from_start(
+      inputs, focops_loss(advantages, config().first_order.focops_lam, config().first_order.focops_eta));
+  return make_result(common_diagnostics(inputs, update.start.before, 1.0, std::span<const double>(cost_weights)),
+                     update.passes, {});
 }
 
 }  // namespace bsg::algos

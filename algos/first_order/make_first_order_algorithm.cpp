@@ -5,6 +5,8 @@
 
 #include "algos/first_order/cup.h"
 #include "algos/first_order/focops.h"
+#include "algos/first_order/ipo.h"
+#include "algos/first_order/p3o.h"
 #include "algos/first_order/ppo.h"
 
 namespace bsg::algos {
@@ -17,6 +19,8 @@ std::unique_ptr<OnPolicyAlgorithm> make_first_order_algorithm(const RunConfig& c
     case Algorithm::ppo_early_terminated: return std::make_unique<Ppo>(config);
     case Algorithm::focops: return std::make_unique<Focops>(config);
     case Algorithm::cup: return std::make_unique<Cup>(config);
+    case Algorithm::p3o: return std::make_unique<P3o>(config);
+    case Algorithm::ipo: return std::make_unique<Ipo>(config);
     default: break;
   }
   throw std::invalid_argument("make_first_order_algorithm: " + std::string(to_string(config.alg)) +

@@ -1,5 +1,5 @@
 // The factory of the first-order family: the RunConfig's `alg` picks PPO,
-// PPO-Lag (CPPO-PID with the PID multiplier), FOCOPS or CUP; each reads its
+// PPO-Lag (CPPO-PID with the PID multiplier), FOCOPS, CUP, P3O or IPO; each reads its
 // keys from the same RunConfig (config.first_order, config.multiplier). A
 // first-order variant adds its case here; make_algorithm
 // (algos/training/make_algorithm.h) dispatches to this factory by family.

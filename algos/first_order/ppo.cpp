@@ -35,13 +35,11 @@ PolicyUpdateResult Ppo::update(const PolicyUpdateInputs& inputs) {
   if (multipliers() != nullptr) weights = lagrangian_surrogate_weights(update_multipliers(inputs));
   const Eigen::VectorXd advantages = combined_advantages(inputs.surrogate, weights.reward, weights.costs);
 
-  const PolicyUpdateStart start = begin_policy_update(inputs);
-  SampleLossBatch batch(inputs.surrogate, inputs.surrogate.reference_means(), inputs.policy.log_stds());  // KL_i to theta_old
   // 1. The clipped surrogate's minibatch passes.
-  const MinibatchPassesResult passes = minibatch_passes(inputs, first_order_options(config()), adam(), batch,
-                                                        clipped_surrogate_loss(advantages, config().first_order.clip));
-  return make_result(common_diagnostics(inputs, start.before, weights.reward, std::span<const double>(weights.costs)),
-                     passes, {});
+  const PassesFromStart update = passes_from_start(inputs, clipped_surrogate_loss(advantages, config().first_order.clip));
+  return make_result(
+      common_diagnostics(inputs, update.start.before, weights.reward, std::span<const double>(weights.costs)),
+      update.passes, {});
 }
 
 }  // namespace bsg::algos

@@ -8,6 +8,7 @@
 #include "algos/trust_region/lag_trpo.h"
 #include "algos/trust_region/pcpo.h"
 #include "algos/trust_region/pdo.h"
+#include "algos/trust_region/rcpo.h"
 #include "algos/trust_region/trpo.h"
 
 namespace bsg::algos {
@@ -22,6 +23,7 @@ std::unique_ptr<OnPolicyAlgorithm> make_trust_region_algorithm(const RunConfig& 
     case Algorithm::pdo: return std::make_unique<Pdo>(config);
     case Algorithm::pcpo: return std::make_unique<Pcpo>(config);
     case Algorithm::crpo: return std::make_unique<Crpo>(config);
+    case Algorithm::rcpo: return std::make_unique<Rcpo>(config);
     default: break;
   }
   throw std::invalid_argument("make_trust_region_algorithm: " + std::string(to_string(config.alg)) +

@@ -1,5 +1,5 @@
 // The factory of the trust-region family: the RunConfig's `alg` picks TRPO,
-// TRPO-L, CPO, PDO, PCPO or CRPO; each reads its keys from the same RunConfig
+// TRPO-L, CPO, PDO, PCPO, CRPO or RCPO; each reads its keys from the same RunConfig
 // (config.trust_region, config.multiplier). A trust-region variant adds its
 // case here (docs/architecture.md#adding-things); make_algorithm
 // (algos/training/make_algorithm.h) dispatches to this factory by family.

@@ -95,6 +95,27 @@ struct SyntheticBatch {
   }
 };
 
+// Central differences of `loss` (a function of the policy's mean-net parameters) at the current
+// parameters, which it leaves as they were.
+template <class Loss>
+Eigen::VectorXd central_difference_gradient(SyntheticBatch& batch, const Loss& loss) {
+  const Eigen::VectorXd theta = batch.policy.mean_net().parameters();
+  Eigen::VectorXd gradient(theta.size());
+  const double h = 1e-6;
+  for (Eigen::Index k = 0; k < theta.size(); ++k) {
+    Eigen::VectorXd shifted = theta;
+    shifted[k] += h;
+    batch.policy.mean_net().set_parameters(shifted);
+    const double up = loss();
+    shifted[k] = theta[k] - h;
+    batch.policy.mean_net().set_parameters(shifted);
+    const double down = loss();
+    gradient[k] = (up - down) / (2 * h);
+  }
+  batch.policy.mean_net().set_parameters(theta);
+  return gradient;
+}
+
 // The batch's surrogates and policy means before a constrained update (CPO,
 // PCPO), and the end-to-end constrained tests an accepted update must pass
 // (docs/algorithms.md#test-oracles): the KL stays within 1.5 target_kl, the cost surrogate rises
@@ -186,8 +207,14 @@ inline RunConfig config_for(Algorithm alg) {
     case Algorithm::ppo:
     case Algorithm::ppo_lag:
     case Algorithm::focops:
-    case Algorithm::cup:  // the first-order defaults of configs/algorithms (OmniSafe's)
+    case Algorithm::cup:
+    case Algorithm::p3o:
+    case Algorithm::ipo:  // the first-order defaults of configs/algorithms (OmniSafe's)
       config.trust_region.target_kl = 0.02;
+      config.multiplier.lambda_optimizer = LambdaOptimizer::adam;
+      config.multiplier.lambda_lr = 0.035;
+      break;
+    case Algorithm::rcpo:  // OmniSafe's RCPO.yaml
       config.multiplier.lambda_optimizer = LambdaOptimizer::adam;
       config.multiplier.lambda_lr = 0.035;
       break;

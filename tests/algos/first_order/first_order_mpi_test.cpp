@@ -38,7 +38,8 @@ TEST(FirstOrderMpi, TwoRanksWithHalvesTakeTheStepsOfOneProcessOnTheWholeBatch) {
   const MpiContext mpi = MpiContext::world();
   ASSERT_EQ(mpi.size(), 2);
   for (const bool learned : {false, true})
-  for (Algorithm alg : {Algorithm::ppo, Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup}) {
+  for (Algorithm alg : {Algorithm::ppo, Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup, Algorithm::p3o,
+                        Algorithm::ipo}) {
     SCOPED_TRACE(std::string(to_string(alg)) + (learned ? " learned log sigma" : ""));
     RunConfig config = config_of(alg);
     config.first_order.policy_minibatch_size = 1000;  // one minibatch per pass
@@ -72,7 +73,7 @@ TEST(FirstOrderMpi, TwoRanksWithHalvesTakeTheStepsOfOneProcessOnTheWholeBatch) {
 
 TEST(FirstOrderMpi, RanksWithDifferentDataStayInLockstepOverManyMinibatches) {
   const MpiContext mpi = MpiContext::world();
-  for (Algorithm alg : {Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup}) {
+  for (Algorithm alg : {Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup, Algorithm::p3o, Algorithm::ipo}) {
     SCOPED_TRACE(std::string(to_string(alg)));
     RunConfig config = config_of(alg);
     config.first_order.policy_minibatch_size = 16;  // 8 minibatches of 8 samples per rank

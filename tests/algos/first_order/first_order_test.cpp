@@ -22,6 +22,7 @@ namespace bsg::algos {
 namespace {
 
 using testing::SyntheticBatch;
+using testing::central_difference_gradient;
 using testing::all_rows;
 using testing::HandAdam;
 
@@ -58,26 +59,6 @@ double hand_cup_loss(const SyntheticBatch& batch, const Eigen::MatrixXd& anchor,
   return (sample_kls(batch, anchor) + batch.ratios().cwiseProduct(a)).mean();
 }
 
-// Central differences of `loss` (a function of the policy's parameters) at the current parameters.
-template <class Loss>
-Eigen::VectorXd finite_difference_gradient(SyntheticBatch& batch, const Loss& loss) {
-  const Eigen::VectorXd theta = batch.policy.mean_net().parameters();
-  Eigen::VectorXd gradient(theta.size());
-  const double h = 1e-6;
-  for (Eigen::Index k = 0; k < theta.size(); ++k) {
-    Eigen::VectorXd shifted = theta;
-    shifted[k] += h;
-    batch.policy.mean_net().set_parameters(shifted);
-    const double up = loss();
-    shifted[k] = theta[k] - h;
-    batch.policy.mean_net().set_parameters(shifted);
-    const double down = loss();
-    gradient[k] = (up - down) / (2 * h);
-  }
-  batch.policy.mean_net().set_parameters(theta);
-  return gradient;
-}
-
 // Moves the policy away from the one that drew the batch, so that ratios and KLs are not trivial.
 Eigen::MatrixXd move_policy(SyntheticBatch& batch, double scale, std::uint64_t seed) {
   const Eigen::MatrixXd anchor = batch.means();
@@ -106,7 +87,7 @@ TEST(FirstOrderLosses, ClippedSurrogateMatchesTheHandWrittenLossAndFiniteDiffere
   Eigen::VectorXd gradient;
   const double loss = losses.loss(batch.policy, rows, clipped_surrogate_loss(batch.advantages, eps), &gradient);
   EXPECT_NEAR(loss, hand_clipped_loss(batch, batch.advantages, eps), 1e-12);
-  const Eigen::VectorXd expected = finite_difference_gradient(batch, [&] { return hand_clipped_loss(batch, batch.advantages, eps); });
+  const Eigen::VectorXd expected = central_difference_gradient(batch, [&] { return hand_clipped_loss(batch, batch.advantages, eps); });
   EXPECT_LT((gradient - expected).norm(), 1e-6 * expected.norm()) << gradient.transpose() << "\n" << expected.transpose();
 }
 
@@ -125,7 +106,7 @@ TEST(FirstOrderLosses, FocopsLossMatchesTheHandWrittenLossAndFiniteDifferences) 
   const double loss = losses.loss(batch.policy, all_rows(40), focops_loss(a, 1.5, eta), &gradient);
   EXPECT_NEAR(loss, hand_focops_loss(batch, anchor, a, 1.5, eta), 1e-12);
   const Eigen::VectorXd expected =
-      finite_difference_gradient(batch, [&] { return hand_focops_loss(batch, anchor, a, 1.5, eta); });
+      central_difference_gradient(batch, [&] { return hand_focops_loss(batch, anchor, a, 1.5, eta); });
   EXPECT_LT((gradient - expected).norm(), 1e-6 * expected.norm());
   EXPECT_NEAR(losses.mean_kl(batch.policy), kl.mean(), 1e-14);
 }
@@ -145,7 +126,7 @@ TEST(FirstOrderLosses, CupProjectionLossMatchesTheHandWrittenLossAndFiniteDiffer
   double expected_loss = 0;
   for (Eigen::Index i : rows) expected_loss += (kl[i] + rho[i] * a[i]) / 7.0;
   EXPECT_NEAR(loss, expected_loss, 1e-12);
-  const Eigen::VectorXd expected = finite_difference_gradient(batch, [&] {
+  const Eigen::VectorXd expected = central_difference_gradient(batch, [&] {
     const Eigen::VectorXd r = batch.ratios();
     const Eigen::VectorXd k = sample_kls(batch, anchor);
     double sum = 0;

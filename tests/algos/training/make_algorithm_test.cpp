@@ -56,6 +56,9 @@ TEST(MakeAlgorithm, BuildsEachAlgorithmWithTheSpecColumns) {
       {Algorithm::ppo_lag, "ppo-lag", first_order_with({"LagrangeMultiplier"}), 5},
       {Algorithm::focops, "focops", first_order_with({"LagrangeMultiplier"}), 5},
       {Algorithm::cup, "cup", first_order_with({"Misc/SecondStepStopIter", "LagrangeMultiplier"}), 5},
+      {Algorithm::p3o, "p3o", first_order_with({"p3o_penalty"}), 1},
+      {Algorithm::ipo, "ipo", first_order_with({"ipo_penalty"}), 1},
+      {Algorithm::rcpo, "rcpo", with_common({"LagrangeMultiplier"}), 4},
   };
   for (const auto& entry : expected) {
     const RunConfig config = testing::config_for(entry.alg);
