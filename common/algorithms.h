@@ -20,7 +20,8 @@ namespace bsg {
 // (`trpo | lag-trpo | ...`) and of the key table's algorithm column follows the enum.
 enum class Algorithm {
   trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag, crpo,
-  bc_all, bc_safe, p3o, ipo, rcpo, cpq
+  bc_all, bc_safe, p3o, ipo, rcpo, cpq,
+  ppo_saute, trpo_saute, ppo_early_terminated, trpo_early_terminated
 };
 
 // Which update the policy takes: the natural-gradient step with a line search
@@ -76,6 +77,15 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
     // Constraints penalised Q-learning (Xu et al. 2022, OSRL's cpq.py): its multiplier is its own (alpha
     // on the out-of-distribution cost), not the Lagrangian keys'.
     {Algorithm::cpq,      "cpq",      "CPQ",      "",           AlgorithmFamily::offline,      true,  false, false, "slategray"},
+    // PPO and TRPO on an environment whose budget decorator (algos/training/budget_decorator.h)
+    // changes what the learner sees: Saute's budget in the observation, or the episode cut when
+    // the budget is spent. OmniSafe's names (saute/, early_terminated/).
+    {Algorithm::ppo_saute, "ppo-saute", "PPOSaute", "",         AlgorithmFamily::first_order,  true,  false, true,  "lightcoral"},
+    {Algorithm::trpo_saute, "trpo-saute", "TRPOSaute", "",      AlgorithmFamily::trust_region, true,  false, false, "steelblue"},
+    {Algorithm::ppo_early_terminated, "ppo-early-terminated", "PPOEarlyTerminated", "",
+                                                                AlgorithmFamily::first_order,  true,  false, true,  "mediumseagreen"},
+    {Algorithm::trpo_early_terminated, "trpo-early-terminated", "TRPOEarlyTerminated", "",
+                                                                AlgorithmFamily::trust_region, true,  false, false, "slateblue"},
 });
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }

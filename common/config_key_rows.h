@@ -151,5 +151,6 @@ std::vector<ConfigKeyRow> trust_region_variant_rows();  // trust_region_keys.cpp
 std::vector<ConfigKeyRow> first_order_rows();           // first_order_keys.cpp
 std::vector<ConfigKeyRow> off_policy_rows();            // off_policy_keys.cpp
 std::vector<ConfigKeyRow> offline_rows();               // offline_keys.cpp
+std::vector<ConfigKeyRow> budget_rows();                // budget_keys.cpp
 
 }  // namespace bsg::key_rows

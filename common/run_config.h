@@ -11,6 +11,7 @@
 //   first_order   FirstOrderKeys   common/first_order_keys.h/.cpp  (ppo .. cup)
 //   off_policy    OffPolicyKeys    common/off_policy_keys.h/.cpp   (sac .. ddpg-lag)
 //   offline       OfflineKeys      common/offline_keys.h/.cpp      (bc-all, bc-safe)
+//   budget        BudgetKeys       common/budget_keys.h/.cpp       (ppo-saute, trpo-saute)
 // In YAML every key is flat (`cg_iters: 10`, not nested under its group).
 //
 // Parameters: every key, its type, where its default comes from, its valid
@@ -31,6 +32,7 @@
 
 #include "common/activation.h"
 #include "common/algorithms.h"
+#include "common/budget_keys.h"
 #include "common/constraint_config.h"
 #include "common/first_order_keys.h"
 #include "common/multiplier_keys.h"
@@ -106,6 +108,7 @@ struct RunConfig {
   FirstOrderKeys first_order;      // first-order updates
   OffPolicyKeys off_policy;        // off-policy learners
   OfflineKeys offline;             // offline learners (the dataset, steps per epoch)
+  BudgetKeys budget;               // the budget methods (Saute's discount and unsafe reward)
 
   // --- value networks (docs/algorithms.md#value-fits) ---
   bool use_cost_value_function = false;

@@ -95,6 +95,21 @@ void check_offline_relations(const RunConfig& config, const ConfigOrigins& origi
   }
 }
 
+// Saute's budget update divides each cost by its limit (common/budget_keys.h, envs/saute_env.h).
+void check_saute_budgets(const RunConfig& config, const ConfigOrigins& origins) {
+  const std::string alg(to_string(config.alg));
+  if (config.constraints.empty() && !(config.cost_limit > 0.0)) {
+    throw ConfigError(origin_of(origins, "cost_limit") + ": key 'cost_limit' is " + format_config_real(config.cost_limit) +
+                      ", but alg '" + alg + "' keeps it as a Saute budget, which must be positive");
+  }
+  for (std::size_t i = 0; i < config.constraints.size(); ++i) {
+    if (config.constraints[i].limit > 0.0) continue;
+    throw ConfigError(origin_of(origins, "constraints") + ": key 'constraints' gives constraint " +
+                      std::to_string(i + 1) + " the limit " + format_config_real(config.constraints[i].limit) +
+                      ", but alg '" + alg + "' keeps each limit as a Saute budget, which must be positive");
+  }
+}
+
 // The on-policy algorithms that constrain their cost, as "a, b or c" (the table's order).
 std::string constrained_on_policy_algorithms() {
   std::vector<std::string_view> names;
@@ -120,6 +135,7 @@ void check_run_config_relations(const RunConfig& config, const ConfigOrigins& or
                       ", or give one constraint to judge the policy by");
   }
   if (is_offline(config.alg)) check_offline_relations(config, origins);
+  if (keeps_saute_budgets(config.alg)) check_saute_budgets(config, origins);
   // Only an on-policy epoch must complete an episode: the off-policy loop's episodes run on across
   // epochs (check_run_config_for_ranks bounds them), the offline family steps no environment.
   if (uses_on_policy_batches(config.alg) && config.max_ep_len > config.steps_per_epoch) {

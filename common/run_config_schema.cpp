@@ -155,7 +155,7 @@ const std::vector<ConfigKeyRow>& schema_rows() {
     std::vector<ConfigKeyRow> all;
     for (std::vector<ConfigKeyRow> part : {leading_rows(), trust_region_tool_rows(), multiplier_rows(),
                                            trust_region_variant_rows(), first_order_rows(), off_policy_rows(),
-                                           offline_rows(), trailing_rows()}) {
+                                           offline_rows(), budget_rows(), trailing_rows()}) {
       all.insert(all.end(), part.begin(), part.end());
     }
     return all;

@@ -68,6 +68,15 @@ void Buffer::start_episode() {
   current_episode_.episode_cost = 0.0;
   current_episode_.episode_length = 0;
   std::fill(current_episode_.constraint_costs.begin(), current_episode_.constraint_costs.end(), 0.0);
+  current_episode_.learner_return = 0.0;
+  current_episode_.budget_spent = false;
+}
+
+void Buffer::shape_last_reward(double learner_reward, bool budget_spent) {
+  if (current_path_length() == 0) throw std::logic_error("Buffer::shape_last_reward: no step stored in this path");
+  rewards_[size_ - 1] = learner_reward;
+  current_episode_.learner_return += learner_reward;
+  current_episode_.budget_spent = current_episode_.budget_spent || budget_spent;
 }
 
 void Buffer::store(const Eigen::Ref<const Eigen::VectorXd>& observation,

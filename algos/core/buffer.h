@@ -39,6 +39,9 @@ struct EpisodeStats {
   double episode_cost = 0.0;    // EpCosts: the environment's cost
   int episode_length = 0;       // EpLen
   std::vector<double> constraint_costs{};  // J_Ci of this episode, one per constraint (m = 1: episode_cost)
+  // With a budget decorator (shape_last_reward): the learner's return and whether it spent a budget.
+  double learner_return = 0.0;
+  bool budget_spent = false;
 };
 
 // How a path ended: a finished episode (terminal or time-out; its statistics
@@ -64,6 +67,11 @@ class Buffer {
   void store(const Eigen::Ref<const Eigen::VectorXd>& observation, const Eigen::Ref<const Eigen::VectorXd>& action,
              double reward, double cost, const Eigen::Ref<const Eigen::VectorXd>& constraint_costs, double value,
              const Eigen::Ref<const Eigen::VectorXd>& cost_values, double log_prob);
+
+  // A budget decorator's step (envs/env_types.h, LearnerSignal): the learner's reward replaces
+  // the environment's of the step just stored in GAE, the value targets and G_t; the episode's
+  // statistics keep the environment's return and add the learner's. Throws if nothing is stored.
+  void shape_last_reward(double learner_reward, bool budget_spent);
 
   // Closes the current path with bootstrap values (v_last, c_last) (0, 0 on a
   // true terminal). If `reward_scale_std` is set, rewards are scaled as

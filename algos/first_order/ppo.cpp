@@ -20,8 +20,11 @@ SampleLossFunction clipped_surrogate_loss(const Eigen::VectorXd& advantages, dou
 }
 
 Ppo::Ppo(const RunConfig& config) : FirstOrderAlgorithm(config, config.alg == Algorithm::ppo_lag, {}) {
-  if (config.alg != Algorithm::ppo && config.alg != Algorithm::ppo_lag) {
-    throw std::invalid_argument("Ppo: alg must be ppo or ppo-lag, got " + std::string(to_string(config.alg)));
+  // PPOSaute and PPOEarlyTerminated take PPO's update; their budget decorator changes the data.
+  if (config.alg != Algorithm::ppo && config.alg != Algorithm::ppo_lag && config.alg != Algorithm::ppo_saute &&
+      config.alg != Algorithm::ppo_early_terminated) {
+    throw std::invalid_argument("Ppo: alg must be ppo, ppo-lag, ppo-saute or ppo-early-terminated, got " +
+                                std::string(to_string(config.alg)));
   }
 }
 

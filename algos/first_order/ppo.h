@@ -33,7 +33,8 @@ class Ppo final : public FirstOrderAlgorithm {
   // alg ppo or ppo-lag.
   explicit Ppo(const RunConfig& config);
 
-  std::string_view name() const override { return multipliers() ? "ppo-lag" : "ppo"; }
+  // ppo, ppo-lag, or a budget method's spelling (ppo-saute, ...): its checkpoint's name.
+  std::string_view name() const override { return to_string(config().alg); }
   PolicyUpdateResult update(const PolicyUpdateInputs& inputs) override;
 };
 

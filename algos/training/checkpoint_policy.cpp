@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "algos/training/budget_decorator.h"
 #include "algos/training/load_policy.h"
 #include "algos/training/run_directory.h"
 #include "algos/training/run_environment.h"
@@ -19,6 +20,10 @@ class LoadedCheckpointPolicy final : public CheckpointPolicy {
         description_(run_env_description(policy_->config())),
         mode_(actions) {
     const RunConfig& config = policy_->config();
+    if (budget_method(config.alg) == BudgetMethod::saute) {
+      throw std::invalid_argument("checkpoint " + root.string() + ": a " + std::string(to_string(config.alg)) +
+                                  " policy acts on its Saute budgets, which a dataset's observations do not hold");
+    }
     description_text_ = "checkpoint " + root.string() + " (" + std::string(to_string(config.alg)) + ", " +
                         config.env_id + ", epoch " + std::to_string(policy_->epochs_completed()) + " of " +
                         std::to_string(config.epochs) + ", seed " + std::to_string(config.seed) + ", " +

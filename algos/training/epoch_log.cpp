@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "algos/core/constraint_costs.h"
+#include "algos/training/budget_decorator.h"
 
 namespace bsg::algos {
 namespace {
@@ -20,7 +21,8 @@ Eigen::VectorXd episode_field(const Buffer& buffer, double (*field)(const Episod
 
 }  // namespace
 
-EpisodeStatistics pool_episode_statistics(const Buffer& buffer, const MpiContext& mpi, bool per_constraint) {
+EpisodeStatistics pool_episode_statistics(const Buffer& buffer, const MpiContext& mpi, bool per_constraint,
+                                          bool learner_signal) {
   EpisodeStatistics stats;
   stats.episode_return =
       pool_statistics(episode_field(buffer, [](const EpisodeStats& e) { return e.episode_return; }), mpi);
@@ -36,6 +38,11 @@ EpisodeStatistics pool_episode_statistics(const Buffer& buffer, const MpiContext
       }
       stats.constraint_costs.push_back(pool_statistics(values, mpi));
     }
+  }
+  if (learner_signal) {
+    stats.learner_return = pool_statistics(episode_field(buffer, [](const EpisodeStats& e) { return e.learner_return; }), mpi);
+    stats.budget_spent = pool_statistics(
+        episode_field(buffer, [](const EpisodeStats& e) { return e.budget_spent ? 1.0 : 0.0; }), mpi);
   }
   return stats;
 }
@@ -84,6 +91,7 @@ EpochLogLayout epoch_log_layout(const RunConfig& config, const OnPolicyAlgorithm
   const bool several = !config.constraints.empty();  // the trainer's per-constraint columns (trainer.cpp)
   layout.per_constraint = several ? constraint_count(config) : 0;
   layout.constraint_cost_value_losses = several && algorithm.uses_cost_value_function();
+  layout.learner_signal = budget_method(config.alg) != BudgetMethod::none;
   return layout;
 }
 
@@ -109,6 +117,10 @@ std::vector<NamedScalar> epoch_log_entries(const EpochLogLayout& layout, const E
   pooled("episode_cost", true, [&] { return in->episodes->episode_cost; });
   pooled("episode_length", true, [&] { return in->episodes->episode_length; });
   add(row, "episodes", value([&] { return in->episodes->episode_return.count; }));
+  if (layout.learner_signal) {
+    add(row, "learner_return_mean", value([&] { return in->episodes->learner_return->mean; }));
+    add(row, "budget_spent_fraction", value([&] { return in->episodes->budget_spent->mean; }));
+  }
   pooled("value", false, [&] { return pool_statistics(in->buffer->values(), *mpi); });
   pooled("advantage", false, [&] { return pool_statistics(in->buffer->advantages(), *mpi); });
   pooled("cost_value", false, [&] { return pool_statistics(in->buffer->cost_values(), *mpi); });
@@ -214,6 +226,7 @@ std::vector<NamedScalar> make_epoch_log_row(const EpochLogInputs& in, const MpiC
   layout.per_constraint = static_cast<int>(in.constraints.size());
   layout.constraint_cost_value_losses = !in.constraint_cost_value_fits.empty();
   layout.training_cost = in.training_cost != nullptr;
+  layout.learner_signal = in.episodes->learner_return.has_value() && in.episodes->budget_spent.has_value();
   return epoch_log_entries(layout, &in, &mpi);
 }
 

@@ -7,6 +7,11 @@
 //   episode_cost_{mean,std,min,max}     ("EpCosts/*")
 //   episode_length_{mean,std,min,max}   ("EpLen/*")
 //   episodes                number of completed episodes, all ranks
+//   with a budget decorator (budget_decorator.h; the columns above stay the environment's):
+//   learner_return_mean     the learner's own return of those episodes (Saute's penalised
+//                           reward, early termination's 0 at the cut)
+//   budget_spent_fraction   the fraction of those episodes that spent a budget (Saute: the
+//                           reward was replaced; early termination: the episode was cut)
 //   value_{mean,min,max}    V(s_t) over the batch ("Values/V/*")
 //   advantage_{mean,min,max}  the reward advantages A_t (the original logs the
 //                           actions under "Values/Adv", Q18; these are the true values)
@@ -46,6 +51,7 @@
 // left out (the seed is in config.yaml).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -69,8 +75,12 @@ struct EpisodeStatistics {
   // J_Ci of every constraint; only when `per_constraint` was asked (with
   // `constraints:`; without, the one constraint's J_C is episode_cost).
   std::vector<PooledStatistics> constraint_costs{};
+  // The learner's return and the budget-spent flags (1 or 0); only when `learner_signal` was asked.
+  std::optional<PooledStatistics> learner_return{};
+  std::optional<PooledStatistics> budget_spent{};
 };
-EpisodeStatistics pool_episode_statistics(const Buffer& buffer, const MpiContext& mpi, bool per_constraint = false);
+EpisodeStatistics pool_episode_statistics(const Buffer& buffer, const MpiContext& mpi, bool per_constraint = false,
+                                          bool learner_signal = false);
 
 struct EpochLogInputs {
   int epoch = 0;
@@ -105,6 +115,7 @@ struct EpochLogLayout {
   int per_constraint = 0;                     // m with `constraints:`, else 0
   bool constraint_cost_value_losses = false;  // per-constraint V_Ci losses (with `constraints:` and V_C)
   bool training_cost = true;                  // the trailing safety columns (every trainer run)
+  bool learner_signal = false;                // a budget decorator's columns
 };
 // The columns of make_epoch_log_row for that layout, in order; a checkpoint's
 // progress log must have exactly these (training_checkpoint.cpp).

@@ -7,6 +7,7 @@
 #include "algos/offline/make_offline_algorithm.h"
 #include "algos/off_policy/off_policy_acting.h"
 #include "algos/off_policy/off_policy_learner.h"
+#include "algos/training/budget_decorator.h"
 #include "algos/training/exploration_noise.h"
 #include "algos/training/make_algorithm.h"
 #include "algos/training/off_policy_checkpoint.h"
@@ -18,13 +19,14 @@
 namespace bsg::algos {
 namespace {
 
-// The environment's sizes, which the networks are built for before the checkpoint fills them.
+// The environment's sizes, which the networks are built for before the checkpoint fills them
+// (a Saute policy's observation holds its budgets: budget_decorator.h).
 struct PolicySizes {
   int observation = 0;
   int action = 0;
 };
 PolicySizes sizes_of(const RunConfig& config) {
-  const std::unique_ptr<envs::Env> env = make_run_env(config);
+  const std::unique_ptr<envs::Env> env = decorate_for_budget(config, make_run_env(config));
   return {env->spec().observation_dim, env->spec().action_dim};
 }
 

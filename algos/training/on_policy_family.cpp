@@ -9,6 +9,7 @@
 #include "algos/core/advantage_normalization.h"
 #include "algos/core/constraint_costs.h"
 #include "algos/core/epoch_statistics.h"
+#include "algos/training/budget_decorator.h"
 #include "algos/training/exploration_noise.h"
 #include "algos/training/make_algorithm.h"
 #include "algos/training/progress_csv_fields.h"
@@ -66,7 +67,7 @@ int local_steps(const RunConfig& config, const MpiContext& mpi) {
 OnPolicyFamily::OnPolicyFamily(const RunConfig& config, const MpiContext& mpi, std::unique_ptr<envs::Env> env)
     : config_(config),
       mpi_(mpi),
-      env_(checked_env(std::move(env))),
+      env_(checked_env(decorate_for_budget(config, std::move(env)))),
       actor_critic_(make_actor_critic(config, env_->spec())),
       algorithm_(make_algorithm(config)),
       local_steps_(local_steps(config, mpi)),
@@ -157,7 +158,7 @@ OnPolicyFamily::EpochPolicyStep OnPolicyFamily::update_policy(int epoch, EpochTi
   ActorCritic& ac = *actor_critic_;
   const bool several = !config_.constraints.empty();
   EpochPolicyStep step;
-  step.episodes = pool_episode_statistics(buffer_, mpi_, several);
+  step.episodes = pool_episode_statistics(buffer_, mpi_, several, budget_method(config_.alg) != BudgetMethod::none);
   for (int i = 0; i < buffer_.constraint_count(); ++i) {
     const double mean_cost = several ? step.episodes.constraint_costs[static_cast<std::size_t>(i)].mean
                                      : step.episodes.episode_cost.mean;

@@ -75,10 +75,13 @@ void RolloutCollector::collect(envs::Env& env, std::uint64_t epoch_env_seed, con
     const envs::StepResult step = env.step(action_view);
     costs_.select(step, step_costs_);
     buffer.store(raw_observation_, action_, step.reward, step.cost, step_costs_, value, step_cost_values_, log_prob);
+    if (step.learner) buffer.shape_last_reward(step.learner->reward, step.learner->budget_spent);
     copy_observation(step.observation);  // o_t+1
 
-    const bool timeout = step.truncated || buffer.current_episode().episode_length >= options_.max_ep_len;
-    const bool terminal = step.terminated || timeout;
+    // A budget decorator's cut (early termination) ends the learner's episode as a terminal.
+    const bool cut = step.learner && step.learner->terminated;
+    const bool timeout = !cut && (step.truncated || buffer.current_episode().episode_length >= options_.max_ep_len);
+    const bool terminal = step.terminated || cut || timeout;
     const bool epoch_end = t == options_.local_steps - 1;
     if (!terminal && !epoch_end) continue;
 

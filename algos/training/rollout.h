@@ -10,6 +10,10 @@
 // noise RNG) alone, which is what makes a resumed run identical to an
 // uninterrupted one.
 //
+// With a budget decorator (budget_decorator.h) the learner's reward (StepResult::learner) goes
+// into GAE and the episode ends at its cut, as a terminal; the episode statistics keep the
+// environment's reward and cost.
+//
 // Per-step work uses only buffers preallocated at construction: one
 // single-sample forward each of mu, V and V_C, no heap allocation.
 //

@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "algos/training/budget_decorator.h"
 #include "algos/training/exploration_noise.h"
 #include "algos/training/load_policy.h"
 #include "algos/training/run_environment.h"
@@ -29,6 +30,7 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
   StepCostSelector costs(config);
   if (costs.needs_terms()) costs.bind(env->spec().cost_term_names, env->spec().id);
   if (decorate) env = decorate(std::move(env));
+  env = decorate_for_budget(config, std::move(env));  // a Saute policy acts on its budgets as in training
   RunEvaluation result;
   result.epochs_completed = policy->epochs_completed();
   result.epochs = config.epochs;

@@ -19,7 +19,8 @@ class Trpo final : public TrustRegionAlgorithm {
  public:
   explicit Trpo(const RunConfig& config) : TrustRegionAlgorithm(config) {}
 
-  std::string_view name() const override { return "trpo"; }
+  // trpo, or a budget method's spelling (trpo-saute, ...): its checkpoint's name.
+  std::string_view name() const override { return to_string(config().alg); }
 
  private:
   TrustRegionPlan plan_step(const PolicyUpdateInputs& /*inputs*/) override { return {}; }  // l_R, line search

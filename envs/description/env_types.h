@@ -68,6 +68,15 @@ struct CostTerm {
   double value = 0;
 };
 
+// What a training-time decorator (envs/saute_env.h, envs/early_terminated_env.h) gives the
+// learner in place of the environment's own reward and episode end. The rest of a StepResult
+// stays the environment's, so that logs and evaluations report its true return and cost.
+struct LearnerSignal {
+  double reward = 0;          // the learner's reward (Saute's unsafe reward once a budget is spent)
+  bool terminated = false;    // the learner's episode ends here; the environment's would go on
+  bool budget_spent = false;  // some cost budget is spent at this step
+};
+
 struct StepResult {
   std::span<const double> observation;
   double reward = 0;
@@ -75,6 +84,7 @@ struct StepResult {
   bool terminated = false; // the agent died, or Gather collected every apple
   bool truncated = false;  // max_episode_steps reached without termination
   std::span<const CostTerm> cost_terms;
+  std::optional<LearnerSignal> learner;  // absent: the learner sees reward and terminated as they are
 
   // The component called `name`; throws std::out_of_range listing the names.
   double cost_term(std::string_view name) const;

@@ -1,0 +1,195 @@
+// The budget methods' decorators in a run (algos/training/budget_decorator.h): the learner
+// trains on the decorated signal while progress.csv and the evaluation report the
+// environment's own return and cost; a Saute policy is evaluated on the budget it was trained
+// with; resuming continues exactly; keys that cannot make a budget are refused in one line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "../../test_support.h"
+#include "algos/training/budget_decorator.h"
+#include "algos/training/load_policy.h"
+#include "algos/training/on_policy_trainer.h"
+#include "algos/training/progress_csv_fields.h"
+#include "algos/training/progress_csv_reader.h"
+#include "algos/training/run_environment.h"
+#include "algos/training/run_evaluation.h"
+#include "common/config_error.h"
+#include "common/run_config_resolve.h"
+#include "common/seeding.h"
+#include "../scripted_env.h"
+#include "../scripted_training.h"
+
+namespace bsg::algos {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::ScriptedEnv;
+using testing::TemporaryDirectory;
+
+RunConfig scripted(Algorithm alg, double cost_limit) {
+  RunConfig config = testing::scripted_config();  // 400 steps per epoch, episodes of 100 steps
+  config.alg = alg;
+  config.use_cost_value_function = false;
+  config.cost_limit = cost_limit;
+  config.epochs = 1;
+  return config;
+}
+
+// The first row of the run's progress.csv, by column.
+std::map<std::string, double> first_row(const RunConfig& config, std::unique_ptr<envs::Env> env) {
+  TemporaryDirectory dir;
+  const RunDirectory run(dir.path() / "run");
+  OnPolicyTrainer(config, run, MpiContext::single_process(), {}, std::move(env)).run();
+  const ProgressLogText log = read_progress_log(testing::read_text_file(run.progress()), "progress.csv", config.steps_per_epoch);
+  const std::vector<std::string> names = split_csv_line(log.header);
+  const std::vector<std::string> values = split_csv_line(log.rows.at(0));
+  std::map<std::string, double> row;
+  for (std::size_t i = 0; i < names.size(); ++i) row[names[i]] = std::stod(values[i]);
+  return row;
+}
+
+// Sum of 1 + 0.01 t over t = from..to: the scripted environment's rewards.
+double scripted_return(int from, int to) {
+  double sum = 0.0;
+  for (int t = from; t <= to; ++t) sum += 1.0 + 0.01 * t;
+  return sum;
+}
+
+TEST(BudgetDecorator, EarlyTerminationCutsTheLearnersEpisodesAndTheLogKeepsTheTrueReturn) {
+  // Cost 1 at every third step, limit 1.5: the sum exceeds it at step 6, where each episode is cut.
+  const std::map<std::string, double> row =
+      first_row(scripted(Algorithm::ppo_early_terminated, 1.5), std::make_unique<ScriptedEnv>(100, std::nullopt, 3));
+  EXPECT_EQ(row.at("episode_length_mean"), 6.0);
+  EXPECT_EQ(row.at("episodes"), 66.0);  // 400 steps: 66 whole cut episodes and 4 steps of the next
+  EXPECT_NEAR(row.at("episode_return_mean"), 6.21, 1e-12);        // 1.01 + ... + 1.06
+  EXPECT_NEAR(row.at("learner_return_mean"), 6.21 - 1.06, 1e-12);  // the cut step's reward is 0
+  EXPECT_EQ(row.at("episode_cost_mean"), 2.0);
+  EXPECT_EQ(row.at("budget_spent_fraction"), 1.0);
+}
+
+TEST(BudgetDecorator, SauteTrainsOnThePenaltyAndTheLogKeepsTheTrueReturn) {
+  // Cost 1 at steps 10, 20, ..., 100; d = 0.5, gamma_s = 0.999, T = 100:
+  // d~ = 0.5 (1 - 0.999^100) / (0.001 * 100) = 0.476, and z_10 = 0.999^-10 - 0.999^-1 / 0.476 < 0:
+  // the budget is spent at step 10 and stays spent (z only falls further, divided by gamma_s).
+  RunConfig config = scripted(Algorithm::ppo_saute, 0.5);
+  config.budget.unsafe_reward = -1.0;
+  const std::map<std::string, double> row = first_row(config, std::make_unique<ScriptedEnv>(100));
+  EXPECT_EQ(row.at("episodes"), 4.0);
+  EXPECT_NEAR(row.at("episode_return_mean"), scripted_return(1, 100), 1e-9);               // 150.5
+  EXPECT_NEAR(row.at("learner_return_mean"), scripted_return(1, 9) - 91.0, 1e-9);          // 9.45 - 91
+  EXPECT_EQ(row.at("episode_cost_mean"), 10.0);
+  EXPECT_EQ(row.at("budget_spent_fraction"), 1.0);
+}
+
+TEST(BudgetDecorator, ARunWithoutABudgetMethodWritesNoLearnerColumns) {
+  const std::map<std::string, double> row = first_row(scripted(Algorithm::ppo, 1.5), std::make_unique<ScriptedEnv>(100));
+  EXPECT_EQ(row.count("learner_return_mean"), 0u);
+  EXPECT_EQ(row.count("budget_spent_fraction"), 0u);
+}
+
+TEST(BudgetDecorator, ASauteRunResumedContinuesExactly) {
+  TemporaryDirectory dir;
+  RunConfig config = scripted(Algorithm::ppo_saute, 2.0);
+  config.epochs = 3;
+  config.save_freq = 10;
+  OnPolicyTrainer whole(config, RunDirectory(dir.path() / "whole"), MpiContext::single_process(), {},
+                        std::make_unique<ScriptedEnv>(100));
+  whole.run();
+  TrainerOptions stop;
+  stop.stop_after_epochs = 2;
+  OnPolicyTrainer(config, RunDirectory(dir.path() / "split"), MpiContext::single_process(), stop,
+                  std::make_unique<ScriptedEnv>(100))
+      .run();
+  TrainerOptions resume;
+  resume.resume = true;
+  OnPolicyTrainer second(config, RunDirectory(dir.path() / "split"), MpiContext::single_process(), resume,
+                         std::make_unique<ScriptedEnv>(100));
+  second.run();
+  EXPECT_EQ(second.actor_critic().policy.mean_net().parameters(), whole.actor_critic().policy.mean_net().parameters());
+  EXPECT_EQ(second.actor_critic().observation_normalizer.mean(), whole.actor_critic().observation_normalizer.mean());
+}
+
+RunConfig ball_circle(const std::vector<std::string>& settings) {
+  RunConfigRequest request;
+  request.configs_dir = fs::path(BSG_SOURCE_DIR) / "configs";
+  request.set_arguments = {"env_id=SafetyBallCircle-v0", "epochs=1", "steps_per_epoch=1000", "eval_episodes=2",
+                           "hidden_sizes=[8, 8]", "max_ep_len=100"};
+  request.set_arguments.insert(request.set_arguments.end(), settings.begin(), settings.end());
+  return resolve_run_config(request).config;
+}
+
+TEST(BudgetDecorator, ASautePolicyIsEvaluatedOnTheBudgetItWasTrainedWith) {
+  const TemporaryDirectory dir;
+  const RunDirectory run(dir.path() / "run");
+  const RunConfig config = ball_circle({"alg=ppo-saute"});
+  const TrainingOutcome outcome = OnPolicyTrainer(config, run, MpiContext::single_process(), {}).run();
+  ASSERT_TRUE(outcome.evaluation.has_value());
+
+  const std::unique_ptr<LoadedPolicy> policy = load_policy(run);
+  std::unique_ptr<envs::Env> env = make_run_env(config);
+  ASSERT_EQ(policy->observation_size(), env->spec().observation_dim + 1);
+
+  // The evaluation by hand: the raw environment, the budget z beside its observation, updated as
+  // z <- (z - c / d~) / gamma_s with d~ = 25 (1 - 0.999^100) / (0.001 * 100).
+  const double gamma = 0.999;
+  const double normalized_budget = 25.0 * (1.0 - std::pow(gamma, 100)) / (1.0 - gamma) / 100.0;
+  const std::uint64_t seed = derive_seed(static_cast<std::uint64_t>(config.seed), SeedStream::evaluation_environment, 0);
+  std::vector<double> returns, costs;
+  Rng unused(0);
+  std::vector<double> action(static_cast<std::size_t>(policy->action_size()));
+  for (int episode = 0; episode < 2; ++episode) {
+    std::span<const double> observation = episode == 0 ? env->reset(seed) : env->reset();
+    double z = 1.0, episode_return = 0.0, episode_cost = 0.0;
+    for (int t = 1;; ++t) {
+      std::vector<double> input(observation.begin(), observation.end());
+      input.push_back(z);
+      policy->act(input, ActionMode::mean, unused, action);
+      const envs::StepResult step = env->step(action);
+      episode_return += step.reward;
+      episode_cost += step.cost;
+      z = (z - step.cost / normalized_budget) / gamma;
+      if (step.terminated || step.truncated || t >= 100) break;
+      observation = step.observation;
+    }
+    returns.push_back(episode_return);
+    costs.push_back(episode_cost);
+  }
+  const RunEvaluation evaluated = evaluate_run_directory(run, 2, MpiContext::single_process());
+  ASSERT_EQ(evaluated.summary.episodes.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(evaluated.summary.episodes[i].episode_return, returns[i], 1e-9 * (1 + std::abs(returns[i]))) << i;
+    EXPECT_EQ(evaluated.summary.episodes[i].episode_cost, costs[i]) << i;
+    // The training's own final evaluation agrees with bsg eval's.
+    EXPECT_EQ(outcome.evaluation->episodes[i].episode_return, evaluated.summary.episodes[i].episode_return) << i;
+  }
+}
+
+// A ConfigError of one line that names `key`.
+void expect_refused(const std::vector<std::string>& settings, const std::string& key) {
+  try {
+    ball_circle(settings);
+    ADD_FAILURE() << "accepted";
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(key), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
+TEST(BudgetDecorator, KeysThatCannotMakeABudgetAreRefusedInOneLine) {
+  expect_refused({"alg=ppo-saute", "cost_limit=0"}, "cost_limit");
+  expect_refused({"alg=trpo-saute", "constraints=[{terms: all, limit: 0}]"}, "constraints");
+  expect_refused({"alg=ppo-saute", "saute_gamma=1"}, "saute_gamma");
+  expect_refused({"alg=ppo", "unsafe_reward=-2"}, "unsafe_reward");
+  expect_refused({"alg=ppo-early-terminated", "saute_gamma=0.9"}, "saute_gamma");
+  EXPECT_EQ(ball_circle({"alg=ppo-early-terminated", "cost_limit=0"}).cost_limit, 0.0);  // ET can keep a zero budget
+}
+
+}  // namespace
+}  // namespace bsg::algos
