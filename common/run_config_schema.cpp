@@ -20,6 +20,7 @@
 #include "common/config_key_rows.h"
 #include "common/message_text.h"
 #include "common/config_scalar.h"
+#include "common/foreign_key_spellings.h"
 
 namespace bsg {
 
@@ -320,7 +321,14 @@ std::string config_key_list() {
   return joined;
 }
 
-std::string closest_config_key(std::string_view unknown) { return closest_row_key(schema_rows(), unknown); }
+std::string unknown_key_hint(std::string_view unknown) {
+  if (const ForeignKeySpelling* foreign = find_foreign_key_spelling(unknown)) {
+    return " (did you mean '" + std::string(foreign->key) + "'? " + std::string(foreign->spelling) + " in " +
+           std::string(foreign->libraries) + ")";
+  }
+  const std::string closest = closest_row_key(schema_rows(), unknown);
+  return closest.empty() ? std::string() : " (did you mean '" + closest + "'?)";
+}
 
 void set_config_value(RunConfig& config, const ConfigKey& key, const YAML::Node& value,
                       const std::string& origin) {

@@ -208,8 +208,10 @@ void Trainer::record_epoch(int epoch, const FamilyEpoch& result, double epoch_se
   progress_.epochs_completed = epoch + 1;
   progress_.elapsed_seconds += epoch_seconds;
   progress_.training_cost.add_epoch(result.epoch_cost, result.epoch_constraint_costs, result.constraints);
-  seconds_this_process_ += epoch_seconds;
-  ++epochs_this_process_;
+  if (result.paces_later_epochs) {
+    pacing_seconds_this_process_ += epoch_seconds;
+    ++pacing_epochs_this_process_;
+  }
 
   const std::vector<NamedScalar> row =
       family_->progress_row(EpochAccounts{epoch, epoch_seconds, progress_.elapsed_seconds, &progress_.training_cost});
@@ -220,7 +222,12 @@ void Trainer::record_epoch(int epoch, const FamilyEpoch& result, double epoch_se
   line.epoch = epoch;
   line.epochs = config_.epochs;
   line.epoch_seconds = epoch_seconds;
-  line.eta_seconds = seconds_this_process_ / epochs_this_process_ * (config_.epochs - epoch - 1);
+  const int epochs_left = config_.epochs - epoch - 1;
+  if (epochs_left == 0) {
+    line.eta_seconds = 0.0;
+  } else if (pacing_epochs_this_process_ > 0) {
+    line.eta_seconds = pacing_seconds_this_process_ / pacing_epochs_this_process_ * epochs_left;
+  }
   *options_.log << format_progress_line(line) << std::endl;
 }
 

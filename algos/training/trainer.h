@@ -108,8 +108,9 @@ class Trainer {
   TrainingProgress progress_;
   std::optional<ProgressCsv> progress_csv_;  // rank 0
   CheckpointMark checkpoint_;                // the last checkpoint saved or loaded
-  double seconds_this_process_ = 0.0;
-  int epochs_this_process_ = 0;
+  // The epochs of this process that pace the later ones (FamilyEpoch::paces_later_epochs), for the ETA.
+  double pacing_seconds_this_process_ = 0.0;
+  int pacing_epochs_this_process_ = 0;
 };
 
 }  // namespace bsg::algos
