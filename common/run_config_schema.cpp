@@ -46,6 +46,9 @@ std::vector<ConfigKeyRow> leading_rows() {
             "base seed; per-rank and per-environment seeds are derived from it (seeding.h)"),
     text("log_dir", field<&R::log_dir>(), L::run,
          "directory under which the run directory is created"),
+    boolean("tensorboard", field<&R::tensorboard>(), L::run, all,
+            "write TensorBoard event files beside progress.csv (its columns per epoch); config.yaml names the key "
+            "only when false"),
     choice("physics", enum_access<&R::physics>(), kPhysicsModelNames, L::run, all,
            "faithful (the original's model) or lean (equivalent, faster; the Ant and the Car)"),
     choice("learner", enum_access<&R::learner>(), kLearnerNames, L::run, all,
