@@ -20,11 +20,8 @@ std::string location(const std::string& source_name, const YAML::Mark& mark) {
 }
 
 [[noreturn]] void throw_unknown_key(const std::string& key, const std::string& where) {
-  std::string message = where + ": unknown key '" + printable_excerpt(key) + "'";
-  const std::string suggestion = closest_config_key(key);
-  if (!suggestion.empty()) message += " (did you mean '" + suggestion + "'?)";
-  message += "; valid keys: " + config_key_list();
-  throw ConfigError(message);
+  throw ConfigError(where + ": unknown key '" + printable_excerpt(key) + "'" + unknown_key_hint(key) +
+                    "; valid keys: " + config_key_list());
 }
 
 }  // namespace

@@ -60,6 +60,9 @@ struct RunConfig {
   Algorithm alg = Algorithm::trpo;
   std::int64_t seed = 0;
   std::string log_dir = "runs";
+  // TensorBoard event files beside progress.csv (algos/training/event_file.h); config.yaml names
+  // the key only when it is off, so a default run's files are as before the key.
+  bool tensorboard = true;
 
   // --- environment settings (report Table 3, docs/reproducing.md#environment-settings) ---
   double cost_limit = 25.0;        // d: limit on the undiscounted episode cost

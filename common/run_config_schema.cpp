@@ -20,6 +20,7 @@
 #include "common/config_key_rows.h"
 #include "common/message_text.h"
 #include "common/config_scalar.h"
+#include "common/foreign_key_spellings.h"
 
 namespace bsg {
 
@@ -45,6 +46,9 @@ std::vector<ConfigKeyRow> leading_rows() {
             "base seed; per-rank and per-environment seeds are derived from it (seeding.h)"),
     text("log_dir", field<&R::log_dir>(), L::run,
          "directory under which the run directory is created"),
+    boolean("tensorboard", field<&R::tensorboard>(), L::run, all,
+            "write TensorBoard event files beside progress.csv (its columns per epoch); config.yaml names the key "
+            "only when false"),
     choice("physics", enum_access<&R::physics>(), kPhysicsModelNames, L::run, all,
            "faithful (the original's model) or lean (equivalent, faster; the Ant and the Car)"),
     choice("learner", enum_access<&R::learner>(), kLearnerNames, L::run, all,
@@ -321,7 +325,14 @@ std::string config_key_list() {
   return joined;
 }
 
-std::string closest_config_key(std::string_view unknown) { return closest_row_key(schema_rows(), unknown); }
+std::string unknown_key_hint(std::string_view unknown) {
+  if (const ForeignKeySpelling* foreign = find_foreign_key_spelling(unknown)) {
+    return " (did you mean '" + std::string(foreign->key) + "'? " + std::string(foreign->spelling) + " in " +
+           std::string(foreign->libraries) + ")";
+  }
+  const std::string closest = closest_row_key(schema_rows(), unknown);
+  return closest.empty() ? std::string() : " (did you mean '" + closest + "'?)";
+}
 
 void set_config_value(RunConfig& config, const ConfigKey& key, const YAML::Node& value,
                       const std::string& origin) {

@@ -56,8 +56,11 @@ const ConfigKey* find_config_key(std::string_view key);
 // "env_id, alg, seed, ..." in schema order, for error messages.
 std::string config_key_list();
 
-// The known key closest in spelling to `unknown` if it is a likely typo, else "".
-std::string closest_config_key(std::string_view unknown);
+// What an error about the unknown key `unknown` suggests: " (did you mean 'polyak'? tau
+// in Stable-Baselines3, CleanRL and Tianshou)" for another library's name of a key
+// (common/foreign_key_spellings.h), else " (did you mean 'gamma'?)" for the key closest in
+// spelling if it is a likely typo, else "".
+std::string unknown_key_hint(std::string_view unknown);
 
 // Checks `value` against the key's type and range and stores it in `config`.
 // Throws ConfigError naming the key, the value and `origin` (e.g.

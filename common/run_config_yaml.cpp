@@ -34,6 +34,8 @@ RunConfig from_document(const YAML::Node& document, const std::string& source_na
   // float64 throughout: they resume in float64.
   // No env: block: the standard description of env_id (as written since the key exists).
   if (origins.count("env") == 0) origins["env"] = source_name + " (no env: the standard description)";
+  // No tensorboard: on (to_yaml names the key only when it is off).
+  if (origins.count("tensorboard") == 0) origins["tensorboard"] = source_name + " (no tensorboard: on)";
   if (origins.count("dtype") == 0) {
     config.dtype = Dtype::float64;
     origins["dtype"] = source_name + " (no dtype: written before the key existed, float64)";
@@ -62,6 +64,8 @@ std::string to_yaml(const RunConfig& config) {
     if (key.type == ValueType::constraint_list && config.constraints.empty()) continue;  // as before the key
     // No env: block for a standard environment, as before the key existed.
     if (key.type == ValueType::mapping && config.env.empty()) continue;
+    // tensorboard only when off: a default run's config.yaml and checkpoint as before the key.
+    if (key.key == "tensorboard" && config.tensorboard) continue;
     if (first || key.default_source != section) {
       section = key.default_source;
       out << "# --- " << to_string(section) << " ---\n";

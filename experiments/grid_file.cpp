@@ -67,10 +67,7 @@ const ConfigKey& grid_config_key(const YAML::Node& key_node, const std::string& 
   const std::string key = key_node.Scalar();
   const ConfigKey* config_key = find_config_key(key);
   if (config_key == nullptr) {
-    std::string message = "unknown configuration key '" + key + "'";
-    const std::string suggestion = closest_config_key(key);
-    if (!suggestion.empty()) message += " (did you mean '" + suggestion + "'?)";
-    fail(where, message + "; valid keys: " + config_key_list());
+    fail(where, "unknown configuration key '" + key + "'" + unknown_key_hint(key) + "; valid keys: " + config_key_list());
   }
   if (key == "env_id" || key == "alg" || key == "seed" || key == "log_dir") {
     fail(where, "key '" + key + "' cannot be set in a grid's fixed settings or axes: use the grid's "

@@ -58,8 +58,9 @@ FLOORS = {
     # `bsg dataset`). A collection's constraints are chosen in the training
     # room (algos/training/collection_request.h), not by the program.
     "cli": ["experiments", "algos/offline", "algos/training", "render", "envs", "common"],
-    # The Python module binds the environments and the renderer, nothing else.
-    "python/src": ["render", "envs", "common"],
+    # The Python module binds the environments, the renderer and, of algos/, the training room
+    # alone (a run's policy and its evaluation: bsg.load_policy, bsg.evaluate).
+    "python/src": ["algos/training", "render", "envs", "common"],
 }
 # A program's own headers are seen by no other room, so its files include
 # them by their bare name ("commands.h", beside the including file).

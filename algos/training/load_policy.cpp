@@ -1,9 +1,13 @@
 #include "algos/training/load_policy.h"
 
+#include <stdexcept>
+#include <string>
+
 #include "algos/core/actor_critic.h"
 #include "algos/core/actor_critic_acting.h"
 #include "algos/core/constraint_costs.h"
 #include "algos/off_policy/make_off_policy_learner.h"
+#include "algos/offline/behaviour_cloning.h"
 #include "algos/offline/make_offline_algorithm.h"
 #include "algos/off_policy/off_policy_acting.h"
 #include "algos/off_policy/off_policy_learner.h"
@@ -44,6 +48,12 @@ class LoadedOnPolicy final : public LoadedPolicy {
   std::string_view action_words(ActionMode mode) const override {
     return mode == ActionMode::sampled ? "sampled actions" : "mean actions";
   }
+  std::optional<ObservationStandardization> observation_standardization() const override {
+    if (!actor_critic_->standardize_observations) return std::nullopt;
+    const RunningMeanStd& statistics = actor_critic_->observation_normalizer;
+    return ObservationStandardization{statistics.mean(), statistics.std(), RunningMeanStd::kStdEpsilon,
+                                      statistics.options().clip};
+  }
 
  private:
   LoadedOnPolicy(const RunDirectory& directory, const RunConfig& config, std::unique_ptr<ActorCritic> ac)
@@ -78,6 +88,7 @@ class LoadedOffPolicy final : public LoadedPolicy {
   std::string_view action_words(ActionMode mode) const override {
     return mode == ActionMode::sampled ? "exploring actions" : "deterministic actions";
   }
+  std::optional<ObservationStandardization> observation_standardization() const override { return std::nullopt; }
 
  private:
   LoadedOffPolicy(const RunDirectory& directory, const RunConfig& config, std::unique_ptr<OffPolicyLearner> learner)
@@ -106,6 +117,16 @@ class LoadedOffline final : public LoadedPolicy {
   }
   double sampled_action_std() const override { return 0.0; }
   std::string_view action_words(ActionMode /*both modes act alike*/) const override { return "deterministic actions"; }
+  // Behaviour cloning (the one offline algorithm so far) standardises with the dataset's training
+  // rows' mean and standard deviation (OfflineAlgorithm does not say): a later algorithm says here.
+  std::optional<ObservationStandardization> observation_standardization() const override {
+    const auto* cloning = dynamic_cast<const BehaviourCloning*>(algorithm_.get());
+    if (cloning == nullptr) {
+      throw std::logic_error("load_policy: how " + std::string(algorithm_->name()) +
+                             " standardises observations is not known to the loader");
+    }
+    return ObservationStandardization{cloning->scaling().mean, cloning->scaling().std, 0.0, 0.0};
+  }
 
  private:
   LoadedOffline(const RunDirectory& directory, const RunConfig& config, std::unique_ptr<OfflineAlgorithm> algorithm)

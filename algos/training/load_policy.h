@@ -5,7 +5,10 @@
 // of the checkpoint's last epoch.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <memory>
+#include <optional>
 #include <string_view>
 
 #include "algos/core/acting_policy.h"
@@ -13,6 +16,15 @@
 #include "common/run_config.h"
 
 namespace bsg::algos {
+
+// How a policy standardises a raw observation s before its network (bsg.load_policy shows it):
+// s_hat = (s - mean) / (std + std_epsilon), then clipped to [-clip, clip] if clip > 0.
+struct ObservationStandardization {
+  Eigen::VectorXd mean;
+  Eigen::VectorXd std;
+  double std_epsilon = 0.0;
+  double clip = 0.0;
+};
 
 class LoadedPolicy : public ActingPolicy {
  public:
@@ -22,6 +34,9 @@ class LoadedPolicy : public ActingPolicy {
   virtual double sampled_action_std() const = 0;
   // How the family calls the actions of `mode` ("mean actions" / "deterministic actions", ...).
   virtual std::string_view action_words(ActionMode mode) const = 0;
+  // The frozen statistics the policy acts with; nullopt when it sees raw observations (the
+  // off-policy learners, an on-policy run without use_standardized_obs).
+  virtual std::optional<ObservationStandardization> observation_standardization() const = 0;
 
  protected:
   LoadedPolicy(RunConfig config, int epochs_completed)

@@ -144,6 +144,7 @@ FamilyEpoch OffPolicyFamily::run_epoch(int epoch, bool checkpoint_follows) {
   if (!ignores_cost(config_.alg)) result.line.cost_limit = constraints_.front().limit;
   if (multipliers_ && multipliers_->count() == 1) result.line.lagrange_multiplier = multipliers_->value(0);
   result.line.kl = std::nan("");
+  result.paces_later_epochs = static_cast<long long>(epoch) * config_.steps_per_epoch >= config_.off_policy.start_steps;
   return result;
 }
 

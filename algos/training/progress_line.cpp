@@ -39,7 +39,7 @@ std::string format_progress_line(const ProgressLineInputs& in) {
     line.append(text, static_cast<std::size_t>(n));
   }
   n = std::snprintf(text, sizeof(text), "  %.2f s/epoch  ETA %s", in.epoch_seconds,
-                    format_duration(in.eta_seconds).c_str());
+                    in.eta_seconds ? format_duration(*in.eta_seconds).c_str() : "once learning starts");
   line.append(text, static_cast<std::size_t>(n));
   return line;
 }

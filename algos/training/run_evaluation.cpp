@@ -17,7 +17,7 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
 
 RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
                                      const MpiContext& mpi, const EnvDecorator& decorate,
-                                     std::optional<EvaluationActions> actions) {
+                                     std::optional<EvaluationActions> actions, std::optional<std::int64_t> seed) {
   const std::unique_ptr<LoadedPolicy> policy = load_policy(directory);
   const RunConfig& config = policy->config();
   const ActionMode mode = actions.value_or(evaluation_actions(config));
@@ -35,7 +35,7 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
   result.epochs_completed = policy->epochs_completed();
   result.epochs = config.epochs;
   result.summary =
-      evaluate_policy(*env, *policy, episodes.value_or(config.eval_episodes), config.seed, config.max_ep_len, mpi, costs,
+      evaluate_policy(*env, *policy, episodes.value_or(config.eval_episodes), seed.value_or(config.seed), config.max_ep_len, mpi, costs,
                       {}, mode);
   if (mode == ActionMode::sampled) result.summary.action_std = policy->sampled_action_std();
   return result;

@@ -2,6 +2,7 @@
 // latest checkpoint, without writing anything.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -26,10 +27,12 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
 // The same with the environment wrapped by `decorate` before the episodes run
 // (e.g. to record them: render/observed_env.h); the results are unchanged. `actions`
 // overrides the config's sampled_evaluation (the sampled actions use the sigma of the
-// checkpoint's last epoch).
+// checkpoint's last epoch); `seed` the run seed the evaluation's streams derive from
+// (bsg.evaluate(seed=...): other episodes of the same policy).
 using EnvDecorator = std::function<std::unique_ptr<envs::Env>(std::unique_ptr<envs::Env>)>;
 RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
                                      const MpiContext& mpi, const EnvDecorator& decorate,
-                                     std::optional<EvaluationActions> actions = std::nullopt);
+                                     std::optional<EvaluationActions> actions = std::nullopt,
+                                     std::optional<std::int64_t> seed = std::nullopt);
 
 }  // namespace bsg::algos

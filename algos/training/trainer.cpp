@@ -97,6 +97,7 @@ void Trainer::start_new_run() {
     write_run_config(config_, directory_.config());
     write_file_atomically(directory_.build(), to_text(this_build()));
     progress_csv_.emplace(ProgressCsv::create(directory_.progress()));
+    if (config_.tensorboard) events_.emplace(directory_.root);
   }
   mpi_.sum(0.0);      // the directory exists before any rank writes into it
   save_checkpoint();  // docs/algorithms.md#set-up, step 7: the initial model
@@ -123,6 +124,12 @@ void Trainer::resume() {
     progress_csv_.emplace(ProgressCsv::resume(
         directory_.progress(), ProgressResume{saved.epochs_completed, saved.progress_log, config_.steps_per_epoch,
                                               &notes()}));
+    if (config_.tensorboard) {
+      // The event file mirrors progress.csv: the kept rows anew, the later ones as they come.
+      remove_event_files(directory_.root);
+      events_.emplace(directory_.root);
+      events_->write_progress_log(progress_csv_->contents());
+    }
   }
 }
 
@@ -208,19 +215,27 @@ void Trainer::record_epoch(int epoch, const FamilyEpoch& result, double epoch_se
   progress_.epochs_completed = epoch + 1;
   progress_.elapsed_seconds += epoch_seconds;
   progress_.training_cost.add_epoch(result.epoch_cost, result.epoch_constraint_costs, result.constraints);
-  seconds_this_process_ += epoch_seconds;
-  ++epochs_this_process_;
+  if (result.paces_later_epochs) {
+    pacing_seconds_this_process_ += epoch_seconds;
+    ++pacing_epochs_this_process_;
+  }
 
   const std::vector<NamedScalar> row =
       family_->progress_row(EpochAccounts{epoch, epoch_seconds, progress_.elapsed_seconds, &progress_.training_cost});
   if (!mpi_.is_root()) return;
   progress_csv_->write_row(row);
+  if (events_) events_->write_scalars(epoch, row);
   if (options_.log == nullptr) return;
   ProgressLineInputs line = result.line;
   line.epoch = epoch;
   line.epochs = config_.epochs;
   line.epoch_seconds = epoch_seconds;
-  line.eta_seconds = seconds_this_process_ / epochs_this_process_ * (config_.epochs - epoch - 1);
+  const int epochs_left = config_.epochs - epoch - 1;
+  if (epochs_left == 0) {
+    line.eta_seconds = 0.0;
+  } else if (pacing_epochs_this_process_ > 0) {
+    line.eta_seconds = pacing_seconds_this_process_ / pacing_epochs_this_process_ * epochs_left;
+  }
   *options_.log << format_progress_line(line) << std::endl;
 }
 

@@ -28,6 +28,7 @@
 
 #include "algos/training/evaluation.h"
 #include "algos/training/evaluation_files.h"
+#include "algos/training/event_file.h"
 #include "algos/training/progress_csv.h"
 #include "algos/training/run_directory.h"
 #include "algos/training/training_checkpoint.h"
@@ -107,9 +108,11 @@ class Trainer {
   std::unique_ptr<TrainingFamily> family_;
   TrainingProgress progress_;
   std::optional<ProgressCsv> progress_csv_;  // rank 0
+  std::optional<EventFile> events_;          // rank 0, with the key tensorboard
   CheckpointMark checkpoint_;                // the last checkpoint saved or loaded
-  double seconds_this_process_ = 0.0;
-  int epochs_this_process_ = 0;
+  // The epochs of this process that pace the later ones (FamilyEpoch::paces_later_epochs), for the ETA.
+  double pacing_seconds_this_process_ = 0.0;
+  int pacing_epochs_this_process_ = 0;
 };
 
 }  // namespace bsg::algos

@@ -51,6 +51,9 @@ struct FamilyEpoch {
   std::vector<ConstraintEstimate> constraints;  // J_Ci and d_i of this epoch's episodes
   ProgressLineInputs line;                      // mean return, cost, limit, lambda, KL; the skeleton adds the rest
   EpochTimings timings;                         // the family's phases; the skeleton adds epoch and totals
+  // Whether this epoch's time predicts the later epochs' (the ETA counts only such epochs): false
+  // for an off-policy epoch that began before start_steps, whose random steps take no gradient steps.
+  bool paces_later_epochs = true;
 };
 
 // What the skeleton knows after an epoch's accounts, for the progress.csv row.

@@ -20,8 +20,11 @@ description (``bsg.describe(id)`` lists them, docs/environments.md):
 
 The package's files import one way only, each from those below it
 (docs/python.md#the-package): registration -> making, vector -> wrappers ->
-gymnasium_env -> specs -> env -> spaces, rendering -> gymnasium_support -> datasets, _core.
+gymnasium_env -> specs -> env -> spaces, rendering -> gymnasium_support -> datasets, _core;
+policies -> spaces.
 ``bsg.datasets`` reads offline datasets (DSRL's HDF5 layout, docs/datasets.md).
+``bsg.load_policy(run_dir)`` gives a trained run's policy (``policy.act(obs)``) and
+``bsg.evaluate(run_dir)`` its evaluation, as ``bsg eval`` (``bsg.policies``).
 This file imports them all and registers last.
 """
 
@@ -32,13 +35,14 @@ from .env import restore_env as _restore_env  # noqa: F401  (what pickles of bsg
 from .gymnasium_env import GymnasiumEnv
 from .gymnasium_support import gymnasium as _gymnasium
 from .making import make
+from .policies import Policy, evaluate, load_policy
 from .spaces import Box
 from .vector import GymnasiumVectorEnv, VectorEnv
 from .wrappers import NextStepAutoreset
 from . import registration
 
 __all__ = ["make", "describe", "env_ids", "Env", "VectorEnv", "GymnasiumVectorEnv", "EnvSpec",
-           "GymnasiumEnv", "NextStepAutoreset", "Box"]
+           "GymnasiumEnv", "NextStepAutoreset", "Box", "load_policy", "evaluate", "Policy"]
 
 if _gymnasium is not None:
     registration.register_all()

@@ -24,7 +24,7 @@ import dataclasses
 from .env import describe, env_ids
 from .gymnasium_env import GymnasiumEnv
 from .gymnasium_support import IS_1X
-from .gymnasium_support import gymnasium as _gymnasium
+from .gymnasium_support import registration as _gymnasium_registration
 from .making import make
 from .specs import ENTRY_POINT, VECTOR_ENTRY_POINT, registered_id
 from .vector import VectorEnv
@@ -72,12 +72,17 @@ class VectorEntryPoint:
 
 
 def register_all():
-    """Registers ``bsg/<id>`` for every id (a no-op for ids already registered)."""
+    """Registers ``bsg/<id>`` for every id (a no-op for ids already registered).
+
+    Also the Gymnasium plugin entry point of an installed bsg (``[gymnasium.envs] __root__ =
+    bsg.registration:register_all``), which Gymnasium 0.28 and 0.29 call while they are imported,
+    so that ``gymnasium.make("bsg/...")`` works in scripts that never import bsg.
+    """
     for env_id in env_ids():
         name = registered_id(env_id)
-        if name in _gymnasium.envs.registry:
+        if name in _gymnasium_registration.registry:
             continue
-        _gymnasium.register(
+        _gymnasium_registration.register(
             id=name,
             entry_point=ENTRY_POINT,
             vector_entry_point=(VECTOR_ENTRY_POINT if IS_1X else

@@ -9,6 +9,7 @@
 #include "envs/env.h"
 #include "envs/standard_envs.h"
 #include "python_env.h"
+#include "python_policy.h"
 #include "python_render.h"
 #include "python_vector_env.h"
 
@@ -28,4 +29,5 @@ PYBIND11_MODULE(_core, module) {
   bsg::python::bind_vector_env(module);
   bsg::python::bind_bench_helpers(module);
   bsg::python::bind_render(module);
+  bsg::python::bind_policy(module);
 }

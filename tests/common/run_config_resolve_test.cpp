@@ -12,6 +12,8 @@
 
 #include "../test_support.h"
 #include "common/config_error.h"
+#include "common/foreign_key_spellings.h"
+#include "common/run_config_schema.h"
 
 namespace bsg {
 namespace {
@@ -190,6 +192,29 @@ TEST_F(ScratchConfigs, MalformedSetArgumentsNameTheArgument) {
   m = error_of(request(run, {"hidden_sizes=[32, 16"}));
   EXPECT_TRUE(contains(m, "--set hidden_sizes=[32, 16"));
   EXPECT_TRUE(contains(m, "not valid YAML"));
+}
+
+// Another library's name for a key points to bsg's key of the same meaning, not to the key
+// closest in spelling (tau is one edit from lam, q_lr two from vf_lr).
+TEST_F(ScratchConfigs, OtherLibrariesKeyNamesPointToBsgsKey) {
+  const fs::path run = write_run(kTrpoRun);
+  std::string m = error_of(request(run, {"tau=0.005"}));
+  EXPECT_TRUE(contains(m, "unknown key 'tau' (did you mean 'polyak'? tau in Stable-Baselines3, CleanRL and Tianshou)"))
+      << m;
+  m = error_of(request(run, {"q_lr=0.001"}));
+  EXPECT_TRUE(contains(m, "unknown key 'q_lr' (did you mean 'critic_lr'? q_lr in CleanRL)")) << m;
+  EXPECT_FALSE(contains(m, "vf_lr'?")) << m;
+  // In a run file too.
+  m = error_of(request(write_run(std::string(kTrpoRun) + "gae_lambda: 0.95\n")));
+  EXPECT_TRUE(contains(m, "did you mean 'lam'?")) << m;
+}
+
+// Every other library's name leads to a key of the table, and none is a key itself.
+TEST(ForeignKeySpellings, NameKeysOfTheTableAndAreNoneThemselves) {
+  for (const ForeignKeySpelling& row : foreign_key_spellings()) {
+    EXPECT_NE(find_config_key(row.key), nullptr) << row.spelling << " -> " << row.key;
+    EXPECT_EQ(find_config_key(row.spelling), nullptr) << row.spelling;
+  }
 }
 
 TEST_F(ScratchConfigs, UnknownKeyInRunFileNamesKeyFileLineAndValidKeys) {

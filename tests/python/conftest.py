@@ -21,6 +21,12 @@ def bsg_binary():
 
 
 @pytest.fixture(scope="session")
+def policy_recorder():
+    """tests/python/policy_recorder.cpp: what `bsg eval`'s policy saw and did."""
+    return _program("BSG_POLICY_RECORDER")
+
+
+@pytest.fixture(scope="session")
 def trajectory_recorder():
     """tests/python/trajectory_recorder.cpp: C++ rollouts through envs/env.h."""
     return _program("BSG_TRAJECTORY_RECORDER")

@@ -78,14 +78,14 @@ def test_the_program_includes_faces_only(tmp_path):
 
 def test_a_library_may_not_include_the_program_nor_the_python_module(tmp_path):
     write(tmp_path, "cli/recording.h", '#pragma once\n')
-    write(tmp_path, "python/src/arguments.h", '#pragma once\n#include "render/camera.h"\n#include "algos/training/trainer.h"\n')
+    write(tmp_path, "python/src/arguments.h", '#pragma once\n#include "render/camera.h"\n#include "algos/off_policy/replay_buffer.h"\n')
     write(tmp_path, "experiments/sweep_plan.cpp", '#include "cli/recording.h"\n')
     write(tmp_path, "python/src/extra/binding.cpp", '#include "envs/env.h"\n')
     write(tmp_path, "python/src/module.cpp", '#include "arguments.h"\n#include "envs/physics/world.h"\n')
     result = run(tmp_path)
     assert result.returncode == 1
     assert "experiments/sweep_plan.cpp:1: room experiments includes cli/recording.h" in result.stderr
-    assert "python/src/arguments.h:3: room python/src includes algos/training/trainer.h" in result.stderr
+    assert "python/src/arguments.h:3: room python/src includes algos/off_policy/replay_buffer.h" in result.stderr
     assert "python/src/module.cpp:2: room python/src includes envs/physics/world.h" in result.stderr
     assert "python/src/extra/binding.cpp" not in result.stderr  # the deepest room holding it is python/src
     assert "3 include(s) break the floors" in result.stderr

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <memory>
 #include <numeric>
+#include <sstream>
 #include <string>
 
 #include "../../test_support.h"
@@ -191,6 +192,31 @@ TEST(OffPolicyTrainer, TakesUpdatesPerStepGradientStepsPerRoundAfterStartSteps) 
   EXPECT_EQ(progress.at("episodes")[0], 4.0);
   EXPECT_EQ(trainer.buffer().total_added(), 400);
   EXPECT_EQ(trainer.buffer().size(), 300);
+}
+
+// The ETA counts only epochs that take gradient steps throughout: with start_steps = 300 and 200
+// steps per epoch, epochs 1 and 2 (starting at steps 0 and 200) are random and fast, so until
+// epoch 3 (starting at 400) has been timed the line says the ETA is not known.
+TEST(OffPolicyTrainer, TheEtaWaitsForAnEpochThatLearns) {
+  TemporaryDirectory dir;
+  bsg::RunConfig config = scripted_config(bsg::Algorithm::sac);
+  config.epochs = 4;
+  config.off_policy.start_steps = 300;
+  std::ostringstream log;
+  bsg::algos::TrainerOptions options;
+  options.log = &log;
+  bsg::algos::OffPolicyTrainer trainer(config, bsg::algos::RunDirectory(dir.path() / "run"),
+                                       bsg::MpiContext::single_process(), options, scripted_envs(2));
+  ASSERT_TRUE(trainer.run().finished);
+  std::vector<std::string> epoch_lines;
+  std::istringstream lines(log.str());
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("epoch ", 0) == 0) epoch_lines.push_back(line);
+  }
+  ASSERT_EQ(epoch_lines.size(), 4u) << log.str();
+  for (int i : {0, 1}) EXPECT_TRUE(bsg::testing::contains(epoch_lines[i], "ETA once learning starts")) << epoch_lines[i];
+  for (int i : {2, 3}) EXPECT_FALSE(bsg::testing::contains(epoch_lines[i], "once learning")) << epoch_lines[i];
+  EXPECT_TRUE(bsg::testing::contains(epoch_lines[3], "ETA 0s")) << epoch_lines[3];
 }
 
 TEST(OffPolicyTrainer, EpochsShorterThanAnEpisodeCarryItsEpisodesOn) {

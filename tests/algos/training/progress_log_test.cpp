@@ -230,3 +230,11 @@ TEST(ProgressLine, ShowsEpochReturnCostLimitLambdaKlAndEta) {
   EXPECT_EQ(bsg::algos::format_duration(3 * 86400 + 4 * 3600 + 59), "3d04h");  // a sweep's ETA
   EXPECT_EQ(bsg::algos::format_duration(-1), "?");
 }
+
+TEST(ProgressLine, AnEtaNotKnownYetSaysWhenItWillBe) {
+  bsg::algos::ProgressLineInputs in;
+  in.epochs = 10;
+  in.kl = std::nan("");
+  const std::string line = bsg::algos::format_progress_line(in);
+  EXPECT_NE(line.find("ETA once learning starts"), std::string::npos) << line;
+}
