@@ -81,10 +81,11 @@ class LocalSlurmCluster : public ::testing::Test {
 }  // namespace
 
 TEST_F(LocalSlurmCluster, ACancelledTaskResumesOnResubmissionAndEveryRunFinishesOnceLikeALocalSweep) {
-  // The quick grid's two TRPO seeds with epochs long enough to cancel one mid-run.
+  // The quick grid's two TRPO seeds with epochs enough to cancel one mid-run: an epoch of 2000
+  // steps takes about 0.06 s, so 30 of them leave the cancel well over a second after the first.
   const fs::path grid = temp_.path() / "slurm_quick.yaml";
   std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [0, 1]\n"
-                         "fixed: {epochs: 10, steps_per_epoch: 2000, save_freq: 1, eval_episodes: 2}\n"
+                         "fixed: {epochs: 30, steps_per_epoch: 2000, save_freq: 1, eval_episodes: 2}\n"
                          "algorithms: {trpo: {axes: {target_kl: [0.01]}}}\n";
   const fs::path sweep = temp_.path() / "slurm_sweep";
   const std::string submit = "sweep " + grid.string() + " --configs " + (kSource / "configs").string() +
@@ -103,13 +104,14 @@ TEST_F(LocalSlurmCluster, ACancelledTaskResumesOnResubmissionAndEveryRunFinishes
   }
   const std::string job = first.output.substr(first.output.find("job array ") + 10);
   const std::string job_id = job.substr(0, job.find(' '));
+  // Cancel first, then ask for the status: the status command's own start-up must not let the run finish.
+  ASSERT_EQ(run_command("scancel " + job_id + "_1").exit_code, 0);
   const auto status_live = run_bsg("sweep --status " + sweep.string());
   EXPECT_EQ(status_live.exit_code, 0) << status_live.output;
-  ASSERT_EQ(run_command("scancel " + job_id + "_1").exit_code, 0);
   ASSERT_TRUE(wait_for_empty_queue(90));
   const int epochs_before = bsg::testing::progress_rows(sweep / runs[1] / "progress.csv");
   EXPECT_GE(epochs_before, 1);
-  EXPECT_LT(epochs_before, 10) << "the task was not cancelled mid-run";
+  EXPECT_LT(epochs_before, 30) << "the task was not cancelled mid-run";
   EXPECT_FALSE(fs::exists(sweep / runs[1] / "evaluation.json"));
   const auto stopped = run_bsg("sweep --status " + sweep.string());
   EXPECT_NE(stopped.output.find("1 finished"), std::string::npos) << stopped.output;
