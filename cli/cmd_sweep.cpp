@@ -12,14 +12,12 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <unistd.h>
 
 #include <iostream>
 #include <optional>
 #include <thread>
 
 #include "commands.h"
-#include "common/atomic_file.h"
 #include "configs_search.h"
 #include "experiments/child_process.h"
 #include "experiments/local_launcher.h"
@@ -47,26 +45,6 @@ struct SweepOptions {
   std::string status_dir;
 };
 
-// One sweep per directory: the lock names its holder to whoever finds it taken.
-experiments::RunLock lock_sweep_directory(const std::filesystem::path& out_dir) {
-  std::filesystem::create_directories(out_dir);
-  const std::filesystem::path lock_file = out_dir / experiments::kSweepLockName;
-  std::optional<experiments::RunLock> lock = experiments::RunLock::try_acquire_file(lock_file);
-  if (!lock) {
-    throw std::runtime_error("another bsg sweep (" + experiments::describe_lock_holder(lock_file) + ") is using " +
-                             out_dir.string() + " (it holds " + lock_file.string() +
-                             "); wait for it to end or choose another --out");
-  }
-  lock->record_holder(::getpid());
-  // A sweep killed during a write of its files leaves the write's temporary behind.
-  const std::vector<std::filesystem::path> stale = remove_stale_temporaries(out_dir);
-  if (!stale.empty()) {
-    std::cerr << "bsg sweep: removed " << stale.size() << " stale temporary file" << (stale.size() == 1 ? "" : "s")
-              << " left by interrupted writes in " << out_dir.string() << "\n";
-  }
-  return std::move(*lock);
-}
-
 int run_sweep(SweepOptions options) {
   const std::filesystem::path grid_file(options.grid_file);
   experiments::SweepPlanRequest request;
@@ -88,7 +66,7 @@ int run_sweep(SweepOptions options) {
     return 0;
   }
   const std::optional<experiments::RunLock> sweep_lock =
-      options.dry_run ? std::nullopt : std::optional<experiments::RunLock>(lock_sweep_directory(request.out_dir));
+      options.dry_run ? std::nullopt : std::optional<experiments::RunLock>(experiments::lock_sweep_directory(request.out_dir, std::cerr));
   experiments::SweepPlan plan = experiments::make_sweep_plan(request);
   if (options.slurm) {
     experiments::SlurmLaunchOptions launch;

@@ -13,24 +13,20 @@
 
 #include <iostream>
 #include <memory>
-#include <new>
 #include <stdexcept>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "algos/training/run_environment.h"
 #include "algos/training/run_directory.h"
-#include "algos/training/make_trainer.h"
+#include "algos/training/run_start.h"
 #include "commands.h"
 #include "common/config_error.h"
 #include "common/mpi_context.h"
-#include "common/run_config_checks.h"
 #include "common/run_config_resolve.h"
 #include "common/run_config_yaml.h"
 #include "configs_search.h"
-#include "envs/env.h"
 #include "mpi_abort_on_error.h"
 #include "stop_signals.h"
 
@@ -63,51 +59,14 @@ ResolvedTrainConfig resolve_config(const TrainArguments& args) {
   request.configs_dir = resolved.configs.dir;
   request.run_file = args.config_file;
   request.set_arguments = args.set_arguments;
-  request.valid_env_ids = envs::registered_ids();
-  resolved.config = resolve_run_config(request).config;
-  algos::resolve_env_block(resolved.config);
-  // config.yaml names the dataset absolutely, so that --resume and bsg eval work from anywhere.
-  if (is_offline(resolved.config.alg) && !resolved.config.offline.dataset.empty()) {
-    resolved.config.offline.dataset = std::filesystem::absolute(resolved.config.offline.dataset).lexically_normal().string();
-  }
+  resolved.config = algos::resolve_training_config(std::move(request));
   return resolved;
-}
-
-// Every check a run must pass before it trains, also run by --print-config:
-// the batch split over the ranks, the environment with its physics model, and
-// the memory estimate against the memory available.
-void check_before_training(const RunConfig& config, int num_ranks) {
-  check_run_config_for_ranks(config, num_ranks);
-  std::unique_ptr<envs::Env> env;
-  try {
-    env = envs::make(config.env_id, {.physics = config.physics});
-  } catch (const std::invalid_argument& e) {
-    throw ConfigError("physics = " + std::string(to_string(config.physics)) + ": " + e.what());
-  }
-  check_training_memory(config, env->spec().observation_dim, env->spec().action_dim, num_ranks, available_memory());
-}
-
-// The trainer allocates its networks and buffers up front: running out of
-// memory there is reported with what was being allocated and the estimate.
-std::unique_ptr<algos::Trainer> allocate_trainer(const RunConfig& config, const algos::RunDirectory& directory,
-                                                 const MpiContext& mpi, const algos::TrainerOptions& options) {
-  try {
-    return algos::make_trainer(config, directory, mpi, options);
-  } catch (const std::bad_alloc&) {
-    const std::unique_ptr<envs::Env> env =
-        envs::make(config.env_id, {.physics = config.physics});
-    const TrainingMemoryEstimate estimate =
-        estimate_training_memory(config, env->spec().observation_dim, env->spec().action_dim, mpi.size());
-    throw std::runtime_error("out of memory while allocating the networks (hidden_sizes) and " +
-                             training_buffer(config, mpi.size()).description + ": the estimate is " +
-                             format_bytes(estimate.bytes) + " per rank of " + available_memory().description);
-  }
 }
 
 int train(const TrainArguments& args) {
   if (args.print_config) {
     const ResolvedTrainConfig resolved = resolve_config(args);
-    check_before_training(resolved.config, 1);
+    algos::check_before_training(resolved.config, 1);
     // A YAML comment, so that the output stays a valid run file.
     std::cout << "# " << describe_configs(resolved.configs) << "\n" << to_yaml(resolved.config);
     return 0;
@@ -122,15 +81,14 @@ int train(const TrainArguments& args) {
     std::optional<algos::RunDirectory> directory;
     if (resume) {
       directory.emplace(args.resume_dir);
-      algos::check_is_run_directory(*directory);
-      config = load_resolved_run_config(directory->config(), envs::registered_ids());
+      config = algos::resumed_training_config(*directory);
     } else {
       ResolvedTrainConfig resolved = resolve_config(args);
       config = std::move(resolved.config);
       configs = std::move(resolved.configs);
       directory.emplace(args.out_dir.empty() ? algos::default_run_directory(config) : std::filesystem::path(args.out_dir));
     }
-    check_before_training(config, mpi.size());
+    algos::check_before_training(config, mpi.size());
 
     algos::TrainerOptions options;
     options.resume = resume;
@@ -155,7 +113,7 @@ int train(const TrainArguments& args) {
                 << directory->root.string() << std::endl;
       if (configs) std::cout << describe_configs(*configs) << std::endl;
     }
-    const algos::TrainingOutcome outcome = allocate_trainer(config, *directory, mpi, options)->run();
+    const algos::TrainingOutcome outcome = algos::allocate_trainer(config, *directory, mpi, options)->run();
     if (mpi.is_root() && !outcome.finished) {
       (outcome.stop_requested ? std::cerr : std::cout)
           << (outcome.stop_requested ? "bsg train: stop signal received: " : "") << "stopped after "

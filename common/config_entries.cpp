@@ -85,13 +85,8 @@ ConfigEntry parse_set_argument(std::string_view argument) {
   key.erase(0, key.find_first_not_of(" \t"));
   key.erase(key.find_last_not_of(" \t") + 1);
   if (key.empty()) throw ConfigError(origin + ": the key before '=' is empty");
-  // env.<parameter>=value sets one environment parameter: env: {<parameter>: value}.
-  std::string env_parameter;
-  if (key.starts_with("env.") && key.size() > 4) {
-    env_parameter = key.substr(4);
-    key = "env";
-  }
-  if (find_config_key(key) == nullptr) throw_unknown_key(key, origin);
+  const bool env_parameter = key.starts_with("env.") && key.size() > 4;
+  if (!env_parameter && find_config_key(key) == nullptr) throw_unknown_key(key, origin);
   const std::string value_text(argument.substr(equals + 1));
   YAML::Node value;
   try {
@@ -99,12 +94,18 @@ ConfigEntry parse_set_argument(std::string_view argument) {
   } catch (const YAML::Exception& e) {
     throw ConfigError(origin + ": the value is not valid YAML: " + e.what());
   }
-  if (!env_parameter.empty()) {
+  return make_config_entry(std::move(key), std::move(value), origin);
+}
+
+ConfigEntry make_config_entry(std::string key, YAML::Node value, std::string origin) {
+  // env.<parameter>=value sets one environment parameter: env: {<parameter>: value}.
+  if (key.starts_with("env.") && key.size() > 4) {
     YAML::Node mapping(YAML::NodeType::Map);
-    mapping[env_parameter] = value;
-    value = mapping;
+    mapping[key.substr(4)] = value;
+    return make_config_entry("env", mapping, std::move(origin));
   }
-  return {key, value, origin};
+  if (find_config_key(key) == nullptr) throw_unknown_key(key, origin);
+  return {std::move(key), std::move(value), std::move(origin)};
 }
 
 std::vector<ConfigEntry> parse_set_arguments(const std::vector<std::string>& arguments) {

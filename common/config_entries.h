@@ -39,4 +39,9 @@ std::vector<ConfigEntry> read_config_file(const std::filesystem::path& path);
 std::vector<ConfigEntry> parse_set_arguments(const std::vector<std::string>& arguments);
 ConfigEntry parse_set_argument(std::string_view argument);
 
+// The entry of `key` with a value already parsed (bsg.train's keywords and dict), named `origin`
+// in messages: "env.bombs" is the environment parameter bombs as in parse_set_argument. Throws
+// ConfigError on a key that is not in the schema (with the other libraries' spelling pointed to).
+ConfigEntry make_config_entry(std::string key, YAML::Node value, std::string origin);
+
 }  // namespace bsg

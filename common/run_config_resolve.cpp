@@ -32,9 +32,9 @@ const ConfigEntry& choosing_entry(const std::vector<ConfigEntry>& run_entries,
                                   const std::string& valid_values) {
   if (const ConfigEntry* entry = find_last_entry(set_entries, key)) return *entry;
   if (const ConfigEntry* entry = find_last_entry(run_entries, key)) return *entry;
-  const std::string where = request.run_file.empty()
-                                ? std::string("no run file was given to")
-                                : "the run file " + request.run_file.string() + " does not";
+  const std::string where = !request.run_file.empty() ? "the run file " + request.run_file.string() + " does not"
+                            : request.run_entries_name.empty() ? std::string("no run file was given to")
+                                                               : "the " + request.run_entries_name + " does not";
   throw ConfigError("no '" + key + "' given (" + where + " name it); set it in the run file or " +
                     "with --set " + key + "=...; valid values: " + valid_values);
 }
@@ -131,8 +131,10 @@ std::vector<std::string> list_config_env_ids(const std::filesystem::path& config
 
 ResolvedRunConfig resolve_run_config(const RunConfigRequest& request) {
   const std::vector<ConfigEntry> run_entries =
-      request.run_file.empty() ? std::vector<ConfigEntry>{} : read_config_file(request.run_file);
-  const std::vector<ConfigEntry> set_entries = parse_set_arguments(request.set_arguments);
+      request.run_file.empty() ? request.run_entries : read_config_file(request.run_file);
+  std::vector<ConfigEntry> later_entries = parse_set_arguments(request.set_arguments);
+  later_entries.insert(later_entries.end(), request.set_entries.begin(), request.set_entries.end());
+  const std::vector<ConfigEntry> set_entries = std::move(later_entries);
 
   ResolvedRunConfig resolved;
   RunConfig& config = resolved.config;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config_entries.h"
 #include "common/run_config.h"
 #include "common/run_config_checks.h"
 
@@ -27,6 +28,11 @@ struct RunConfigRequest {
   // without a file has no environment layer; the run file must then set
   // cost_limit, epochs, steps_per_epoch and max_ep_len.
   std::vector<std::string> valid_env_ids;
+  // In place of a run file (run_file empty): its entries, built elsewhere (bsg.train's dict), and
+  // how messages name them (e.g. "config dict"); empty: none.
+  std::vector<ConfigEntry> run_entries;
+  std::string run_entries_name;
+  std::vector<ConfigEntry> set_entries;  // built elsewhere (bsg.train's keywords), applied after set_arguments
 };
 
 struct ResolvedRunConfig {

@@ -70,7 +70,11 @@ RunConfig resolve_grid_run(const GridRun& run, const std::filesystem::path& conf
   try {
     // Every registered id, as `bsg train` accepts: a fork id (no configs/envs/
     // file) then takes cost_limit, epochs, steps_per_epoch and max_ep_len from the grid.
-    return resolve_run_config(RunConfigRequest{configs_dir, {}, run.set_arguments, envs::registered_ids()}).config;
+    RunConfigRequest request;
+    request.configs_dir = configs_dir;
+    request.set_arguments = run.set_arguments;
+    request.valid_env_ids = envs::registered_ids();
+    return resolve_run_config(request).config;
   } catch (const ConfigError& e) {
     throw ConfigError(grid_source_name + ": run " + run.relative_dir().string() + ": " + e.what());
   }

@@ -7,7 +7,11 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <ostream>
 #include <stdexcept>
+#include <vector>
+
+#include "common/atomic_file.h"
 
 namespace bsg::experiments {
 
@@ -50,6 +54,25 @@ RunLock::RunLock(RunLock&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }
 
 RunLock::~RunLock() {
   if (fd_ >= 0) ::close(fd_);
+}
+
+RunLock lock_sweep_directory(const std::filesystem::path& sweep_dir, std::ostream& notes) {
+  std::filesystem::create_directories(sweep_dir);
+  const std::filesystem::path lock_file = sweep_dir / kSweepLockName;
+  std::optional<RunLock> lock = RunLock::try_acquire_file(lock_file);
+  if (!lock) {
+    throw std::runtime_error("another bsg sweep (" + describe_lock_holder(lock_file) + ") is using " +
+                             sweep_dir.string() + " (it holds " + lock_file.string() +
+                             "); wait for it to end or choose another --out");
+  }
+  lock->record_holder(::getpid());
+  // A sweep killed during a write of its files leaves the write's temporary behind.
+  const std::vector<std::filesystem::path> stale = remove_stale_temporaries(sweep_dir);
+  if (!stale.empty()) {
+    notes << "bsg sweep: removed " << stale.size() << " stale temporary file" << (stale.size() == 1 ? "" : "s")
+          << " left by interrupted writes in " << sweep_dir.string() << "\n";
+  }
+  return std::move(*lock);
 }
 
 }  // namespace bsg::experiments

@@ -12,6 +12,7 @@
 #include <sys/types.h>
 
 #include <filesystem>
+#include <iosfwd>
 #include <optional>
 #include <string>
 
@@ -51,5 +52,10 @@ std::optional<long> recorded_lock_holder(const std::filesystem::path& lock_file)
 
 // "pid 1234" or "an unknown process", for messages.
 std::string describe_lock_holder(const std::filesystem::path& lock_file);
+
+// The lock of one sweep on `sweep_dir` (created if missing), recording this process as its holder
+// (`bsg sweep`, bsg.sweep), with the stale temporaries of writes a killed sweep left behind removed
+// and reported to `notes`. Throws std::runtime_error naming the holder if another sweep has it.
+RunLock lock_sweep_directory(const std::filesystem::path& sweep_dir, std::ostream& notes);
 
 }  // namespace bsg::experiments

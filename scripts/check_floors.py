@@ -60,7 +60,7 @@ FLOORS = {
     "cli": ["experiments", "algos/offline", "algos/training", "render", "envs", "common"],
     # The Python module binds the environments, the renderer and, of algos/, the training room
     # alone (a run's policy and its evaluation: bsg.load_policy, bsg.evaluate).
-    "python/src": ["algos/training", "render", "envs", "common"],
+    "python/src": ["experiments", "algos/training", "render", "envs", "common"],
 }
 # A program's own headers are seen by no other room, so its files include
 # them by their bare name ("commands.h", beside the including file).

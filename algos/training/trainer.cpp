@@ -225,6 +225,7 @@ void Trainer::record_epoch(int epoch, const FamilyEpoch& result, double epoch_se
   if (!mpi_.is_root()) return;
   progress_csv_->write_row(row);
   if (events_) events_->write_scalars(epoch, row);
+  if (options_.on_progress_row) options_.on_progress_row(epoch, row);
   if (options_.log == nullptr) return;
   ProgressLineInputs line = result.line;
   line.epoch = epoch;

@@ -25,6 +25,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "algos/training/evaluation.h"
 #include "algos/training/evaluation_files.h"
@@ -63,6 +64,9 @@ struct TrainerOptions {
   // stop_after_epochs does. `bsg train` stops on SIGTERM / SIGINT this way.
   std::function<bool()> stop_requested;
   std::function<void(const EpochTimings&)> on_epoch_timed;  // called on every rank after each epoch; may be empty
+  // Called on rank 0 with each epoch's progress.csv row, after it is written (bsg.train's
+  // callback); may be empty.
+  std::function<void(int epoch, const std::vector<NamedScalar>& row)> on_progress_row;
 };
 
 struct TrainingOutcome {

@@ -21,10 +21,12 @@ description (``bsg.describe(id)`` lists them, docs/environments.md):
 The package's files import one way only, each from those below it
 (docs/python.md#the-package): registration -> making, vector -> wrappers ->
 gymnasium_env -> specs -> env -> spaces, rendering -> gymnasium_support -> datasets, _core;
-policies -> spaces.
+policies -> spaces; training -> _core.
 ``bsg.datasets`` reads offline datasets (DSRL's HDF5 layout, docs/datasets.md).
 ``bsg.load_policy(run_dir)`` gives a trained run's policy (``policy.act(obs)``) and
 ``bsg.evaluate(run_dir)`` its evaluation, as ``bsg eval`` (``bsg.policies``).
+``bsg.train(config, out=...)`` trains a run in this process as ``bsg train`` does and
+``bsg.sweep(grid)`` runs a grid as ``bsg sweep`` does (``bsg.training``).
 This file imports them all and registers last.
 """
 
@@ -37,12 +39,13 @@ from .gymnasium_support import gymnasium as _gymnasium
 from .making import make
 from .policies import Policy, evaluate, load_policy
 from .spaces import Box
+from .training import sweep, train
 from .vector import GymnasiumVectorEnv, VectorEnv
 from .wrappers import NextStepAutoreset
 from . import registration
 
 __all__ = ["make", "describe", "env_ids", "Env", "VectorEnv", "GymnasiumVectorEnv", "EnvSpec",
-           "GymnasiumEnv", "NextStepAutoreset", "Box", "load_policy", "evaluate", "Policy"]
+           "GymnasiumEnv", "NextStepAutoreset", "Box", "load_policy", "evaluate", "Policy", "train", "sweep"]
 
 if _gymnasium is not None:
     registration.register_all()

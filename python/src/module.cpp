@@ -11,6 +11,8 @@
 #include "python_env.h"
 #include "python_policy.h"
 #include "python_render.h"
+#include "python_sweep.h"
+#include "python_training.h"
 #include "python_vector_env.h"
 
 PYBIND11_MODULE(_core, module) {
@@ -30,4 +32,6 @@ PYBIND11_MODULE(_core, module) {
   bsg::python::bind_bench_helpers(module);
   bsg::python::bind_render(module);
   bsg::python::bind_policy(module);
+  bsg::python::bind_training(module);
+  bsg::python::bind_sweep(module);
 }
