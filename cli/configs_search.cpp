@@ -1,7 +1,6 @@
 #include "configs_search.h"
 
-#include <cstdlib>
-#include <system_error>
+#include <utility>
 
 #include "experiments/child_process.h"
 
@@ -29,12 +28,9 @@ LocatedConfigs find_configs(const std::string& configs_option,
   inputs.explicit_dir = configs_option;
   inputs.input_file = input_file;
   inputs.input_kind = input_kind;
-  std::error_code error;
-  inputs.current_dir = std::filesystem::current_path(error);
-  if (const char* variable = std::getenv("BSG_CONFIGS")) inputs.configs_variable = variable;
   inputs.installed_dir = installed_configs_dir();
   inputs.source_dir = BSG_SOURCE_CONFIGS_DIR;
-  return locate_configs_dir(configs_search_places(inputs));
+  return locate_configs_from_here(std::move(inputs));
 }
 
 std::string describe_configs(const LocatedConfigs& configs) {

@@ -1,5 +1,6 @@
 #include "common/configs_location.h"
 
+#include <cstdlib>
 #include <system_error>
 #include <utility>
 
@@ -101,6 +102,13 @@ LocatedConfigs locate_configs_dir(const std::vector<ConfigsPlace>& places) {
       "no configs folder (one holding algorithms/ and envs/) was found; places tried, in order:" +
       places_tried(places, places.size() - 1) +
       "\nName one with --configs DIR or the environment variable BSG_CONFIGS=DIR.");
+}
+
+LocatedConfigs locate_configs_from_here(ConfigsSearchInputs inputs) {
+  std::error_code error;
+  inputs.current_dir = std::filesystem::current_path(error);
+  if (const char* variable = std::getenv("BSG_CONFIGS")) inputs.configs_variable = variable;
+  return locate_configs_dir(configs_search_places(inputs));
 }
 
 }  // namespace bsg

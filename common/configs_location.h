@@ -63,4 +63,9 @@ std::vector<ConfigsPlace> configs_search_places(const ConfigsSearchInputs& input
 // and is not one.
 LocatedConfigs locate_configs_dir(const std::vector<ConfigsPlace>& places);
 
+// The whole search from this process: `inputs` with current_dir (this process's folder) and
+// configs_variable ($BSG_CONFIGS) filled in here; the program and the Python module give the
+// rest (where their installed configs lie, the source tree).
+LocatedConfigs locate_configs_from_here(ConfigsSearchInputs inputs);
+
 }  // namespace bsg

@@ -1,7 +1,6 @@
 #include "configs_lookup.h"
 
-#include <cstdlib>
-#include <system_error>
+#include <utility>
 
 namespace bsg::python {
 
@@ -11,13 +10,10 @@ LocatedConfigs find_configs(const std::string& configs_option, const std::filesy
   inputs.explicit_dir = configs_option;
   inputs.input_file = input_file;
   inputs.input_kind = input_kind;
-  std::error_code error;
-  inputs.current_dir = std::filesystem::current_path(error);
-  if (const char* variable = std::getenv("BSG_CONFIGS")) inputs.configs_variable = variable;
   // python/CMakeLists.txt: <prefix>/share/bsg/configs from <prefix>/<python dir>/bsg.
   if (!package_dir.empty()) inputs.installed_dir = package_dir / BSG_INSTALLED_CONFIGS_FROM_PACKAGE;
   inputs.source_dir = BSG_SOURCE_CONFIGS_DIR;
-  return locate_configs_dir(configs_search_places(inputs));
+  return locate_configs_from_here(std::move(inputs));
 }
 
 }  // namespace bsg::python
