@@ -12,6 +12,7 @@ import pathlib
 import signal
 import subprocess
 import threading
+import time
 
 import pytest
 
@@ -143,11 +144,25 @@ def test_bad_arguments_raise_type_errors(tmp_path):
         bsg.train(resume=tmp_path / "not_a_run", verbose=False)
 
 
-def test_a_python_sweep_is_the_cli_sweep(bsg_binary, tmp_path):
+def test_a_python_sweep_stopped_by_ctrl_c_and_run_again_is_the_cli_sweep(bsg_binary, tmp_path):
     grid = CONFIGS / "grids" / "quick.yaml"  # trpo x seeds 0, 1: 6 epochs of 1000 steps each
     result = subprocess.run([bsg_binary, "sweep", str(grid), "--alg", "trpo", "--jobs", "2", "--out",
                              str(tmp_path / "cli")], capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
+    # Ctrl-C (a real SIGINT) once a run has written its first epoch: the running runs stop with a
+    # checkpoint, bsg.sweep raises KeyboardInterrupt, and the same call again finishes them.
+    first_rows = tmp_path / "py" / "SafetyBallCircle-v0" / "trpo" / "target_kl=0.01"
+
+    def interrupt_after_the_first_epoch():
+        while not any(len(p.read_text().splitlines()) >= 2 for p in first_rows.glob("*/progress.csv")):
+            time.sleep(0.01)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    threading.Thread(target=interrupt_after_the_first_epoch, daemon=True).start()
+    with pytest.raises(KeyboardInterrupt) as stopped:
+        bsg.sweep(grid, out=tmp_path / "py", alg="trpo", jobs=2, program=bsg_binary)
+    assert stopped.value.bsg_sweep_dir == str(tmp_path / "py")
+    assert not list((tmp_path / "py").rglob("evaluation.json"))
     assert bsg.sweep(grid, out=tmp_path / "py", alg="trpo", jobs=2, program=bsg_binary) == str(tmp_path / "py")
     runs = sorted(p.parent.relative_to(tmp_path / "cli") for p in (tmp_path / "cli").rglob("evaluation.json"))
     assert len(runs) == 2
