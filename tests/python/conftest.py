@@ -33,7 +33,8 @@ def trajectory_recorder():
 
 
 def pytest_sessionfinish(session):
-    """Exit code 77 (ctest: skipped) when gymnasium was missing for a test module."""
-    finder = sys.modules.get("gymnasium_import")
-    if finder is not None and finder.missing:
-        session.exitstatus = finder.SKIP_RETURN_CODE
+    """Exit code 77 (ctest: skipped) when gymnasium or TensorBoard was missing for a test module."""
+    for name in ("gymnasium_import", "tensorboard_import"):
+        finder = sys.modules.get(name)
+        if finder is not None and finder.missing:
+            session.exitstatus = finder.SKIP_RETURN_CODE

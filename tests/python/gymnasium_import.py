@@ -25,7 +25,8 @@ WANTED = os.environ.get("BSG_GYMNASIUM_VERSION") or None
 SUBFOLDERS = {"1": ".", "0.29": "gymnasium-0.29.1", "0.28": "gymnasium-0.28.1"}
 
 
-def _candidate_folders():
+def pydeps_folders():
+    """Where shared/pydeps may be: beside the repository, or beside the main checkout of a worktree."""
     root = Path(__file__).resolve().parents[2]
     yield root.parent / "shared" / "pydeps"
     git = root / ".git"
@@ -55,7 +56,7 @@ def import_gymnasium():
         installed = None
     if installed is not None and is_wanted(installed):
         return importlib.import_module("gymnasium")
-    for folder in _candidate_folders():
+    for folder in pydeps_folders():
         source = (folder / SUBFOLDERS[WANTED or "1"]).resolve()
         if (source / "gymnasium" / "__init__.py").is_file():
             # The version's folder first; the root after it for farama_notifications.
