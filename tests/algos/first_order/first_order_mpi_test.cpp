@@ -39,7 +39,7 @@ TEST(FirstOrderMpi, TwoRanksWithHalvesTakeTheStepsOfOneProcessOnTheWholeBatch) {
   ASSERT_EQ(mpi.size(), 2);
   for (const bool learned : {false, true})
   for (Algorithm alg : {Algorithm::ppo, Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup, Algorithm::p3o,
-                        Algorithm::ipo}) {
+                        Algorithm::ipo, Algorithm::ppo_saute, Algorithm::ppo_early_terminated, Algorithm::ppo_simmer}) {
     SCOPED_TRACE(std::string(to_string(alg)) + (learned ? " learned log sigma" : ""));
     RunConfig config = config_of(alg);
     config.first_order.policy_minibatch_size = 1000;  // one minibatch per pass
@@ -61,6 +61,7 @@ TEST(FirstOrderMpi, TwoRanksWithHalvesTakeTheStepsOfOneProcessOnTheWholeBatch) {
       const Eigen::VectorXd b = half.policy.mean_net().parameters();
       EXPECT_LT((a - b).norm(), 1e-12 * a.norm());
       EXPECT_EQ(mpi.min(b.sum()), mpi.max(b.sum()));
+      EXPECT_EQ(distributed->state(), single->state());  // multipliers; Simmer's budget controller
       if (learned) {
         const Eigen::VectorXd s_whole = whole.policy.log_stds(), s_half = half.policy.log_stds();
         EXPECT_LT((s_whole - s_half).norm(), 1e-12 * s_whole.norm());
