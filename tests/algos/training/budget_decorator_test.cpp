@@ -14,6 +14,7 @@
 
 #include "../../test_support.h"
 #include "algos/training/budget_decorator.h"
+#include "algos/training/epoch_log.h"
 #include "algos/training/load_policy.h"
 #include "algos/training/on_policy_trainer.h"
 #include "algos/training/progress_csv_fields.h"
