@@ -140,7 +140,9 @@ TEST(BudgetDecorator, SimmerWithoutGainsIsSaute) {
     EXPECT_EQ(simmer_rows[k].at("simmer_budget"), 5.0);
     simmer_rows[k].erase("simmer_budget");
     for (auto& [column, value] : simmer_rows[k]) {
-      if (!is_timing_column(column)) EXPECT_EQ(value, saute_rows[k].at(column)) << column;
+      if (!is_timing_column(column)) {
+        EXPECT_EQ(value, saute_rows[k].at(column)) << column;
+      }
     }
   }
 }
