@@ -269,6 +269,23 @@ TEST(BudgetDecorator, ASautePolicyIsEvaluatedOnTheBudgetItWasTrainedWith) {
   }
 }
 
+TEST(BudgetDecorator, ASimmerPolicyIsEvaluatedWithItsWholeBudgetByTrainingAndBsgEvalAlike) {
+  // A budget started at 0.4 d and moved by a quick controller: after training, the run's own
+  // evaluation starts each episode at z = 1 (the limit), as bsg eval's does (decorate_for_budget).
+  const TemporaryDirectory dir;
+  const RunDirectory run(dir.path() / "run");
+  const RunConfig config = ball_circle({"alg=ppo-simmer", "epochs=2", "simmer_kp=0.05", "simmer_ki=0.005",
+                                        "simmer_polyak=0.5", "simmer_initial_budget_fraction=0.4"});
+  const TrainingOutcome outcome = OnPolicyTrainer(config, run, MpiContext::single_process(), {}).run();
+  ASSERT_TRUE(outcome.evaluation.has_value());
+  const RunEvaluation evaluated = evaluate_run_directory(run, 2, MpiContext::single_process());
+  ASSERT_EQ(evaluated.summary.episodes.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(outcome.evaluation->episodes[i].episode_return, evaluated.summary.episodes[i].episode_return) << i;
+    EXPECT_EQ(outcome.evaluation->episodes[i].episode_cost, evaluated.summary.episodes[i].episode_cost) << i;
+  }
+}
+
 // A ConfigError of one line that names `key`.
 void expect_refused(const std::vector<std::string>& settings, const std::string& key) {
   try {
