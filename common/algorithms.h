@@ -21,7 +21,8 @@ namespace bsg {
 enum class Algorithm {
   trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag, crpo,
   bc_all, bc_safe, p3o, ipo, rcpo, cpq,
-  ppo_saute, trpo_saute, ppo_early_terminated, trpo_early_terminated
+  ppo_saute, trpo_saute, ppo_early_terminated, trpo_early_terminated,
+  ppo_simmer, trpo_simmer
 };
 
 // Which update the policy takes: the natural-gradient step with a line search
@@ -86,6 +87,10 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
                                                                 AlgorithmFamily::first_order,  true,  false, true,  "mediumseagreen"},
     {Algorithm::trpo_early_terminated, "trpo-early-terminated", "TRPOEarlyTerminated", "",
                                                                 AlgorithmFamily::trust_region, true,  false, false, "slateblue"},
+    // Saute with a budget that a PID controller moves between epochs (Sootla et al. 2022, "Effects
+    // of Safety State Augmentation on Safe Exploration"; OmniSafe's simmer/ PPOSimmerPID, TRPOSimmerPID).
+    {Algorithm::ppo_simmer, "ppo-simmer", "PPOSimmerPID", "",   AlgorithmFamily::first_order,  true,  false, true,  "darkorange"},
+    {Algorithm::trpo_simmer, "trpo-simmer", "TRPOSimmerPID", "", AlgorithmFamily::trust_region, true,  false, false, "royalblue"},
 });
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }

@@ -11,7 +11,7 @@
 //   first_order   FirstOrderKeys   common/first_order_keys.h/.cpp  (ppo .. cup)
 //   off_policy    OffPolicyKeys    common/off_policy_keys.h/.cpp   (sac .. ddpg-lag)
 //   offline       OfflineKeys      common/offline_keys.h/.cpp      (bc-all, bc-safe)
-//   budget        BudgetKeys       common/budget_keys.h/.cpp       (ppo-saute, trpo-saute)
+//   budget        BudgetKeys       common/budget_keys.h/.cpp       (ppo-saute, trpo-saute, ppo-simmer, trpo-simmer)
 // In YAML every key is flat (`cg_iters: 10`, not nested under its group).
 //
 // Parameters: every key, its type, where its default comes from, its valid
@@ -111,7 +111,7 @@ struct RunConfig {
   FirstOrderKeys first_order;      // first-order updates
   OffPolicyKeys off_policy;        // off-policy learners
   OfflineKeys offline;             // offline learners (the dataset, steps per epoch)
-  BudgetKeys budget;               // the budget methods (Saute's discount and unsafe reward)
+  BudgetKeys budget;               // the budget methods (Saute's discount and unsafe reward, Simmer's controller)
 
   // --- value networks (docs/algorithms.md#value-fits) ---
   bool use_cost_value_function = false;

@@ -8,6 +8,10 @@
 
 namespace bsg::envs {
 
+double saute_normalized_budget(double limit, double saute_gamma, int max_episode_steps) {
+  return limit * (1.0 - std::pow(saute_gamma, max_episode_steps)) / (1.0 - saute_gamma) / max_episode_steps;
+}
+
 SauteEnv::SauteEnv(std::unique_ptr<Env> inner, CostBudgets budgets, SauteOptions options)
     : DecoratedEnv(std::move(inner)),
       budgets_(std::move(budgets)),
@@ -28,10 +32,10 @@ SauteEnv::SauteEnv(std::unique_ptr<Env> inner, CostBudgets budgets, SauteOptions
       throw std::invalid_argument("saute: budget " + std::to_string(i + 1) + " must be positive and finite, got " +
                                   std::to_string(limit));
     }
-    // d~ = d (1 - gamma_s^T) / ((1 - gamma_s) T): the budget in units of the discounted cost per step.
-    normalized_budgets_.push_back(limit * (1.0 - std::pow(gamma, steps)) / (1.0 - gamma) / steps);
+    normalized_budgets_.push_back(saute_normalized_budget(limit, gamma, steps));
   }
   step_costs_.assign(budget_count(), 0.0);
+  start_fractions_.assign(budget_count(), 1.0);
   spec_.observation_dim += static_cast<int>(budget_count());
   observation_.assign(static_cast<std::size_t>(spec_.observation_dim), 1.0);
 }
@@ -45,8 +49,23 @@ std::span<const double> SauteEnv::augment(std::span<const double> observation) {
   return observation_;
 }
 
+void SauteEnv::set_start_fractions(std::span<const double> fractions) {
+  if (fractions.size() != budget_count()) {
+    throw std::invalid_argument("saute: " + std::to_string(fractions.size()) + " start fractions for " +
+                                std::to_string(budget_count()) + " budgets");
+  }
+  for (std::size_t i = 0; i < fractions.size(); ++i) {
+    if (!(fractions[i] > 0.0 && fractions[i] <= 1.0)) {
+      throw std::invalid_argument("saute: budget " + std::to_string(i + 1) + "'s start fraction must be in (0, 1], got " +
+                                  std::to_string(fractions[i]));
+    }
+  }
+  start_fractions_.assign(fractions.begin(), fractions.end());
+}
+
 std::span<const double> SauteEnv::start_episode(std::span<const double> observation) {
-  std::fill(observation_.begin() + static_cast<std::ptrdiff_t>(inner_size_), observation_.end(), 1.0);  // z_0 = 1
+  // z_0 = 1 (Saute), or a schedule's fraction of the budget.
+  std::copy(start_fractions_.begin(), start_fractions_.end(), observation_.begin() + static_cast<std::ptrdiff_t>(inner_size_));
   return augment(observation);
 }
 

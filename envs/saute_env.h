@@ -10,6 +10,9 @@
 // and the observation is (o_t+1, z_1,t+1, ..., z_m,t+1). The step's reward, cost, terms and
 // episode end stay the environment's; the learner's reward is StepResult::learner (env_types.h).
 // (One budget per constraint; OmniSafe has the one budget of the environment's cost.)
+// A schedule of budgets (Simmer: algos/training/simmer_algorithm.h) starts each episode at a
+// fraction of d_i instead, z_i,0 = b_i / d_i, so the reward is replaced once the episode's
+// discounted cost reaches b_i; the default fraction 1 is Saute's.
 //
 // Parameters (SauteOptions): saute_gamma gamma_s = 0.999, unsafe_reward = -1 (OmniSafe's
 // PPOSaute.yaml and TRPOSaute.yaml), max_episode_steps T (the run's max_ep_len).
@@ -23,6 +26,9 @@
 #include "envs/decorated_env.h"
 
 namespace bsg::envs {
+
+// d~ = d (1 - gamma_s^T) / ((1 - gamma_s) T): a budget d in units of the discounted cost per step.
+double saute_normalized_budget(double limit, double saute_gamma, int max_episode_steps);
 
 struct SauteOptions {
   double saute_gamma = 0.999;
@@ -46,6 +52,9 @@ class SauteEnv final : public DecoratedEnv {
   std::span<const double> budgets_left() const { return {observation_.data() + inner_size_, budget_count()}; }
   // d~_i.
   const std::vector<double>& normalized_budgets() const { return normalized_budgets_; }
+  // z_i,0 of the episodes that start after this call, one per budget (each in (0, 1]; 1 until
+  // set). Throws std::invalid_argument naming the budget at fault or the count.
+  void set_start_fractions(std::span<const double> fractions);
 
  private:
   std::size_t budget_count() const { return normalized_budgets_.size(); }
@@ -58,6 +67,7 @@ class SauteEnv final : public DecoratedEnv {
   std::size_t inner_size_;
   std::vector<double> normalized_budgets_;  // d~_i
   std::vector<double> step_costs_;          // c_i,t
+  std::vector<double> start_fractions_;     // z_i,0
   std::vector<double> observation_;         // (o, z_1..z_m)
 };
 

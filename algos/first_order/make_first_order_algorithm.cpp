@@ -16,7 +16,8 @@ std::unique_ptr<OnPolicyAlgorithm> make_first_order_algorithm(const RunConfig& c
     case Algorithm::ppo:
     case Algorithm::ppo_lag:
     case Algorithm::ppo_saute:  // PPO's update; the budget decorator is the run's (algos/training/budget_decorator.h)
-    case Algorithm::ppo_early_terminated: return std::make_unique<Ppo>(config);
+    case Algorithm::ppo_early_terminated:
+    case Algorithm::ppo_simmer: return std::make_unique<Ppo>(config);  // Simmer's controller: make_algorithm
     case Algorithm::focops: return std::make_unique<Focops>(config);
     case Algorithm::cup: return std::make_unique<Cup>(config);
     case Algorithm::p3o: return std::make_unique<P3o>(config);

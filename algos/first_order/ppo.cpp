@@ -20,10 +20,10 @@ SampleLossFunction clipped_surrogate_loss(const Eigen::VectorXd& advantages, dou
 }
 
 Ppo::Ppo(const RunConfig& config) : FirstOrderAlgorithm(config, config.alg == Algorithm::ppo_lag, {}) {
-  // PPOSaute and PPOEarlyTerminated take PPO's update; their budget decorator changes the data.
+  // PPOSaute, PPOEarlyTerminated and PPOSimmerPID take PPO's update; their budget decorator changes the data.
   if (config.alg != Algorithm::ppo && config.alg != Algorithm::ppo_lag && config.alg != Algorithm::ppo_saute &&
-      config.alg != Algorithm::ppo_early_terminated) {
-    throw std::invalid_argument("Ppo: alg must be ppo, ppo-lag, ppo-saute or ppo-early-terminated, got " +
+      config.alg != Algorithm::ppo_early_terminated && config.alg != Algorithm::ppo_simmer) {
+    throw std::invalid_argument("Ppo: alg must be ppo, ppo-lag, ppo-saute, ppo-early-terminated or ppo-simmer, got " +
                                 std::string(to_string(config.alg)));
   }
 }

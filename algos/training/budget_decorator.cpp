@@ -1,8 +1,12 @@
 #include "algos/training/budget_decorator.h"
 
+#include <stdexcept>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "algos/core/constraint_costs.h"
+#include "algos/training/simmer_algorithm.h"
 #include "envs/early_terminated_env.h"
 #include "envs/saute_env.h"
 
@@ -26,7 +30,9 @@ envs::CostBudgets run_budgets(const RunConfig& config, const envs::Env& env) {
 BudgetMethod budget_method(Algorithm alg) {
   switch (alg) {
     case Algorithm::ppo_saute:
-    case Algorithm::trpo_saute: return BudgetMethod::saute;
+    case Algorithm::trpo_saute:
+    case Algorithm::ppo_simmer:  // Saute's environment, its budgets scheduled (simmer_algorithm.h)
+    case Algorithm::trpo_simmer: return BudgetMethod::saute;
     case Algorithm::ppo_early_terminated:
     case Algorithm::trpo_early_terminated: return BudgetMethod::early_termination;
     default: return BudgetMethod::none;
@@ -43,6 +49,20 @@ std::unique_ptr<envs::Env> decorate_for_budget(const RunConfig& config, std::uni
   return std::make_unique<envs::SauteEnv>(
       std::move(env), std::move(budgets),
       envs::SauteOptions{config.budget.saute_gamma, config.budget.unsafe_reward, config.max_ep_len});
+}
+
+void apply_budget_schedule(const OnPolicyAlgorithm& algorithm, envs::Env& env) {
+  const auto* simmer = dynamic_cast<const SimmerAlgorithm*>(&algorithm);
+  if (simmer == nullptr) return;
+  auto* saute = dynamic_cast<envs::SauteEnv*>(&env);
+  if (saute == nullptr) throw std::logic_error("apply_budget_schedule: " + std::string(simmer->name()) + " needs its Saute environment");
+  saute->set_start_fractions(simmer->start_fractions());
+}
+
+void restore_whole_budgets(envs::Env& env) {
+  auto* saute = dynamic_cast<envs::SauteEnv*>(&env);
+  if (saute == nullptr) return;
+  saute->set_start_fractions(std::vector<double>(saute->normalized_budgets().size(), 1.0));
 }
 
 }  // namespace bsg::algos

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "algos/first_order/make_first_order_algorithm.h"
+#include "algos/training/simmer_algorithm.h"
 #include "algos/trust_region/make_trust_region_algorithm.h"
 
 namespace bsg::algos {
@@ -12,6 +13,12 @@ namespace bsg::algos {
 std::unique_ptr<OnPolicyAlgorithm> make_algorithm(const RunConfig& config) {
   if (static_cast<std::size_t>(config.alg) >= kAlgorithms.size()) {
     throw std::invalid_argument("make_algorithm: unknown alg value " + std::to_string(static_cast<int>(config.alg)));
+  }
+  // Simmer: the base update under its budget controllers (simmer_algorithm.h).
+  if (schedules_saute_budgets(config.alg)) {
+    return std::make_unique<SimmerAlgorithm>(config, algorithm_info(config.alg).family == AlgorithmFamily::trust_region
+                                                         ? make_trust_region_algorithm(config)
+                                                         : make_first_order_algorithm(config));
   }
   switch (algorithm_info(config.alg).family) {
     case AlgorithmFamily::trust_region: return make_trust_region_algorithm(config);

@@ -148,6 +148,7 @@ void OnPolicyFamily::set_exploration_noise(int epoch) {
 
 // 2. Rollout: this rank's local_steps_ steps, GAE at every path's end.
 void OnPolicyFamily::collect_rollout(int epoch) {
+  apply_budget_schedule(*algorithm_, *env_);  // Simmer's budgets of this epoch
   collector_.collect(*env_, stream_seed(config_, SeedStream::environment, mpi_.rank(), epoch), *actor_critic_,
                      noise_rng_, buffer_);
   check_rollout_finite(epoch);
@@ -281,6 +282,7 @@ std::vector<NamedScalar> OnPolicyFamily::progress_row(const EpochAccounts& accou
 // not set it). The term names label evaluation.json's per-term costs.
 EvaluationSummary OnPolicyFamily::evaluate(int epochs_completed) {
   if (config_.sampled_evaluation) set_last_epoch_std(config_, epochs_completed, actor_critic_->policy);
+  restore_whole_budgets(*env_);  // a Simmer policy is judged at its limits, as by bsg eval
   ActorCriticActing acting(*actor_critic_);
   const ActionMode mode = evaluation_actions(config_);
   EvaluationSummary summary = evaluate_policy(*env_, acting, config_.eval_episodes, config_.seed, config_.max_ep_len,

@@ -17,7 +17,8 @@ std::unique_ptr<OnPolicyAlgorithm> make_trust_region_algorithm(const RunConfig& 
   switch (config.alg) {
     case Algorithm::trpo:
     case Algorithm::trpo_saute:  // TRPO's update; the budget decorator is the run's (algos/training/budget_decorator.h)
-    case Algorithm::trpo_early_terminated: return std::make_unique<Trpo>(config);
+    case Algorithm::trpo_early_terminated:
+    case Algorithm::trpo_simmer: return std::make_unique<Trpo>(config);  // Simmer's controller: make_algorithm
     case Algorithm::lag_trpo: return std::make_unique<LagTrpo>(config);
     case Algorithm::cpo: return std::make_unique<Cpo>(config);
     case Algorithm::pdo: return std::make_unique<Pdo>(config);

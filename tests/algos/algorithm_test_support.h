@@ -209,7 +209,10 @@ inline RunConfig config_for(Algorithm alg) {
     case Algorithm::focops:
     case Algorithm::cup:
     case Algorithm::p3o:
-    case Algorithm::ipo:  // the first-order defaults of configs/algorithms (OmniSafe's)
+    case Algorithm::ipo:
+    case Algorithm::ppo_saute:
+    case Algorithm::ppo_early_terminated:
+    case Algorithm::ppo_simmer:  // the first-order defaults of configs/algorithms (OmniSafe's)
       config.trust_region.target_kl = 0.02;
       config.multiplier.lambda_optimizer = LambdaOptimizer::adam;
       config.multiplier.lambda_lr = 0.035;

@@ -61,6 +61,31 @@ TEST(SauteEnv, EachConstraintKeepsItsOwnBudget) {
   EXPECT_TRUE(step.learner->budget_spent);
 }
 
+TEST(SauteEnv, AScheduledBudgetStartsTheNextEpisodesAtItsFraction) {
+  // d = 4, d~ = 3 (gamma_s = 1/2, T = 2), costs 1.5 each step. With the whole budget z = 1, 1, 1, ...
+  // (z_1 = (1 - 0.5)/0.5); at half of it, z_0 = 1/2 and z_1 = (0.5 - 0.5)/0.5 = 0: spent at once.
+  SauteEnv env(std::make_unique<CostScriptEnv>(std::vector<std::array<double, 2>>{{1.5, 0}, {1.5, 0}, {1.5, 0}}),
+               term_budgets({4.0}), SauteOptions{0.5, -2.5, 2});
+  EXPECT_EQ(env.reset(1)[2], 1.0);
+  StepResult step = env.step(std::vector<double>{0.0});
+  EXPECT_EQ(step.observation[2], 1.0);
+  EXPECT_FALSE(step.learner->budget_spent);
+  env.set_start_fractions(std::vector<double>{0.5});
+  EXPECT_EQ(env.budgets_left()[0], 1.0) << "the episode under way keeps its budget";
+  EXPECT_EQ(env.reset()[2], 0.5);
+  step = env.step(std::vector<double>{0.0});
+  EXPECT_EQ(step.observation[2], 0.0);
+  EXPECT_TRUE(step.learner->budget_spent);
+  EXPECT_EQ(step.learner->reward, -2.5);
+  EXPECT_EQ(env.reset(2)[2], 0.5) << "every later episode starts at the fraction";
+  env.set_start_fractions(std::vector<double>{1.0});
+  EXPECT_EQ(env.reset()[2], 1.0);
+  // A fraction outside (0, 1] or one per budget missing is refused.
+  EXPECT_THROW(env.set_start_fractions(std::vector<double>{0.0}), std::invalid_argument);
+  EXPECT_THROW(env.set_start_fractions(std::vector<double>{1.5}), std::invalid_argument);
+  EXPECT_THROW(env.set_start_fractions(std::vector<double>{0.5, 0.5}), std::invalid_argument);
+}
+
 TEST(SauteEnv, ABudgetItCannotDivideByIsRefused) {
   const auto make = [](double limit, double gamma) {
     return SauteEnv(std::make_unique<CostScriptEnv>(std::vector<std::array<double, 2>>{{0, 0}}), term_budgets({limit}),

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "../algorithm_test_support.h"
 #include "algos/training/make_algorithm.h"
@@ -26,6 +27,15 @@ PolicySurrogate rows_of(const SyntheticBatch& batch, Eigen::Index first, Eigen::
                          batch.cost_advantages.segment(first, count));
 }
 
+// The state of Simmer's budget controllers (simmer_algorithm.h); empty for the other algorithms.
+std::vector<NamedScalar> simmer_state(const OnPolicyAlgorithm& algorithm) {
+  std::vector<NamedScalar> controllers;
+  for (const NamedScalar& entry : algorithm.state()) {
+    if (entry.name.starts_with("simmer_")) controllers.push_back(entry);
+  }
+  return controllers;
+}
+
 RunConfig config_of(Algorithm alg) {
   RunConfig config = testing::config_for(alg);
   config.first_order.update_iters = 6;
@@ -39,7 +49,7 @@ TEST(FirstOrderMpi, TwoRanksWithHalvesTakeTheStepsOfOneProcessOnTheWholeBatch) {
   ASSERT_EQ(mpi.size(), 2);
   for (const bool learned : {false, true})
   for (Algorithm alg : {Algorithm::ppo, Algorithm::ppo_lag, Algorithm::focops, Algorithm::cup, Algorithm::p3o,
-                        Algorithm::ipo}) {
+                        Algorithm::ipo, Algorithm::ppo_saute, Algorithm::ppo_early_terminated, Algorithm::ppo_simmer}) {
     SCOPED_TRACE(std::string(to_string(alg)) + (learned ? " learned log sigma" : ""));
     RunConfig config = config_of(alg);
     config.first_order.policy_minibatch_size = 1000;  // one minibatch per pass
@@ -61,6 +71,7 @@ TEST(FirstOrderMpi, TwoRanksWithHalvesTakeTheStepsOfOneProcessOnTheWholeBatch) {
       const Eigen::VectorXd b = half.policy.mean_net().parameters();
       EXPECT_LT((a - b).norm(), 1e-12 * a.norm());
       EXPECT_EQ(mpi.min(b.sum()), mpi.max(b.sum()));
+      EXPECT_EQ(simmer_state(*distributed), simmer_state(*single));  // ppo-simmer's budget controller
       if (learned) {
         const Eigen::VectorXd s_whole = whole.policy.log_stds(), s_half = half.policy.log_stds();
         EXPECT_LT((s_whole - s_half).norm(), 1e-12 * s_whole.norm());

@@ -4,6 +4,7 @@
 // with; resuming continues exactly; keys that cannot make a budget are refused in one line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -13,6 +14,7 @@
 
 #include "../../test_support.h"
 #include "algos/training/budget_decorator.h"
+#include "algos/training/epoch_log.h"
 #include "algos/training/load_policy.h"
 #include "algos/training/on_policy_trainer.h"
 #include "algos/training/progress_csv_fields.h"
@@ -41,17 +43,24 @@ RunConfig scripted(Algorithm alg, double cost_limit) {
   return config;
 }
 
-// The first row of the run's progress.csv, by column.
-std::map<std::string, double> first_row(const RunConfig& config, std::unique_ptr<envs::Env> env) {
+// The rows of the run's progress.csv, each by column.
+std::vector<std::map<std::string, double>> rows_of(const RunConfig& config, std::unique_ptr<envs::Env> env) {
   TemporaryDirectory dir;
   const RunDirectory run(dir.path() / "run");
   OnPolicyTrainer(config, run, MpiContext::single_process(), {}, std::move(env)).run();
   const ProgressLogText log = read_progress_log(testing::read_text_file(run.progress()), "progress.csv", config.steps_per_epoch);
   const std::vector<std::string> names = split_csv_line(log.header);
-  const std::vector<std::string> values = split_csv_line(log.rows.at(0));
-  std::map<std::string, double> row;
-  for (std::size_t i = 0; i < names.size(); ++i) row[names[i]] = std::stod(values[i]);
-  return row;
+  std::vector<std::map<std::string, double>> rows;
+  for (const std::string& line : log.rows) {
+    const std::vector<std::string> values = split_csv_line(line);
+    std::map<std::string, double>& row = rows.emplace_back();
+    for (std::size_t i = 0; i < names.size(); ++i) row[names[i]] = std::stod(values[i]);
+  }
+  return rows;
+}
+
+std::map<std::string, double> first_row(const RunConfig& config, std::unique_ptr<envs::Env> env) {
+  return rows_of(config, std::move(env)).at(0);
 }
 
 // Sum of 1 + 0.01 t over t = from..to: the scripted environment's rewards.
@@ -87,6 +96,57 @@ TEST(BudgetDecorator, SauteTrainsOnThePenaltyAndTheLogKeepsTheTrueReturn) {
   EXPECT_EQ(row.at("budget_spent_fraction"), 1.0);
 }
 
+TEST(BudgetDecorator, SimmersBudgetMovesBetweenEpochsAndTheLearnerSpendsEachEpochsBudget) {
+  // Cost 1 at steps 10, 20, ..., 100: J = 10 every epoch. d = 20, b_0 = d / 4 = 5; K_P = 0.2 alone,
+  // p = 0, in units of d~ = f d, f = (1 - 0.999^100) / (0.001 * 100) = 0.952:
+  //   epoch 0: e = f (5 - 10), u = 0.2 e = -f (no clip, f < 1): b_1 = 5 - 1 = 4;
+  //   epoch 1: e = f (4 - 10), u = -1.2 f = -1.14, clipped to -1: b_2 = 4 - 1 / f = 2.95.
+  RunConfig config = scripted(Algorithm::ppo_simmer, 20.0);
+  config.epochs = 3;
+  config.budget.simmer_kp = 0.2;
+  config.budget.simmer_ki = 0.0;
+  config.budget.simmer_kd = 0.0;
+  config.budget.simmer_polyak = 0.0;
+  config.budget.simmer_initial_budget_fraction = 0.25;
+  const std::vector<std::map<std::string, double>> rows = rows_of(config, std::make_unique<ScriptedEnv>(100));
+  ASSERT_EQ(rows.size(), 3u);
+  const double f = (1.0 - std::pow(0.999, 100)) / (0.001 * 100);
+  const double budgets[] = {5.0, 4.0, 4.0 - 1.0 / f};
+  // z_t 0.999^t = z_0 - sum_(s <= t) c_s 0.999^(s - 1) / d~ with z_0 = b / d, so the learner's
+  // episode spends b once sum_j 0.999^(10 j - 1) reaches f b: 5 f = 4.76 at the 5th cost (sums
+  // 3.91, 4.86), 4 f = 3.81 at the 4th (2.94, 3.91), 2.95 f = 2.81 at the 3rd (1.97, 2.94); from
+  // that step s on its reward is -1: sum_1^(s-1) (1 + 0.01 t) - (101 - s).
+  const int spent_at[] = {50, 40, 30};
+  for (std::size_t k = 0; k < 3; ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_NEAR(rows[k].at("simmer_budget"), budgets[k], 1e-9);
+    EXPECT_EQ(rows[k].at("episode_cost_mean"), 10.0);
+    EXPECT_NEAR(rows[k].at("episode_return_mean"), scripted_return(1, 100), 1e-9);  // the environment's
+    EXPECT_NEAR(rows[k].at("learner_return_mean"), scripted_return(1, spent_at[k] - 1) - (101 - spent_at[k]), 1e-9);
+    EXPECT_EQ(rows[k].at("budget_spent_fraction"), 1.0);
+  }
+}
+
+TEST(BudgetDecorator, SimmerWithoutGainsIsSaute) {
+  // No gain moves the budget: the budget stays the limit, and training is Saute's bit for bit.
+  RunConfig config = scripted(Algorithm::ppo_simmer, 5.0);
+  config.epochs = 2;
+  config.budget.simmer_kp = config.budget.simmer_ki = config.budget.simmer_kd = 0.0;
+  RunConfig saute = config;
+  saute.alg = Algorithm::ppo_saute;
+  std::vector<std::map<std::string, double>> simmer_rows = rows_of(config, std::make_unique<ScriptedEnv>(100));
+  const std::vector<std::map<std::string, double>> saute_rows = rows_of(saute, std::make_unique<ScriptedEnv>(100));
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(simmer_rows[k].at("simmer_budget"), 5.0);
+    simmer_rows[k].erase("simmer_budget");
+    for (auto& [column, value] : simmer_rows[k]) {
+      if (!is_timing_column(column)) {
+        EXPECT_EQ(value, saute_rows[k].at(column)) << column;
+      }
+    }
+  }
+}
+
 TEST(BudgetDecorator, ARunWithoutABudgetMethodWritesNoLearnerColumns) {
   const std::map<std::string, double> row = first_row(scripted(Algorithm::ppo, 1.5), std::make_unique<ScriptedEnv>(100));
   EXPECT_EQ(row.count("learner_return_mean"), 0u);
@@ -113,6 +173,45 @@ TEST(BudgetDecorator, ASauteRunResumedContinuesExactly) {
   second.run();
   EXPECT_EQ(second.actor_critic().policy.mean_net().parameters(), whole.actor_critic().policy.mean_net().parameters());
   EXPECT_EQ(second.actor_critic().observation_normalizer.mean(), whole.actor_critic().observation_normalizer.mean());
+}
+
+TEST(BudgetDecorator, ASimmerRunResumedContinuesExactly) {
+  TemporaryDirectory dir;
+  RunConfig config = scripted(Algorithm::ppo_simmer, 20.0);
+  config.epochs = 4;
+  config.save_freq = 10;
+  config.budget.simmer_kp = 0.1;  // the budget moves every epoch; K_I and K_D act too
+  config.budget.simmer_ki = 0.05;
+  config.budget.simmer_kd = 0.3;
+  config.budget.simmer_polyak = 0.5;
+  config.budget.simmer_initial_budget_fraction = 0.3;
+  OnPolicyTrainer whole(config, RunDirectory(dir.path() / "whole"), MpiContext::single_process(), {},
+                        std::make_unique<ScriptedEnv>(100, std::nullopt, 7));
+  whole.run();
+  TrainerOptions stop;
+  stop.stop_after_epochs = 2;
+  OnPolicyTrainer(config, RunDirectory(dir.path() / "split"), MpiContext::single_process(), stop,
+                  std::make_unique<ScriptedEnv>(100, std::nullopt, 7))
+      .run();
+  TrainerOptions resume;
+  resume.resume = true;
+  OnPolicyTrainer second(config, RunDirectory(dir.path() / "split"), MpiContext::single_process(), resume,
+                         std::make_unique<ScriptedEnv>(100, std::nullopt, 7));
+  second.run();
+  EXPECT_EQ(second.actor_critic().policy.mean_net().parameters(), whole.actor_critic().policy.mean_net().parameters());
+  EXPECT_EQ(second.algorithm().state(), whole.algorithm().state());  // the controller's budget, errors and steps
+  const auto columns = [](const fs::path& progress) {
+    const ProgressLogText log = read_progress_log(testing::read_text_file(progress), "progress.csv", 400);
+    std::vector<std::string> budgets;
+    const std::vector<std::string> names = split_csv_line(log.header);
+    const auto column = static_cast<std::size_t>(std::find(names.begin(), names.end(), "simmer_budget") - names.begin());
+    for (const std::string& row : log.rows) budgets.push_back(split_csv_line(row).at(column));
+    return budgets;
+  };
+  const std::vector<std::string> budgets = columns(RunDirectory(dir.path() / "whole").progress());
+  ASSERT_EQ(budgets.size(), 4u);
+  EXPECT_NE(budgets[1], budgets[0]);
+  EXPECT_EQ(columns(RunDirectory(dir.path() / "split").progress()), budgets);
 }
 
 RunConfig ball_circle(const std::vector<std::string>& settings) {
@@ -170,6 +269,23 @@ TEST(BudgetDecorator, ASautePolicyIsEvaluatedOnTheBudgetItWasTrainedWith) {
   }
 }
 
+TEST(BudgetDecorator, ASimmerPolicyIsEvaluatedWithItsWholeBudgetByTrainingAndBsgEvalAlike) {
+  // A budget started at 0.4 d and moved by a quick controller: after training, the run's own
+  // evaluation starts each episode at z = 1 (the limit), as bsg eval's does (decorate_for_budget).
+  const TemporaryDirectory dir;
+  const RunDirectory run(dir.path() / "run");
+  const RunConfig config = ball_circle({"alg=ppo-simmer", "epochs=2", "simmer_kp=0.05", "simmer_ki=0.005",
+                                        "simmer_polyak=0.5", "simmer_initial_budget_fraction=0.4"});
+  const TrainingOutcome outcome = OnPolicyTrainer(config, run, MpiContext::single_process(), {}).run();
+  ASSERT_TRUE(outcome.evaluation.has_value());
+  const RunEvaluation evaluated = evaluate_run_directory(run, 2, MpiContext::single_process());
+  ASSERT_EQ(evaluated.summary.episodes.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(outcome.evaluation->episodes[i].episode_return, evaluated.summary.episodes[i].episode_return) << i;
+    EXPECT_EQ(outcome.evaluation->episodes[i].episode_cost, evaluated.summary.episodes[i].episode_cost) << i;
+  }
+}
+
 // A ConfigError of one line that names `key`.
 void expect_refused(const std::vector<std::string>& settings, const std::string& key) {
   try {
@@ -189,6 +305,12 @@ TEST(BudgetDecorator, KeysThatCannotMakeABudgetAreRefusedInOneLine) {
   expect_refused({"alg=ppo", "unsafe_reward=-2"}, "unsafe_reward");
   expect_refused({"alg=ppo-early-terminated", "saute_gamma=0.9"}, "saute_gamma");
   EXPECT_EQ(ball_circle({"alg=ppo-early-terminated", "cost_limit=0"}).cost_limit, 0.0);  // ET can keep a zero budget
+  expect_refused({"alg=ppo-simmer", "cost_limit=0"}, "cost_limit");
+  expect_refused({"alg=trpo-simmer", "simmer_polyak=1"}, "simmer_polyak");
+  expect_refused({"alg=ppo-simmer", "simmer_kp=-0.1"}, "simmer_kp");
+  expect_refused({"alg=ppo-simmer", "simmer_initial_budget_fraction=0"}, "simmer_initial_budget_fraction");
+  expect_refused({"alg=ppo-simmer", "simmer_initial_budget_fraction=1.5"}, "simmer_initial_budget_fraction");
+  expect_refused({"alg=ppo-saute", "simmer_ki=0.1"}, "simmer_ki");  // Saute has no controller
 }
 
 }  // namespace
