@@ -21,7 +21,7 @@ namespace bsg {
 enum class Algorithm {
   trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag, crpo,
   bc_all, bc_safe, p3o, ipo, rcpo, cpq,
-  ppo_saute, trpo_saute, ppo_early_terminated, trpo_early_terminated
+  ppo_saute, trpo_saute, ppo_early_terminated, trpo_early_terminated, bcq_lag
 };
 
 // Which update the policy takes: the natural-gradient step with a line search
@@ -86,6 +86,9 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
                                                                 AlgorithmFamily::first_order,  true,  false, true,  "mediumseagreen"},
     {Algorithm::trpo_early_terminated, "trpo-early-terminated", "TRPOEarlyTerminated", "",
                                                                 AlgorithmFamily::trust_region, true,  false, false, "slateblue"},
+    // Batch-constrained Q-learning with a cost critic (Fujimoto et al. 2019, OSRL's bcql.py): its multiplier
+    // is OSRL's PID controller on the cost critic's estimate (bcq_pid_*), not the Lagrangian keys'.
+    {Algorithm::bcq_lag,  "bcq-lag",  "BCQ-Lag",  "",           AlgorithmFamily::offline,      true,  false, false, "darkorange"},
 });
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }

@@ -5,6 +5,7 @@
 
 #include <memory>
 
+#include "algos/offline/bcq_lag.h"
 #include "algos/offline/cpq.h"
 #include "algos/offline/offline_algorithm.h"
 #include "algos/offline/offline_batches.h"
@@ -18,7 +19,10 @@ namespace bsg::algos {
 // gamma, polyak, actor_lr, critic_lr, cost_limit, max_ep_len (T) and the offline group's CPQ keys.
 CpqOptions cpq_options(const RunConfig& config);
 
-// bc-all and cpq: every row; bc-safe: the episodes with cost return <= cost_limit. Throws
+// BCQ-Lag's options from a run, as CPQ's, with the offline group's bcq_* keys.
+BcqLagOptions bcq_lag_options(const RunConfig& config);
+
+// bc-all, cpq and bcq-lag: every row; bc-safe: the episodes with cost return <= cost_limit. Throws
 // std::invalid_argument if there is none, or if config.alg is not offline.
 TrainingRows offline_training_rows(const RunConfig& config, const OfflineDataset& dataset);
 
