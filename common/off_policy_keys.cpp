@@ -45,7 +45,7 @@ std::vector<ConfigKeyRow> off_policy_rows() {
     integer("n_step", field<&R::off_policy, &K::n_step>(), L::algorithm, N::closed(1, 1000), kOffPolicy,
             "n-step returns: sum of n discounted rewards, then gamma^n Q of the n-th next state"),
     real("critic_lr", field<&R::off_policy, &K::critic_lr>(), L::algorithm, N::above(0),
-         kOffPolicy | algorithm_bit(Algorithm::cpq) | algorithm_bit(Algorithm::bcq_lag),
+         kOffPolicy | algorithm_bit(Algorithm::cpq) | algorithm_bit(Algorithm::bcq_lag) | algorithm_bit(Algorithm::coptidice),
          "Adam step size of the reward and cost Q networks"),
     real("exploration_noise", field<&R::off_policy, &K::exploration_noise>(), L::algorithm, N::at_least(0), kDeterministicActor,
          "std of the Gaussian noise on the deterministic actor's actions while collecting"),

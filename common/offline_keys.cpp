@@ -7,7 +7,11 @@
 
 #include "common/config_key_rows.h"
 
-namespace bsg::key_rows {
+namespace bsg {
+
+std::string_view to_string(FDivergence f) { return key_rows::enum_name(kFDivergenceNames, f); }
+
+namespace key_rows {
 
 // clang-format off
 std::vector<ConfigKeyRow> offline_rows() {
@@ -18,6 +22,7 @@ std::vector<ConfigKeyRow> offline_rows() {
   constexpr AlgorithmSet kCpq = algorithm_bit(Algorithm::cpq);
   constexpr AlgorithmSet kBcqLag = algorithm_bit(Algorithm::bcq_lag);
   constexpr AlgorithmSet kVaeLearners = kCpq | kBcqLag;
+  constexpr AlgorithmSet kCOptiDice = algorithm_bit(Algorithm::coptidice);
   return {
     // --- offline (docs/datasets.md#offline-runs) ---
     text("dataset", field<&R::offline, &K::dataset>(), L::run,
@@ -29,9 +34,9 @@ std::vector<ConfigKeyRow> offline_rows() {
             "offline: evaluate online (eval_episodes episodes) after every eval_every-th epoch and the last"),
     // --- CPQ (algos/offline/cpq.h); OSRL's names: reward_scale, cost_scale, vae_lr, beta,
     // vae_hidden_sizes, sample_action_num, qc_scalar, alpha_lr ---
-    real("reward_scale", field<&R::offline, &K::reward_scale>(), L::algorithm, N::above(0), kVaeLearners,
+    real("reward_scale", field<&R::offline, &K::reward_scale>(), L::algorithm, N::above(0), kVaeLearners | kCOptiDice,
          "cpq: rewards are multiplied by reward_scale in the reward critics' targets"),
-    real("cost_scale", field<&R::offline, &K::cost_scale>(), L::algorithm, N::above(0), kVaeLearners,
+    real("cost_scale", field<&R::offline, &K::cost_scale>(), L::algorithm, N::above(0), kVaeLearners | kCOptiDice,
          "cpq: costs are multiplied by cost_scale in the cost critics' targets"),
     real("vae_lr", field<&R::offline, &K::vae_lr>(), L::algorithm, N::above(0), kVaeLearners,
          "cpq: Adam step size of the behaviour policy's conditional VAE"),
@@ -60,8 +65,18 @@ std::vector<ConfigKeyRow> offline_rows() {
          "bcq-lag: K_I of the controller, times its integral I <- max(0, I + e)"),
     real("bcq_pid_kd", field<&R::offline, &K::bcq_pid_kd>(), L::algorithm, N::at_least(0), kBcqLag,
          "bcq-lag: K_D of the controller, times max(0, e - e_previous)"),
+    // --- COptiDICE (algos/offline/coptidice.h); OSRL's names: alpha, cost_ub_epsilon, f_type, scalar_lr ---
+    real("coptidice_alpha", field<&R::offline, &K::coptidice_alpha>(), L::algorithm, N::above(0), kCOptiDice,
+         "coptidice: weight alpha of the f-divergence between the policy's stationary distribution and the data's"),
+    real("coptidice_cost_ub_epsilon", field<&R::offline, &K::coptidice_cost_ub_epsilon>(), L::algorithm, N::at_least(0),
+         kCOptiDice, "coptidice: KL budget of the upper bound on the policy's cost (chi, tau); 0 = the plain estimate"),
+    choice("coptidice_f_divergence", enum_access<&R::offline, &K::coptidice_f_divergence>(), kFDivergenceNames,
+           L::algorithm, kCOptiDice, "coptidice: the f-divergence: chi2, softchi (x log x - x + 1 below 1, chi2 above) or kl"),
+    real("coptidice_scalar_lr", field<&R::offline, &K::coptidice_scalar_lr>(), L::algorithm, N::above(0), kCOptiDice,
+         "coptidice: Adam step size of the cost multiplier lambda and the upper bound's temperature tau"),
   };
 }
 // clang-format on
 
-}  // namespace bsg::key_rows
+}  // namespace key_rows
+}  // namespace bsg

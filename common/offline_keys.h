@@ -8,9 +8,9 @@
 // zero_bias_init, dtype, cost_limit (BC-Safe's episodes), epochs,
 // eval_episodes, save_freq and seed.
 //
-// CPQ (algos/offline/cpq.h) and BCQ-Lag (algos/offline/bcq_lag.h) read their own
-// keys here (the VAE's and the scales shared) and, of other groups, gamma, polyak
-// and critic_lr.
+// CPQ (algos/offline/cpq.h), BCQ-Lag (algos/offline/bcq_lag.h) and COptiDICE
+// (algos/offline/coptidice.h) read their own keys here (the VAE's and the scales
+// shared) and, of other groups, gamma, critic_lr and (CPQ, BCQ-Lag) polyak.
 //
 // Parameters (the member initialisers; a run takes its algorithm's from
 // configs/algorithms/<alg>.yaml):
@@ -20,11 +20,21 @@
 //   cpq_alpha_lr = 0.0001                                            cpq
 //   bcq_phi = 0.05, bcq_lambda = 0.75, bcq_sampled_actions = 10,
 //   bcq_pid_kp = 0.1, bcq_pid_ki = 0.003, bcq_pid_kd = 0.001         bcq-lag
+//   coptidice_alpha = 0.5, coptidice_cost_ub_epsilon = 0.01,
+//   coptidice_f_divergence = softchi, coptidice_scalar_lr = 0.0001    coptidice
 #pragma once
 
+#include <array>
 #include <string>
+#include <string_view>
 
 namespace bsg {
+
+// COptiDICE's f-divergence between the policy's stationary distribution and the data's (OSRL's f_type).
+enum class FDivergence { chi2, softchi, kl };
+inline constexpr std::array<std::string_view, 3> kFDivergenceNames = {"chi2", "softchi", "kl"};
+
+std::string_view to_string(FDivergence f);
 
 struct OfflineKeys {
   std::string dataset;          // the HDF5 file (DSRL's layout) the policy learns from
@@ -44,6 +54,10 @@ struct OfflineKeys {
   double bcq_pid_kp = 0.1;        // BCQ-Lag: OSRL's PID controller on the cost critic's estimate, K_P
   double bcq_pid_ki = 0.003;      // BCQ-Lag: K_I
   double bcq_pid_kd = 0.001;      // BCQ-Lag: K_D
+  double coptidice_alpha = 0.5;             // COptiDICE: weight of the f-divergence in the dual
+  double coptidice_cost_ub_epsilon = 0.01;  // COptiDICE: KL budget of the cost upper bound; 0 = plain estimate
+  FDivergence coptidice_f_divergence = FDivergence::softchi;  // COptiDICE: f
+  double coptidice_scalar_lr = 0.0001;      // COptiDICE: Adam step size of lambda and tau
 
   bool operator==(const OfflineKeys&) const = default;
 };

@@ -60,19 +60,31 @@ BcqLagOptions bcq_lag_options(const RunConfig& config) {
   return options;
 }
 
+COptiDiceOptions coptidice_options(const RunConfig& config, const TrainingStatistics& statistics) {
+  COptiDiceOptions options = options_with_critics<COptiDiceOptions>(config);
+  options.scalar_lr = config.offline.coptidice_scalar_lr;
+  options.alpha = config.offline.coptidice_alpha;
+  options.cost_ub_epsilon = config.offline.coptidice_cost_ub_epsilon;
+  options.f_divergence = config.offline.coptidice_f_divergence;
+  options.initial_state_proportion = statistics.initial_state_proportion;
+  options.action_std = statistics.action_std;
+  return options;
+}
+
 TrainingRows offline_training_rows(const RunConfig& config, const OfflineDataset& dataset) {
   switch (config.alg) {
     case Algorithm::bc_all: return all_rows(dataset);
     case Algorithm::bc_safe: return rows_within_cost_limit(dataset, config.cost_limit);
     case Algorithm::cpq:
-    case Algorithm::bcq_lag: return all_rows(dataset);
+    case Algorithm::bcq_lag:
+    case Algorithm::coptidice: return all_rows(dataset);
     default: not_offline(config);
   }
 }
 
 std::unique_ptr<OfflineAlgorithm> make_offline_algorithm(const RunConfig& config, int observation_size,
                                                          int action_size, const ObservationScaling& scaling,
-                                                         Rng& init_rng) {
+                                                         Rng& init_rng, const TrainingStatistics& statistics) {
   const MlpOptions network{.zero_bias_init = config.zero_bias_init, .dtype = config.dtype,
                            .activation = config.activation};
   switch (config.alg) {
@@ -84,6 +96,9 @@ std::unique_ptr<OfflineAlgorithm> make_offline_algorithm(const RunConfig& config
     case Algorithm::cpq: return std::make_unique<Cpq>(observation_size, action_size, scaling, cpq_options(config), init_rng);
     case Algorithm::bcq_lag:
       return std::make_unique<BcqLag>(observation_size, action_size, scaling, bcq_lag_options(config), init_rng);
+    case Algorithm::coptidice:
+      return std::make_unique<COptiDice>(observation_size, action_size, scaling, coptidice_options(config, statistics),
+                                         init_rng);
     default: not_offline(config);
   }
 }

@@ -1,4 +1,4 @@
-// What the offline learners with critics (cpq.h, bcq_lag.h) build from alike: the layer
+// What the offline learners with critics (cpq.h, bcq_lag.h, coptidice.h) build from alike: the layer
 // sizes of their MLPs, their standard normal draws from the family's batch stream, and OSRL's per-step
 // cost threshold.
 #pragma once

@@ -95,7 +95,7 @@ TEST(ShippedConfigs, AllSixteenEnvironmentsResolveWithEveryAlgorithm) {
 }
 
 TEST(ShippedConfigs, OfflineAlgorithmsResolveOnEveryEnvironmentWithADatasetAndListTheirKeys) {
-  ASSERT_EQ(kOfflineAlgorithms, (std::vector<std::string>{"bc-all", "bc-safe", "cpq", "bcq-lag"}));
+  ASSERT_EQ(kOfflineAlgorithms, (std::vector<std::string>{"bc-all", "bc-safe", "cpq", "bcq-lag", "coptidice"}));
   for (const std::string& alg : kOfflineAlgorithms) {
     for (const auto& [env_id, row] : kTable3) {
       SCOPED_TRACE(env_id + " / " + alg);
@@ -105,8 +105,8 @@ TEST(ShippedConfigs, OfflineAlgorithmsResolveOnEveryEnvironmentWithADatasetAndLi
       const RunConfig c = resolve_run_config(request).config;
       EXPECT_EQ(c.offline.dataset, "data.hdf5");
       EXPECT_EQ(c.epochs, row.epochs);
-      // OSRL's BC and BCQ-L: actor_lr 1e-3; its CPQ: actor_lr 1e-4; all batch_size 512, a_hidden_sizes [256, 256].
-      EXPECT_EQ(c.first_order.actor_lr, alg == "cpq" ? 1e-4 : 1e-3);
+      // OSRL's BC and BCQ-L: actor_lr 1e-3; its CPQ and COptiDICE: actor_lr 1e-4; all batch_size 512, a_hidden_sizes [256, 256].
+      EXPECT_EQ(c.first_order.actor_lr, alg == "cpq" || alg == "coptidice" ? 1e-4 : 1e-3);
       EXPECT_EQ(c.off_policy.batch_size, 512);
       EXPECT_EQ(c.hidden_sizes, (std::vector<int>{256, 256}));
     }

@@ -1,4 +1,4 @@
-// Helpers of the offline learners' tests (cpq_test.cpp, bcq_lag_test.cpp): standard
+// Helpers of the offline learners' tests (cpq_test.cpp, bcq_lag_test.cpp, coptidice_test.cpp): standard
 // normal matrices, one critic's value at one row, and central differences over a network's parameters.
 #pragma once
 
