@@ -22,7 +22,7 @@ enum class Algorithm {
   trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag, crpo,
   bc_all, bc_safe, p3o, ipo, rcpo, cpq,
   ppo_saute, trpo_saute, ppo_early_terminated, trpo_early_terminated,
-  ppo_simmer, trpo_simmer
+  ppo_simmer, trpo_simmer, bcq_lag, coptidice
 };
 
 // Which update the policy takes: the natural-gradient step with a line search
@@ -91,6 +91,12 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
     // of Safety State Augmentation on Safe Exploration"; OmniSafe's simmer/ PPOSimmerPID, TRPOSimmerPID).
     {Algorithm::ppo_simmer, "ppo-simmer", "PPOSimmerPID", "",   AlgorithmFamily::first_order,  true,  false, true,  "darkorange"},
     {Algorithm::trpo_simmer, "trpo-simmer", "TRPOSimmerPID", "", AlgorithmFamily::trust_region, true,  false, false, "royalblue"},
+    // Batch-constrained Q-learning with a cost critic (Fujimoto et al. 2019, OSRL's bcql.py): its multiplier
+    // is OSRL's PID controller on the cost critic's estimate (bcq_pid_*), not the Lagrangian keys'.
+    {Algorithm::bcq_lag,  "bcq-lag",  "BCQ-Lag",  "",           AlgorithmFamily::offline,      true,  false, false, "chocolate"},
+    // Stationary distribution correction with a cost bound (Lee et al. 2022, OSRL's coptidice.py): its
+    // multiplier is its own dual variable (coptidice_scalar_lr), not the Lagrangian keys'.
+    {Algorithm::coptidice, "coptidice", "COptiDICE", "",        AlgorithmFamily::offline,      true,  false, false, "olivedrab"},
 });
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }

@@ -93,6 +93,19 @@ void ConditionalVae::latent_kl(const Eigen::Ref<const Eigen::MatrixXd>& inputs, 
   }
 }
 
+void ConditionalVae::decode(const Eigen::Ref<const Eigen::MatrixXd>& observations,
+                            const Eigen::Ref<const Eigen::MatrixXd>& latents, Eigen::Ref<Eigen::MatrixXd> actions) {
+  const Eigen::Index n = observations.rows();
+  if (latents.rows() != n || actions.rows() != n || observations.cols() != observation_size_ ||
+      latents.cols() != latent_size_ || actions.cols() != action_size_) {
+    throw std::invalid_argument("conditional VAE: " + std::to_string(n) + " rows to decode do not fit its sizes");
+  }
+  decoder_inputs_.resize(n, observation_size_ + latent_size_);
+  decoder_inputs_ << observations, latents;
+  decoder_.evaluate_batch(decoder_inputs_, actions, decoder_workspace_);
+  actions = actions.array().tanh().matrix();
+}
+
 void ConditionalVae::save(BinaryWriter& writer) const {
   writer.write_vector(encoder_.parameters());
   writer.write_vector(decoder_.parameters());

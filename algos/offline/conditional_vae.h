@@ -1,5 +1,5 @@
 // The conditional variational auto-encoder of the behaviour policy that CPQ (cpq.h) uses to tell
-// out-of-distribution actions (Kingma and Welling 2014; as OSRL's common/net.py VAE, which BCQ-L and
+// out-of-distribution actions and BCQ-Lag (bcq_lag.h) to propose in-distribution ones (Kingma and Welling 2014; as OSRL's common/net.py VAE, which BCQ-L and
 // CPQ share). Given an observation s and an action a:
 //   encoder   [s, a] -> hidden -> hidden -> (mu, log sigma), L each; log sigma clamped to [-4, 15]
 //   sample    z = mu + sigma eps, eps ~ N(0, I_L)       (reparameterised)
@@ -45,6 +45,11 @@ class ConditionalVae {
   // Each row's KL(q(z | s, a) || N(0, I)) / L: -1/2 mean_l (1 + log sigma_l^2 - mu_l^2 - sigma_l^2).
   // `inputs` N x (S + A) are the rows [s, a].
   void latent_kl(const Eigen::Ref<const Eigen::MatrixXd>& inputs, Eigen::Ref<Eigen::VectorXd> kl);
+
+  // The decoder's actions tanh(d(s, z)) (N x A) of the rows [s, z] (observations N x S, latents N x L):
+  // how BCQ-Lag (bcq_lag.h) draws actions the data could have taken.
+  void decode(const Eigen::Ref<const Eigen::MatrixXd>& observations, const Eigen::Ref<const Eigen::MatrixXd>& latents,
+              Eigen::Ref<Eigen::MatrixXd> actions);
 
   // Both networks' parameters.
   void save(BinaryWriter& writer) const;

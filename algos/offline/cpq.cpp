@@ -7,22 +7,16 @@
 
 #include "algos/core/adam_state.h"
 #include "algos/core/polyak.h"
+#include "algos/offline/offline_learner_parts.h"
 
 namespace bsg::algos {
 namespace {
 
 constexpr int kCriticPairs = 2;  // OSRL's num_q and num_qc for every Bullet task
 
-std::vector<int> layers(int input, const std::vector<int>& hidden, int output) {
-  std::vector<int> sizes{input};
-  sizes.insert(sizes.end(), hidden.begin(), hidden.end());
-  sizes.push_back(output);
-  return sizes;
-}
-
 std::vector<Mlp> critic_pair(int input, const CpqOptions& options, Rng& init_rng) {
   std::vector<Mlp> critics;
-  for (int k = 0; k < kCriticPairs; ++k) critics.emplace_back(layers(input, options.hidden_sizes, 1), init_rng, options.mlp);
+  for (int k = 0; k < kCriticPairs; ++k) critics.emplace_back(mlp_layers(input, options.hidden_sizes, 1), init_rng, options.mlp);
   return critics;
 }
 
@@ -38,26 +32,16 @@ const CpqOptions& checked(const CpqOptions& options) {
   return options;
 }
 
-void fill_normal(Rng& rng, Eigen::MatrixXd& noise, Eigen::Index rows, Eigen::Index cols) {
-  noise.resize(rows, cols);
-  for (Eigen::Index i = 0; i < rows; ++i) {
-    for (Eigen::Index j = 0; j < cols; ++j) noise(i, j) = standard_normal(rng);
-  }
-}
-
 }  // namespace
 
-double CpqOptions::cost_threshold() const {
-  if (gamma == 1.0) return cost_limit;  // the limit of (1 - gamma^T) / (1 - gamma) is T
-  return cost_limit * (1.0 - std::pow(gamma, episode_length)) / (1.0 - gamma) / episode_length;
-}
+double CpqOptions::cost_threshold() const { return per_step_cost_threshold(cost_limit, gamma, episode_length); }
 
 Cpq::Cpq(int observation_size, int action_size, ObservationScaling scaling, CpqOptions options, Rng& init_rng)
     : observation_size_(observation_size),
       action_size_(action_size),
       scaling_(std::move(scaling)),
       options_(checked(options)),
-      actor_(layers(observation_size, options_.hidden_sizes, 2 * action_size), init_rng, options_.mlp),
+      actor_(mlp_layers(observation_size, options_.hidden_sizes, 2 * action_size), init_rng, options_.mlp),
       reward_critics_(critic_pair(observation_size + action_size, options_, init_rng)),
       cost_critics_(critic_pair(observation_size + action_size, options_, init_rng)),
       target_reward_critics_(reward_critics_),
@@ -191,22 +175,17 @@ double Cpq::actor_loss(const OfflineBatch& batch, const Eigen::Ref<const Eigen::
 
 double Cpq::update(const OfflineBatch& batch, Rng& noise) {
   const Eigen::Index n = batch.observations.rows();
-  if (n < 1 || batch.observations.cols() != observation_size_ || batch.actions.cols() != action_size_ ||
-      batch.actions.rows() != n || batch.next_observations.rows() != n ||
-      batch.next_observations.cols() != observation_size_ || batch.rewards.size() != n || batch.costs.size() != n ||
-      batch.terminals.size() != n) {
-    throw std::invalid_argument("CPQ: a batch of " + std::to_string(n) + " rows does not fit its networks");
-  }
+  check_batch_fits(batch, observation_size_, action_size_, "CPQ");
   Eigen::MatrixXd draws;
   // 1. the VAE
-  fill_normal(noise, draws, n, vae_.latent_size());
+  fill_standard_normal(noise, draws, n, vae_.latent_size());
   Eigen::VectorXd encoder_gradient(vae_.encoder().num_parameters());
   Eigen::VectorXd decoder_gradient(vae_.decoder().num_parameters());
   vae_.loss(batch.observations, batch.actions, draws, options_.vae_kl_weight, encoder_gradient, decoder_gradient);
   encoder_adam_.step(vae_.encoder().mutable_parameters(), encoder_gradient);
   decoder_adam_.step(vae_.decoder().mutable_parameters(), decoder_gradient);
   // 2. the reward critics, on the targets of a' ~ pi(s')
-  fill_normal(noise, draws, n, action_size_);
+  fill_standard_normal(noise, draws, n, action_size_);
   compute_targets(batch, draws);
   for (int k = 0; k < kCriticPairs; ++k) {
     gradient_.resize(reward_critics_[k].num_parameters());
@@ -214,7 +193,7 @@ double Cpq::update(const OfflineBatch& batch, Rng& noise) {
     reward_critic_adams_[k].step(reward_critics_[k].mutable_parameters(), gradient_);
   }
   // 3. the cost critics with the out-of-distribution term, then alpha (from the critics before their step)
-  fill_normal(noise, draws, n * options_.sampled_actions, action_size_);
+  fill_standard_normal(noise, draws, n * options_.sampled_actions, action_size_);
   sample_out_of_distribution(batch, draws);
   pair_minimum(cost_critics_, ood_inputs_, values_, nullptr);
   const double ood_cost = ood_flags_.dot(values_) / static_cast<double>(ood_flags_.size());
@@ -227,7 +206,7 @@ double Cpq::update(const OfflineBatch& batch, Rng& noise) {
   log_alpha_ = std::clamp(log_alpha_ + options_.alpha_lr * alpha * (options_.qc_scalar * options_.cost_threshold() - ood_cost),
                           kCpqLogAlphaMin, kCpqLogAlphaMax);
   // 4. the actor
-  fill_normal(noise, draws, n, action_size_);
+  fill_standard_normal(noise, draws, n, action_size_);
   gradient_.resize(actor_.num_parameters());
   const double loss = actor_loss(batch, draws, gradient_);
   actor_adam_.step(actor_.mutable_parameters(), gradient_);

@@ -5,6 +5,8 @@
 
 #include <memory>
 
+#include "algos/offline/bcq_lag.h"
+#include "algos/offline/coptidice.h"
 #include "algos/offline/cpq.h"
 #include "algos/offline/offline_algorithm.h"
 #include "algos/offline/offline_batches.h"
@@ -18,14 +20,20 @@ namespace bsg::algos {
 // gamma, polyak, actor_lr, critic_lr, cost_limit, max_ep_len (T) and the offline group's CPQ keys.
 CpqOptions cpq_options(const RunConfig& config);
 
-// bc-all and cpq: every row; bc-safe: the episodes with cost return <= cost_limit. Throws
+// BCQ-Lag's options from a run, as CPQ's, with the offline group's bcq_* keys.
+BcqLagOptions bcq_lag_options(const RunConfig& config);
+
+// COptiDICE's options from a run, with the training rows' `statistics`.
+COptiDiceOptions coptidice_options(const RunConfig& config, const TrainingStatistics& statistics);
+
+// bc-all, cpq, bcq-lag and coptidice: every row; bc-safe: the episodes with cost return <= cost_limit. Throws
 // std::invalid_argument if there is none, or if config.alg is not offline.
 TrainingRows offline_training_rows(const RunConfig& config, const OfflineDataset& dataset);
 
 // The algorithm of config.alg for observations and actions of these sizes, its networks drawn from
-// `init_rng` (a checkpoint's state may then overwrite everything, the scaling included).
+// `init_rng` (a checkpoint's state may then overwrite everything, the scaling and statistics included).
 std::unique_ptr<OfflineAlgorithm> make_offline_algorithm(const RunConfig& config, int observation_size,
                                                          int action_size, const ObservationScaling& scaling,
-                                                         Rng& init_rng);
+                                                         Rng& init_rng, const TrainingStatistics& statistics = {});
 
 }  // namespace bsg::algos

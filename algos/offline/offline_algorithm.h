@@ -27,12 +27,13 @@ struct OfflineBatch {
   Eigen::VectorXd rewards;            // batch
   Eigen::VectorXd costs;              // batch (the dataset's costs: with several constraints their sum)
   Eigen::VectorXd terminals;          // batch, 1 where the environment ended the episode (no bootstrap)
+  Eigen::VectorXd initial;            // batch, 1 for an episode's first row (OSRL's is_init; COptiDICE)
 };
 
 class OfflineAlgorithm {
  public:
   virtual ~OfflineAlgorithm() = default;
-  // "BC-All", "BC-Safe", "CPQ".
+  // "BC-All", "BC-Safe", "CPQ", "BCQ-Lag", "COptiDICE".
   virtual std::string_view name() const = 0;
   // One gradient step on `batch`, drawing any noise it needs (sampled actions, a VAE's latent) from
   // `noise`, the family's batch stream; returns its loss (the batch's, before the step).

@@ -55,11 +55,44 @@ ObservationScaling observation_scaling(const OfflineDataset& dataset, const std:
   return scaling;
 }
 
+std::vector<char> episode_first_rows(const OfflineDataset& dataset) {
+  std::vector<char> first(dataset.size(), 0);
+  for (const DatasetEpisode& e : dataset_episodes(dataset)) {
+    if (e.begin < first.size()) first[e.begin] = 1;
+  }
+  return first;
+}
+
+TrainingStatistics training_statistics(const OfflineDataset& dataset, const std::vector<std::size_t>& rows,
+                                       const std::vector<char>& first_rows) {
+  const int act = dataset.action_dim;
+  TrainingStatistics statistics;
+  std::size_t initial = 0;
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(act);
+  for (std::size_t row : rows) {
+    initial += first_rows[row] != 0 ? 1 : 0;
+    for (int j = 0; j < act; ++j) mean[j] += dataset.actions[row * static_cast<std::size_t>(act) + j];
+  }
+  mean /= static_cast<double>(rows.size());
+  Eigen::VectorXd variance = Eigen::VectorXd::Zero(act);
+  for (std::size_t row : rows) {
+    for (int j = 0; j < act; ++j) {
+      const double d = dataset.actions[row * static_cast<std::size_t>(act) + j] - mean[j];
+      variance[j] += d * d;
+    }
+  }
+  statistics.action_std = (variance / static_cast<double>(rows.size())).cwiseSqrt();  // numpy's std (ddof 0)
+  statistics.initial_state_proportion = static_cast<double>(initial) / static_cast<double>(rows.size());
+  return statistics;
+}
+
 OfflineBatches::OfflineBatches(const OfflineDataset& dataset, TrainingRows rows, int batch_size)
     : dataset_(dataset), rows_(std::move(rows)), batch_size_(batch_size) {
   if (batch_size < 1) throw std::invalid_argument("offline batches: the batch size must be >= 1");
   if (rows_.rows.empty()) throw std::invalid_argument("offline batches: no training rows");
   scaling_ = observation_scaling(dataset_, rows_.rows);
+  first_rows_ = episode_first_rows(dataset_);
+  statistics_ = training_statistics(dataset_, rows_.rows, first_rows_);
 }
 
 void OfflineBatches::sample(Rng& rng, OfflineBatch& batch) const {
@@ -71,6 +104,7 @@ void OfflineBatches::sample(Rng& rng, OfflineBatch& batch) const {
   batch.rewards.resize(batch_size_);
   batch.costs.resize(batch_size_);
   batch.terminals.resize(batch_size_);
+  batch.initial.resize(batch_size_);
   for (Eigen::Index i = 0; i < batch_size_; ++i) {
     const std::size_t row = rows_.rows[uniform_index(rng, rows_.rows.size())];
     batch.observations.row(i) = (observation_of(dataset_, row) - scaling_.mean).cwiseQuotient(scaling_.std).transpose();
@@ -85,6 +119,7 @@ void OfflineBatches::sample(Rng& rng, OfflineBatch& batch) const {
     batch.rewards(i) = dataset_.rewards[row];
     batch.costs(i) = dataset_.costs[row];
     batch.terminals(i) = dataset_.terminals[row];
+    batch.initial(i) = first_rows_[row];
   }
 }
 

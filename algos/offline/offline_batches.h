@@ -33,6 +33,18 @@ struct ObservationScaling {
 };
 ObservationScaling observation_scaling(const OfflineDataset& dataset, const std::vector<std::size_t>& rows);
 
+// What COptiDICE takes from the training rows besides the scaling: the share of episodes' first rows
+// among them (OSRL's init_state_propotion) and each action dimension's standard deviation.
+struct TrainingStatistics {
+  double initial_state_proportion = 1.0;
+  Eigen::VectorXd action_std;  // empty: not known (a loaded checkpoint brings its own)
+};
+// `first_rows[t]` is 1 where row t begins an episode.
+TrainingStatistics training_statistics(const OfflineDataset& dataset, const std::vector<std::size_t>& rows,
+                                       const std::vector<char>& first_rows);
+// 1 for each episode's first row of the dataset, 0 elsewhere.
+std::vector<char> episode_first_rows(const OfflineDataset& dataset);
+
 class OfflineBatches {
  public:
   // `dataset` must outlive this object.
@@ -40,14 +52,17 @@ class OfflineBatches {
 
   const TrainingRows& rows() const { return rows_; }
   const ObservationScaling& scaling() const { return scaling_; }
+  const TrainingStatistics& statistics() const { return statistics_; }
   // Fills `batch` with batch_size rows, each uniform_index(rng, rows) in turn (every field; the next
-  // observations standardised with the observations' constants).
+  // observations standardised with the observations' constants; `initial` 1 for episodes' first rows).
   void sample(Rng& rng, OfflineBatch& batch) const;
 
  private:
   const OfflineDataset& dataset_;
   TrainingRows rows_;
   ObservationScaling scaling_;
+  std::vector<char> first_rows_;
+  TrainingStatistics statistics_;
   int batch_size_;
 };
 

@@ -113,7 +113,7 @@ OfflineFamily::OfflineFamily(const RunConfig& config, const MpiContext& mpi, std
   batches_.emplace(dataset_, offline_training_rows(config_, dataset_), config_.off_policy.batch_size);
   Rng init_rng(stream_seed(config_, SeedStream::network_init, 0));
   algorithm_ = make_offline_algorithm(config_, dataset_.observation_dim, dataset_.action_dim, batches_->scaling(),
-                                      init_rng);
+                                      init_rng, batches_->statistics());
 }
 
 OfflineFamily::~OfflineFamily() = default;

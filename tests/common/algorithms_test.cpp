@@ -35,8 +35,9 @@ TEST(Algorithms, FamiliesAgreeWithTheShippedAlgorithmFiles) {
                   info.family == AlgorithmFamily::offline,
               static_cast<bool>(file["actor_lr"]));
     EXPECT_EQ(info.family == AlgorithmFamily::offline, static_cast<bool>(file["updates_per_epoch"]));
-    // Critics: the off-policy learners and CPQ.
-    EXPECT_EQ(info.family == AlgorithmFamily::off_policy || info.alg == Algorithm::cpq,
+    // Critics: the off-policy learners, CPQ, BCQ-Lag and COptiDICE (its nu and chi networks).
+    EXPECT_EQ(info.family == AlgorithmFamily::off_policy || info.alg == Algorithm::cpq || info.alg == Algorithm::bcq_lag ||
+                  info.alg == Algorithm::coptidice,
               static_cast<bool>(file["critic_lr"]));
     EXPECT_EQ(info.lagrange_multiplier, static_cast<bool>(file["lambda_lr"]));
     EXPECT_EQ(info.clipped_surrogate, static_cast<bool>(file["clip"]));

@@ -46,6 +46,9 @@ TEST(ConfigKeyGroups, AFlatKeyReachesItsGroupsMemberOnly) {
   expect_key_reaches("batch_size", "64", [](RunConfig& c) { c.off_policy.batch_size = 64; });
   expect_key_reaches("auto_alpha", "true", [](RunConfig& c) { c.off_policy.auto_alpha = true; });
   expect_key_reaches("cpq_sampled_actions", "4", [](RunConfig& c) { c.offline.cpq_sampled_actions = 4; });
+  expect_key_reaches("bcq_pid_kd", "0.25", [](RunConfig& c) { c.offline.bcq_pid_kd = 0.25; });
+  expect_key_reaches("coptidice_f_divergence", "kl",
+                     [](RunConfig& c) { c.offline.coptidice_f_divergence = FDivergence::kl; });
   expect_key_reaches("unsafe_reward", "-0.2", [](RunConfig& c) { c.budget.unsafe_reward = -0.2; });
   expect_key_reaches("simmer_polyak", "0.5", [](RunConfig& c) { c.budget.simmer_polyak = 0.5; });
   // RunConfig's own keys are reached as before.
@@ -70,7 +73,7 @@ TEST(ConfigKeyGroups, EachGroupsRowsKeepTheirPlaceInTheTable) {
       {"value_time_input", "target_kl"},         {"kl_accept_factor", "lagrangian_multiplier_init"},
       {"pid_lambda_max", "cpo_r_sign"},          {"crpo_tolerance", "actor_lr"},
       {"learned_std_init", "num_envs"},          {"alpha_lr", "dataset"},
-      {"cpq_alpha_lr", "saute_gamma"},           {"simmer_initial_budget_fraction", "use_cost_value_function"}};
+      {"coptidice_scalar_lr", "saute_gamma"},    {"simmer_initial_budget_fraction", "use_cost_value_function"}};
   for (const auto& [before, after] : seams) EXPECT_EQ(position(before) + 1, position(after)) << before;
   EXPECT_EQ(keys.front(), "env_id");
   EXPECT_EQ(keys.back(), "sampled_evaluation");

@@ -3,6 +3,8 @@
 // per-algorithm defaults of docs/algorithms.md#hyper-parameters and #quirk-switches, typed here from those sources.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -93,7 +95,7 @@ TEST(ShippedConfigs, AllSixteenEnvironmentsResolveWithEveryAlgorithm) {
 }
 
 TEST(ShippedConfigs, OfflineAlgorithmsResolveOnEveryEnvironmentWithADatasetAndListTheirKeys) {
-  ASSERT_EQ(kOfflineAlgorithms, (std::vector<std::string>{"bc-all", "bc-safe", "cpq"}));
+  ASSERT_EQ(kOfflineAlgorithms, (std::vector<std::string>{"bc-all", "bc-safe", "cpq", "bcq-lag", "coptidice"}));
   for (const std::string& alg : kOfflineAlgorithms) {
     for (const auto& [env_id, row] : kTable3) {
       SCOPED_TRACE(env_id + " / " + alg);
@@ -103,12 +105,13 @@ TEST(ShippedConfigs, OfflineAlgorithmsResolveOnEveryEnvironmentWithADatasetAndLi
       const RunConfig c = resolve_run_config(request).config;
       EXPECT_EQ(c.offline.dataset, "data.hdf5");
       EXPECT_EQ(c.epochs, row.epochs);
-      // OSRL's BC: actor_lr 1e-3; its CPQ: actor_lr 1e-4; both batch_size 512, a_hidden_sizes [256, 256].
-      EXPECT_EQ(c.first_order.actor_lr, alg == "cpq" ? 1e-4 : 1e-3);
+      // OSRL's BC and BCQ-L: actor_lr 1e-3; its CPQ and COptiDICE: actor_lr 1e-4; all batch_size 512, a_hidden_sizes [256, 256].
+      EXPECT_EQ(c.first_order.actor_lr, alg == "cpq" || alg == "coptidice" ? 1e-4 : 1e-3);
       EXPECT_EQ(c.off_policy.batch_size, 512);
       EXPECT_EQ(c.hidden_sizes, (std::vector<int>{256, 256}));
     }
-    const Algorithm id = alg == "bc-all" ? Algorithm::bc_all : alg == "bc-safe" ? Algorithm::bc_safe : Algorithm::cpq;
+    const Algorithm id = std::find_if(kAlgorithms.begin(), kAlgorithms.end(),
+                                      [&](const AlgorithmInfo& info) { return info.name == alg; })->alg;
     std::set<std::string> listed;
     for (const ConfigEntry& entry : read_config_file(algorithm_config_path(kShippedConfigs, id))) {
       listed.insert(entry.key);

@@ -13,9 +13,14 @@
 
 #include "algos/offline/make_offline_algorithm.h"
 #include "common/binary_io.h"
+#include "offline_test_support.h"
 
 namespace bsg::algos {
 namespace {
+
+using testing::expect_central_differences;
+using testing::normal_matrix;
+using testing::q_of;
 
 constexpr int kObs = 3;
 constexpr int kAct = 2;
@@ -37,25 +42,7 @@ CpqOptions small_options(double cost_limit) {
 
 ObservationScaling unit_scaling() { return {Eigen::VectorXd::Zero(kObs), Eigen::VectorXd::Ones(kObs)}; }
 
-OfflineBatch random_batch(Rng& rng) {
-  OfflineBatch b;
-  b.observations.resize(kRows, kObs);
-  b.next_observations.resize(kRows, kObs);
-  b.actions.resize(kRows, kAct);
-  for (Eigen::Index k = 0; k < b.observations.size(); ++k) b.observations.data()[k] = uniform(rng, -1.5, 1.5);
-  for (Eigen::Index k = 0; k < b.next_observations.size(); ++k) b.next_observations.data()[k] = uniform(rng, -1.5, 1.5);
-  for (Eigen::Index k = 0; k < b.actions.size(); ++k) b.actions.data()[k] = uniform(rng, -0.9, 0.9);
-  b.rewards = Eigen::Vector4d(1.0, -2.0, 0.5, 3.0);
-  b.costs = Eigen::Vector4d(0.0, 1.0, 1.0, 0.0);
-  b.terminals = Eigen::Vector4d(0.0, 0.0, 1.0, 0.0);
-  return b;
-}
-
-Eigen::MatrixXd normal_matrix(Rng& rng, Eigen::Index rows, Eigen::Index cols) {
-  Eigen::MatrixXd m(rows, cols);
-  for (Eigen::Index k = 0; k < m.size(); ++k) m.data()[k] = standard_normal(rng);
-  return m;
-}
+OfflineBatch random_batch(Rng& rng) { return testing::random_batch(rng, kObs, kAct); }
 
 // Moves every target critic away from its online copy, so that the targets' use is seen.
 void perturb_targets(Cpq& cpq, Rng& rng) {
@@ -74,12 +61,6 @@ Eigen::VectorXd squashed(Mlp& actor, const Eigen::VectorXd& s, const Eigen::Vect
   Eigen::VectorXd a(kAct);
   for (int j = 0; j < kAct; ++j) a[j] = std::tanh(out[j] + std::exp(std::clamp(out[kAct + j], -20.0, 2.0)) * eps[j]);
   return a;
-}
-
-double q_of(Mlp& critic, const Eigen::VectorXd& s, const Eigen::VectorXd& a) {
-  Eigen::VectorXd input(kObs + kAct);
-  input << s, a;
-  return critic.forward(input)[0];
 }
 
 TEST(Cpq, ThresholdIsOsrls) {
@@ -152,24 +133,6 @@ TEST(Cpq, OutOfDistributionFlagsAreTheTopQuarterOfTheLatentKl) {
     flagged += kl[k] >= quantile ? 1 : 0;
   }
   EXPECT_EQ(flagged, 3);  // the three values above position 8.25
-}
-
-// Central differences of `loss` over every parameter of `network` against `analytic`.
-template <typename Loss>
-void expect_central_differences(Mlp& network, const Eigen::VectorXd& analytic, Loss loss) {
-  const Eigen::VectorXd theta = network.parameters();
-  const double h = 1e-6;
-  for (Eigen::Index k = 0; k < theta.size(); ++k) {
-    Eigen::VectorXd shifted = theta;
-    shifted[k] += h;
-    network.set_parameters(shifted);
-    const double up = loss();
-    shifted[k] -= 2 * h;
-    network.set_parameters(shifted);
-    const double down = loss();
-    network.set_parameters(theta);
-    EXPECT_NEAR(analytic[k], (up - down) / (2 * h), 1e-6) << k;
-  }
 }
 
 TEST(Cpq, CriticLossesByHandAndTheirGradients) {

@@ -145,11 +145,15 @@ TEST(OfflineTrainer, AResumedRunWritesTheUninterruptedRunsFiles) {
   const fs::path file = dir.path() / "data.h5";
   write_dataset_file(file, make_dataset(12, [](int e) { return 0.1 * (e % 4) - 0.1; }, [](int e) { return e % 3; }));
   // CPQ draws noise from the batch stream too, and keeps critics, targets, a VAE and alpha.
-  for (const std::string alg : {"bc-safe", "cpq"}) {
+  // BCQ-Lag too, with its target actor and its controller's state; COptiDICE with its duals.
+  for (const std::string alg : {"bc-safe", "cpq", "bcq-lag", "coptidice"}) {
     SCOPED_TRACE(alg);
     const fs::path root = dir.path() / alg;
-    const RunConfig config = offline_config(alg, file, alg == "cpq" ? std::vector<std::string>{
-        "vae_hidden_size=8", "cpq_sampled_actions=2"} : std::vector<std::string>{});
+    const std::vector<std::string> small = alg == "cpq"       ? std::vector<std::string>{"vae_hidden_size=8", "cpq_sampled_actions=2"}
+                                           : alg == "bcq-lag" ? std::vector<std::string>{"vae_hidden_size=8", "bcq_sampled_actions=2",
+                                                                                         "updates_per_epoch=20"}
+                                                              : std::vector<std::string>{};
+    const RunConfig config = offline_config(alg, file, small);
     OfflineTrainer whole(config, RunDirectory(root / "whole"), MpiContext::single_process(), {});
     ASSERT_TRUE(whole.run().finished);
     TrainerOptions stop;
@@ -204,10 +208,13 @@ TEST(OfflineTrainer, ErrorsNameWhatIsWrong) {
   EXPECT_THROW(resolve_run_config(request), ConfigError);
   request.set_arguments = {"env_id=" + std::string(kEnv), "alg=sac", "dataset=x.h5"};
   EXPECT_THROW(resolve_run_config(request), ConfigError);
-  // CPQ's keys: refused on another algorithm, and out of their range, each with one line naming the key.
+  // CPQ's and BCQ-Lag's keys: refused on another algorithm, and out of their range, each with one line naming the key.
   for (const std::vector<std::string>& bad :
        {std::vector<std::string>{"alg=bc-all", "cpq_sampled_actions=3"}, {"alg=cpq", "cpq_sampled_actions=0"},
-        {"alg=cpq", "vae_kl_weight=-1"}, {"alg=cpq", "reward_scale=0"}}) {
+        {"alg=cpq", "vae_kl_weight=-1"}, {"alg=cpq", "reward_scale=0"}, {"alg=cpq", "bcq_phi=0.1"},
+        {"alg=bcq-lag", "bcq_lambda=1.5"}, {"alg=bcq-lag", "bcq_sampled_actions=0"}, {"alg=bcq-lag", "bcq_pid_ki=-1"},
+        {"alg=bcq-lag", "cpq_qc_scalar=2"}, {"alg=coptidice", "coptidice_f_divergence=js"},
+        {"alg=coptidice", "coptidice_alpha=0"}, {"alg=coptidice", "polyak=0.1"}, {"alg=bcq-lag", "coptidice_alpha=1"}}) {
     request.set_arguments = {"env_id=" + std::string(kEnv), "dataset=x.h5"};
     request.set_arguments.insert(request.set_arguments.end(), bad.begin(), bad.end());
     try {
