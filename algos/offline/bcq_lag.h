@@ -105,6 +105,7 @@ class BcqLag final : public OfflineAlgorithm {
   std::string_view name() const override { return "BCQ-Lag"; }
   double update(const OfflineBatch& batch, Rng& noise) override;
   ActingPolicy& acting() override { return acting_; }
+  const ObservationScaling& scaling() const override { return scaling_; }
   void save(BinaryWriter& writer) const override;
   void load(BinaryReader& reader) override;
 

@@ -57,7 +57,7 @@ class BehaviourCloning final : public OfflineAlgorithm {
   void load(BinaryReader& reader) override;
 
   const Mlp& network() const { return network_; }
-  const ObservationScaling& scaling() const { return scaling_; }
+  const ObservationScaling& scaling() const override { return scaling_; }
 
  private:
   class Acting final : public ActingPolicy {

@@ -97,6 +97,7 @@ class COptiDice final : public OfflineAlgorithm {
   std::string_view name() const override { return "COptiDICE"; }
   double update(const OfflineBatch& batch, Rng& noise) override;
   ActingPolicy& acting() override { return acting_; }
+  const ObservationScaling& scaling() const override { return scaling_; }
   void save(BinaryWriter& writer) const override;
   void load(BinaryReader& reader) override;
 

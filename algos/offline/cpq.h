@@ -87,6 +87,7 @@ class Cpq final : public OfflineAlgorithm {
   std::string_view name() const override { return "CPQ"; }
   double update(const OfflineBatch& batch, Rng& noise) override;
   ActingPolicy& acting() override { return acting_; }
+  const ObservationScaling& scaling() const override { return scaling_; }
   void save(BinaryWriter& writer) const override;
   void load(BinaryReader& reader) override;
 

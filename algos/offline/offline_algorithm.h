@@ -18,6 +18,8 @@
 
 namespace bsg::algos {
 
+struct ObservationScaling;  // offline_batches.h
+
 // One minibatch, row i a transition of the dataset: the observations standardised with the training
 // rows' mean and standard deviation (offline_batches.h), the rest as the dataset holds it.
 struct OfflineBatch {
@@ -40,6 +42,9 @@ class OfflineAlgorithm {
   virtual double update(const OfflineBatch& batch, Rng& noise) = 0;
   // The policy as it acts now (on raw observations; its standardisation inside).
   virtual ActingPolicy& acting() = 0;
+  // The training rows' observation mean and standard deviation: the policy acts on
+  // (s - mean) / std, as the batches hold it; a loader that reports the policy's input says it.
+  virtual const ObservationScaling& scaling() const = 0;
   // The learner's whole state (networks, optimisers, standardisation), for the checkpoint; load
   // fails on the reader naming the field if the sizes are not this algorithm's.
   virtual void save(BinaryWriter& writer) const = 0;

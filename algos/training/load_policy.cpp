@@ -7,7 +7,7 @@
 #include "algos/core/actor_critic_acting.h"
 #include "algos/core/constraint_costs.h"
 #include "algos/off_policy/make_off_policy_learner.h"
-#include "algos/offline/behaviour_cloning.h"
+#include "algos/offline/offline_batches.h"
 #include "algos/offline/make_offline_algorithm.h"
 #include "algos/off_policy/off_policy_acting.h"
 #include "algos/off_policy/off_policy_learner.h"
@@ -117,15 +117,11 @@ class LoadedOffline final : public LoadedPolicy {
   }
   double sampled_action_std() const override { return 0.0; }
   std::string_view action_words(ActionMode /*both modes act alike*/) const override { return "deterministic actions"; }
-  // Behaviour cloning (the one offline algorithm so far) standardises with the dataset's training
-  // rows' mean and standard deviation (OfflineAlgorithm does not say): a later algorithm says here.
+  // Every offline algorithm standardises with the dataset's training rows' mean and standard
+  // deviation, without an epsilon or a clip.
   std::optional<ObservationStandardization> observation_standardization() const override {
-    const auto* cloning = dynamic_cast<const BehaviourCloning*>(algorithm_.get());
-    if (cloning == nullptr) {
-      throw std::logic_error("load_policy: how " + std::string(algorithm_->name()) +
-                             " standardises observations is not known to the loader");
-    }
-    return ObservationStandardization{cloning->scaling().mean, cloning->scaling().std, 0.0, 0.0};
+    const ObservationScaling& scaling = algorithm_->scaling();
+    return ObservationStandardization{scaling.mean, scaling.std, 0.0, 0.0};
   }
 
  private:

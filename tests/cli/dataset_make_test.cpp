@@ -73,7 +73,7 @@ TEST(DatasetMake, TinyRecipeAndItsResume) {
 
 TEST(DatasetMake, UnknownKeyIsOneLineAndWritesNothing) {
   TemporaryDirectory dir("dataset_make");
-  write_text_file(dir.path() / "bad.yaml", std::string(kTinyRecipe) + "colect: {seed: 1}\n");
+  write_text_file(dir.path() / "bad.yaml", std::string(kTinyRecipe).append("colect: {seed: 1}\n"));
   const auto result =
       run_bsg("dataset make " + (dir.path() / "bad.yaml").string() + " --out " + (dir.path() / "out").string() + kConfigs);
   EXPECT_EQ(result.exit_code, 1) << result.output;

@@ -74,7 +74,7 @@ void check_stopped_resumes_like_uninterrupted(const std::string& launcher, int s
   const fs::path run_file = write_run_file(temp.path());
   const fs::path stopped = temp.path() / "stopped";
   const fs::path reference = temp.path() / "reference";
-  const std::string bsg = std::string(BSG_BINARY) + " ";
+  const std::string bsg = std::string(BSG_BINARY).append(" ");
   const fs::path log = temp.path() / "output.log";
 
   const auto [code, seconds] =
@@ -108,7 +108,7 @@ TEST(TrainSignal, SigintStopsLikewise) {
   const fs::path run_file = write_run_file(temp.path());
   const fs::path out = temp.path() / "run";
   const auto [code, seconds] = stop_after_first_epoch(
-      start(std::string(BSG_BINARY) + " " + train_arguments(run_file, out), temp.path() / "output.log"),
+      start(std::string(BSG_BINARY).append(" ").append(train_arguments(run_file, out)), temp.path() / "output.log"),
       out / "progress.csv", SIGINT);
   EXPECT_EQ(code, 75);
   EXPECT_LT(bsg::testing::progress_rows(out / "progress.csv"), 8);

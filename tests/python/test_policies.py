@@ -1,9 +1,10 @@
 """bsg.load_policy and bsg.evaluate against the C++ side, one tiny run per family (on-policy
-PPO-Lag, off-policy SAC-Lag, offline BC-All on a dataset `bsg collect` writes), trained by `bsg
-train` in a few seconds. Oracles: every observation `bsg eval`'s own evaluation acted on and the
-action it took (tests/python/policy_recorder.cpp, a separate C++ process), which Python's actions
-must equal bit for bit; `bsg eval --json`'s output and the training's evaluation.json, which
-bsg.evaluate must repeat; the run's config.yaml and checkpoint epochs, read as text."""
+PPO-Lag, off-policy SAC-Lag, offline BC-All, CPQ, BCQ-Lag and COptiDICE on a dataset `bsg collect`
+writes), trained by `bsg train` in a few seconds. Oracles: every observation `bsg eval`'s own
+evaluation acted on and the action it took (tests/python/policy_recorder.cpp, a separate C++
+process), which Python's actions must equal bit for bit; `bsg eval --json`'s output and the
+training's evaluation.json, which bsg.evaluate must repeat; the run's config.yaml and checkpoint
+epochs, read as text."""
 
 import json
 import pathlib
@@ -23,7 +24,16 @@ FAMILIES = {
                    "update_every=50", "batch_size=32", "buffer_size=1000", "hidden_sizes=[32, 32]"],
     "offline": ["alg=bc-all", "epochs=2", "updates_per_epoch=5", "batch_size=32",
                 "hidden_sizes=[32, 32]"],
+    # The offline learners with critics: each acts through its own policy head, on the same
+    # dataset standardisation as behaviour cloning.
+    "offline_cpq": ["alg=cpq", "epochs=2", "updates_per_epoch=5", "batch_size=32",
+                    "hidden_sizes=[32, 32]", "vae_hidden_size=32"],
+    "offline_bcq_lag": ["alg=bcq-lag", "epochs=2", "updates_per_epoch=5", "batch_size=32",
+                        "hidden_sizes=[32, 32]", "vae_hidden_size=32"],
+    "offline_coptidice": ["alg=coptidice", "epochs=2", "updates_per_epoch=5", "batch_size=32",
+                          "hidden_sizes=[32, 32]"],
 }
+OFFLINE = [family for family in FAMILIES if family.startswith("offline")]
 
 
 def run(command):
@@ -42,7 +52,7 @@ def runs(tmp_path_factory, bsg_binary):
     directories = {}
     for family, settings in FAMILIES.items():
         directory = root / family
-        if family == "offline":
+        if family in OFFLINE:
             settings = settings + [f"dataset={dataset}"]
         arguments = [bsg_binary, "train", "--configs", str(CONFIGS), "--quiet", "--out", str(directory)]
         for setting in [f"env_id={ENV_ID}", "seed=4", "eval_episodes=2"] + settings:
@@ -112,12 +122,13 @@ def test_observation_normalization_is_what_the_policy_applies(runs):
     assert norm["std_epsilon"] == 1e-5
     assert np.all(norm["std"] > 0)
     assert bsg.load_policy(runs["off_policy"]).observation_normalization is None
-    offline = bsg.load_policy(runs["offline"]).observation_normalization
-    assert offline["std_epsilon"] == 0 and offline["clip"] is None
     # The offline standardisation is the dataset's: its observations' mean and population std.
     data = bsg.datasets.load(runs["offline"].parent / "random.hdf5")
     observations = np.asarray(data["observations"], dtype=np.float64)
-    assert np.allclose(offline["mean"], observations.mean(axis=0), rtol=1e-6, atol=1e-6)
+    for family in OFFLINE:
+        offline = bsg.load_policy(runs[family]).observation_normalization
+        assert offline["std_epsilon"] == 0 and offline["clip"] is None, family
+        assert np.allclose(offline["mean"], observations.mean(axis=0), rtol=1e-6, atol=1e-6), family
 
 
 @pytest.mark.parametrize("family", FAMILIES)

@@ -20,7 +20,7 @@ TEST(EvalRecording, VideoAndTrajectoriesOfTheDeterministicPolicy) {
   testing::write_text_file(run_file,
                            "env_id: SafetyBallCircle-v0\nalg: lag-trpo\nseed: 3\nepochs: 1\n"
                            "steps_per_epoch: 1000\neval_episodes: 2\n");
-  const std::string configs = std::string(" --configs ") + BSG_SOURCE_DIR + "/configs";
+  const std::string configs = std::string(" --configs ").append(BSG_SOURCE_DIR).append("/configs");
   ASSERT_EQ(testing::run_bsg("train " + run_file.string() + configs + " --quiet --out " + dir.str("run")).exit_code, 0);
 
   const testing::ProgramResult plain = testing::run_bsg("eval " + dir.str("run") + " --episodes 2");
