@@ -11,12 +11,8 @@
 // ratio bsg / PyTorch of CPU times is printed with their median: a virtual machine's speed drifts
 // over minutes, so a ratio of two timings taken seconds apart is fairer than one of two taken
 // a minute apart.
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -31,6 +27,7 @@
 #include "algos/off_policy/off_policy_learner.h"
 #include "common/mpi_context.h"
 #include "common/random.h"
+#include "torch_server.h"
 
 namespace {
 
@@ -105,76 +102,21 @@ class BenchLearner {
   bsg::MpiContext mpi_ = bsg::MpiContext::single_process();
 };
 
-// tests/bench/torch_sac_lag_update.py --serve as a child process: one request line in, one
-// answer line out.
-class TorchServer {
- public:
-  TorchServer() {
-    int to_child[2], from_child[2];
-    if (pipe(to_child) != 0 || pipe(from_child) != 0) return;
-    pid_ = fork();
-    if (pid_ == 0) {
-      dup2(to_child[0], STDIN_FILENO);
-      dup2(from_child[1], STDOUT_FILENO);
-      close(to_child[0]), close(to_child[1]), close(from_child[0]), close(from_child[1]);
-      const std::string script = std::string(BSG_SOURCE_DIR) + "/tests/bench/torch_sac_lag_update.py";
-      execl("/usr/bin/python3", "python3", script.c_str(), "--serve", static_cast<char*>(nullptr));
-      std::perror("bsg_off_policy_update_bench: cannot run /usr/bin/python3");
-      _exit(127);
-    }
-    close(to_child[0]), close(from_child[1]);
-    // A server that dies mid-run must make the next request fail with a message, not kill the
-    // bench by SIGPIPE.
-    std::signal(SIGPIPE, SIG_IGN);
-    if (pid_ < 0) {
-      close(to_child[1]), close(from_child[0]);
-      return;
-    }
-    requests_ = fdopen(to_child[1], "w");
-    answers_ = fdopen(from_child[0], "r");
-    banner_ = read_line().value_or("  torch SKIPPED: tests/bench/torch_sac_lag_update.py printed nothing");
-    available_ = banner_.find("SKIPPED") == std::string::npos;
+// PyTorch's timing of `hidden` x `hidden` SAC-Lag with `activation` layers for about `seconds`
+// (tests/bench/torch_sac_lag_update.py --serve), or nothing if it did not answer "WALL_MS CPU_MS STEPS".
+std::optional<Timing> torch_time_steps(bsg::bench::TorchServer& server, const char* activation, int hidden,
+                                       double seconds) {
+  char request[64];
+  std::snprintf(request, sizeof request, "%s %d %.3f", activation, hidden, seconds);
+  const std::optional<std::string> line = server.ask(request);
+  Timing timing;
+  if (!line) return std::nullopt;
+  if (std::sscanf(line->c_str(), "%lf %lf %d", &timing.wall_ms, &timing.cpu_ms, &timing.steps) != 3) {
+    std::fprintf(stderr, "bsg_off_policy_update_bench: PyTorch answered '%s'\n", line->c_str());
+    return std::nullopt;
   }
-  ~TorchServer() {
-    if (requests_) std::fclose(requests_);  // end of input: the server exits
-    if (answers_) std::fclose(answers_);
-    if (pid_ > 0) waitpid(pid_, nullptr, 0);
-  }
-  TorchServer(const TorchServer&) = delete;
-  TorchServer& operator=(const TorchServer&) = delete;
-
-  bool available() const { return available_; }
-  const std::string& banner() const { return banner_; }
-
-  std::optional<Timing> time_steps(const char* activation, int hidden, double seconds) {
-    std::fprintf(requests_, "%s %d %.3f\n", activation, hidden, seconds);
-    std::fflush(requests_);
-    const std::optional<std::string> line = read_line();
-    Timing timing;
-    if (!line || std::sscanf(line->c_str(), "%lf %lf %d", &timing.wall_ms, &timing.cpu_ms, &timing.steps) != 3) {
-      std::fprintf(stderr, "bsg_off_policy_update_bench: PyTorch answered %s\n",
-                   line ? ("'" + *line + "'").c_str() : "nothing");
-      return std::nullopt;
-    }
-    return timing;
-  }
-
- private:
-  std::optional<std::string> read_line() {
-    if (!answers_) return std::nullopt;
-    char buffer[512];
-    if (!std::fgets(buffer, sizeof buffer, answers_)) return std::nullopt;
-    std::string line(buffer);
-    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
-    return line;
-  }
-
-  pid_t pid_ = -1;
-  FILE* requests_ = nullptr;
-  FILE* answers_ = nullptr;
-  std::string banner_;
-  bool available_ = false;
-};
+  return timing;
+}
 
 void print_timing(const char* side, bsg::Dtype dtype, bsg::Activation activation, int hidden, const Timing& t,
                   const char* suffix = "") {
@@ -182,12 +124,6 @@ void print_timing(const char* side, bsg::Dtype dtype, bsg::Activation activation
               std::string(to_string(dtype)).c_str(), std::string(to_string(activation)).c_str(), hidden, hidden,
               t.wall_ms, t.cpu_ms, t.steps, suffix);
   std::fflush(stdout);
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 int usage_error(const std::string& problem) {
@@ -219,9 +155,10 @@ int main(int argc, char** argv) {
   }
   std::printf("off-policy update: SAC-Lag, 1 constraint, obs %d, act %d, batch %d (ms per gradient step)\n",
               BenchLearner::kObservations, BenchLearner::kActions, BenchLearner::kBatch);
-  std::optional<TorchServer> server;
+  std::optional<bsg::bench::TorchServer> server;
   if (torch) {
-    server.emplace();
+    server.emplace(std::string(BSG_SOURCE_DIR) + "/tests/bench/torch_sac_lag_update.py",
+                   "bsg_off_policy_update_bench");
     std::printf("%s\n", server->banner().c_str());
     if (server->available()) {
       std::printf("  %d alternating rounds per float32 network; ratio = bsg cpu / torch cpu of the same round\n",
@@ -244,7 +181,7 @@ int main(int argc, char** argv) {
       std::vector<double> ratios;
       for (int round = 0; round < rounds && !torch_failed; ++round) {
         const Timing ours = learner.time_steps(1.0);
-        const std::optional<Timing> theirs = server->time_steps(activation_name.c_str(), hidden, 1.0);
+        const std::optional<Timing> theirs = torch_time_steps(*server, activation_name.c_str(), hidden, 1.0);
         if (!theirs) {
           torch_failed = true;
           break;
@@ -258,7 +195,7 @@ int main(int argc, char** argv) {
       if (!ratios.empty()) {
         const auto [low, high] = std::minmax_element(ratios.begin(), ratios.end());
         std::printf("  ratio bsg / torch, float32 %s %d x %d: median %.2f (%.2f to %.2f over %zu rounds)\n",
-                    activation_name.c_str(), hidden, hidden, median(ratios), *low, *high, ratios.size());
+                    activation_name.c_str(), hidden, hidden, bsg::bench::median(ratios), *low, *high, ratios.size());
         std::fflush(stdout);
       }
     }
