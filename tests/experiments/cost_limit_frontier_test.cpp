@@ -11,7 +11,7 @@
 namespace bsg::experiments {
 namespace {
 
-ConfigurationResults config(Algorithm alg, const std::string& name, double d, std::vector<SeedResult> seeds) {
+ConfigurationResults frontier_config(Algorithm alg, const std::string& name, double d, std::vector<SeedResult> seeds) {
   ConfigurationResults results;
   results.env_id = "SafetyBallCircle-v0";
   results.alg = alg;
@@ -31,8 +31,8 @@ TEST(CostLimitFrontier, FamiliesAreConfigurationsWithoutTheirLimit) {
 
 TEST(CostLimitFrontier, OnePointPerLimitSortedByTheLimit) {
   const std::vector<ConfigurationResults> results = {
-      config(Algorithm::lag_trpo, "cost_limit=25", 25.0, {{0, 300, 20, {}}, {1, 310, 30, {}}}),
-      config(Algorithm::lag_trpo, "cost_limit=5", 5.0, {{0, 100, 4, {}}, {1, 120, 8, {}}}),
+      frontier_config(Algorithm::lag_trpo, "cost_limit=25", 25.0, {{0, 300, 20, {}}, {1, 310, 30, {}}}),
+      frontier_config(Algorithm::lag_trpo, "cost_limit=5", 5.0, {{0, 100, 4, {}}, {1, 120, 8, {}}}),
   };
   const CostLimitFrontier frontier = build_cost_limit_frontier(results, {});
   ASSERT_EQ(frontier.points.size(), 2u);
@@ -49,9 +49,9 @@ TEST(CostLimitFrontier, OnePointPerLimitSortedByTheLimit) {
 }
 
 TEST(CostLimitFrontier, SeveralConstraintsGiveOnePanelEach) {
-  ConfigurationResults low = config(Algorithm::cpo, "limits=low", 25.0, {{0, 10, 3, {}, 0.0, {1, 2}}, {1, 12, 5, {}, 0.0, {3, 2}}});
+  ConfigurationResults low = frontier_config(Algorithm::cpo, "limits=low", 25.0, {{0, 10, 3, {}, 0.0, {1, 2}}, {1, 12, 5, {}, 0.0, {3, 2}}});
   low.constraint_limits = {2, 1};
-  ConfigurationResults high = config(Algorithm::cpo, "limits=high", 25.0, {{0, 20, 9, {}, 0.0, {5, 4}}, {1, 22, 9, {}, 0.0, {5, 4}}});
+  ConfigurationResults high = frontier_config(Algorithm::cpo, "limits=high", 25.0, {{0, 20, 9, {}, 0.0, {5, 4}}, {1, 22, 9, {}, 0.0, {5, 4}}});
   high.constraint_limits = {10, 5};
   // Different names: two families of one limit each, unless named alike.
   low.config_name = high.config_name = "default";
@@ -70,7 +70,7 @@ TEST(CostLimitFrontier, SeveralConstraintsGiveOnePanelEach) {
 
 TEST(CostLimitFrontier, OneLimitOrOneSeedIsRefusedNamingTheLimits) {
   const std::vector<ConfigurationResults> one_limit = {
-      config(Algorithm::lag_trpo, "default", 25.0, {{0, 300, 20, {}}, {1, 310, 30, {}}}),
+      frontier_config(Algorithm::lag_trpo, "default", 25.0, {{0, 300, 20, {}}, {1, 310, 30, {}}}),
   };
   try {
     build_cost_limit_frontier(one_limit, {});
@@ -79,8 +79,8 @@ TEST(CostLimitFrontier, OneLimitOrOneSeedIsRefusedNamingTheLimits) {
     EXPECT_NE(std::string(error.what()).find("the sweep's limits: 25"), std::string::npos) << error.what();
   }
   const std::vector<ConfigurationResults> one_seed = {
-      config(Algorithm::lag_trpo, "cost_limit=5", 5.0, {{0, 100, 4, {}}}),
-      config(Algorithm::lag_trpo, "cost_limit=25", 25.0, {{0, 300, 20, {}}}),
+      frontier_config(Algorithm::lag_trpo, "cost_limit=5", 5.0, {{0, 100, 4, {}}}),
+      frontier_config(Algorithm::lag_trpo, "cost_limit=25", 25.0, {{0, 300, 20, {}}}),
   };
   EXPECT_THROW(build_cost_limit_frontier(one_seed, {}), std::invalid_argument);
 }

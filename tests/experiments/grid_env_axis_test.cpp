@@ -12,7 +12,7 @@
 namespace bsg::experiments {
 namespace {
 
-const std::filesystem::path kConfigs = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
+const std::filesystem::path kShippedConfigs = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
 
 TEST(GridEnvAxis, EachValueIsOneRunWithThatEnvironmentParameter) {
   const GridSpec grid = parse_grid(
@@ -23,9 +23,9 @@ TEST(GridEnvAxis, EachValueIsOneRunWithThatEnvironmentParameter) {
   ASSERT_EQ(runs.size(), 2u);
   EXPECT_EQ(runs[0].relative_dir().generic_string(), "SafetyBallGather-v0/trpo/env=bombs4/seed=0");
   EXPECT_EQ(runs[1].config_name, "env=bombs12_apples6");
-  const RunConfig second = resolve_grid_run(runs[1], kConfigs, "g.yaml");
+  const RunConfig second = resolve_grid_run(runs[1], kShippedConfigs, "g.yaml");
   EXPECT_EQ(second.env, (std::vector<std::pair<std::string, std::string>>{{"bombs", "12"}, {"apples", "6"}}));
-  EXPECT_EQ(resolve_grid_run(runs[0], kConfigs, "g.yaml").env,
+  EXPECT_EQ(resolve_grid_run(runs[0], kShippedConfigs, "g.yaml").env,
             (std::vector<std::pair<std::string, std::string>>{{"bombs", "4"}}));
 }
 

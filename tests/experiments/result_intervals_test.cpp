@@ -14,7 +14,7 @@
 namespace bsg::experiments {
 namespace {
 
-ConfigurationResults config(const std::string& env, Algorithm alg, const std::string& name,
+ConfigurationResults interval_config(const std::string& env, Algorithm alg, const std::string& name,
                             std::vector<SeedResult> seeds, double d = 25.0) {
   ConfigurationResults results;
   results.env_id = env;
@@ -35,20 +35,20 @@ const IntervalRow& find(const std::vector<IntervalRow>& rows, const std::string&
 }
 
 // Two environments; TRPO's selected J is 200 on Circle and 10 on Run.
-std::vector<ConfigurationResults> results() {
+std::vector<ConfigurationResults> interval_results() {
   const std::string circle = "SafetyBallCircle-v0";
   const std::string run = "SafetyBallRun-v0";
   return {
-      config(circle, Algorithm::trpo, "default", {{0, 190, 70, {}}, {1, 210, 90, {}}}),
-      config(circle, Algorithm::lag_trpo, "default", {{0, 100, 20, {}}, {1, 120, 24, {}}, {2, 140, 30, {}}}),
-      config(run, Algorithm::trpo, "default", {{0, 9, 50, {}}, {1, 11, 50, {}}}),
-      config(run, Algorithm::lag_trpo, "default", {{0, 5, 10, {}}, {1, 6, 20, {}}, {2, 7, 40, {}}}),
-      config(run, Algorithm::cpo, "default", {{0, 4, 10, {}}}),  // one seed: no interval
+      interval_config(circle, Algorithm::trpo, "default", {{0, 190, 70, {}}, {1, 210, 90, {}}}),
+      interval_config(circle, Algorithm::lag_trpo, "default", {{0, 100, 20, {}}, {1, 120, 24, {}}, {2, 140, 30, {}}}),
+      interval_config(run, Algorithm::trpo, "default", {{0, 9, 50, {}}, {1, 11, 50, {}}}),
+      interval_config(run, Algorithm::lag_trpo, "default", {{0, 5, 10, {}}, {1, 6, 20, {}}, {2, 7, 40, {}}}),
+      interval_config(run, Algorithm::cpo, "default", {{0, 4, 10, {}}}),  // one seed: no interval
   };
 }
 
 TEST(ResultIntervals, SeedsAreNormalisedByTrposSelectedReturnAndFeasibilityIsAProportion) {
-  const std::vector<ConfigurationResults> all = results();
+  const std::vector<ConfigurationResults> all = interval_results();
   const Table1 table = build_table1(all, SelectionScore::mean_return);
   const ResultIntervals intervals = build_result_intervals(all, table, {});
   // Circle TRPO-L: J / 200 = 0.5, 0.6, 0.7: mean 0.6; n = 3 so IQM = mean.
@@ -80,7 +80,7 @@ TEST(ResultIntervals, SeedsAreNormalisedByTrposSelectedReturnAndFeasibilityIsAPr
 }
 
 TEST(ResultIntervals, DifferencesBetweenColumnsAreDistinguishableOnlyWhenTheirIntervalExcludesZero) {
-  const std::vector<ConfigurationResults> all = results();
+  const std::vector<ConfigurationResults> all = interval_results();
   const ResultIntervals intervals = build_result_intervals(all, build_table1(all, SelectionScore::mean_return), {});
   bool seen_circle_j = false;
   for (const DifferenceRow& row : intervals.differences) {
@@ -99,7 +99,7 @@ TEST(ResultIntervals, DifferencesBetweenColumnsAreDistinguishableOnlyWhenTheirIn
 }
 
 TEST(ResultIntervals, ProfilesStartAtOneAndEndAtZero) {
-  const std::vector<ConfigurationResults> all = results();
+  const std::vector<ConfigurationResults> all = interval_results();
   const ResultIntervals intervals = build_result_intervals(all, build_table1(all, SelectionScore::mean_return), {});
   double first = -1.0;
   double last = -1.0;
@@ -114,8 +114,8 @@ TEST(ResultIntervals, ProfilesStartAtOneAndEndAtZero) {
 
 TEST(ResultIntervals, ASweepWithOneSeedIsRefusedWithAClearMessage) {
   const std::vector<ConfigurationResults> one_seed = {
-      config("SafetyBallCircle-v0", Algorithm::trpo, "default", {{0, 190, 70, {}}}),
-      config("SafetyBallCircle-v0", Algorithm::lag_trpo, "default", {{0, 100, 20, {}}}),
+      interval_config("SafetyBallCircle-v0", Algorithm::trpo, "default", {{0, 190, 70, {}}}),
+      interval_config("SafetyBallCircle-v0", Algorithm::lag_trpo, "default", {{0, 100, 20, {}}}),
   };
   try {
     build_result_intervals(one_seed, build_table1(one_seed, SelectionScore::mean_return), {});
@@ -126,7 +126,7 @@ TEST(ResultIntervals, ASweepWithOneSeedIsRefusedWithAClearMessage) {
 }
 
 TEST(ResultIntervals, CsvFilesSayTheirConfidence) {
-  const std::vector<ConfigurationResults> all = results();
+  const std::vector<ConfigurationResults> all = interval_results();
   BootstrapOptions options;
   options.confidence = 0.9;
   const ResultIntervals intervals = build_result_intervals(all, build_table1(all, SelectionScore::mean_return), options);

@@ -17,7 +17,7 @@ SeedResult seed(std::int64_t s, double j, double h, std::vector<double> returns 
   return SeedResult{s, j, h, std::move(returns)};
 }
 
-ConfigurationResults config(const std::string& name, Algorithm alg, std::vector<SeedResult> seeds,
+ConfigurationResults selection_config(const std::string& name, Algorithm alg, std::vector<SeedResult> seeds,
                             double cost_limit = 25.0) {
   ConfigurationResults results;
   results.env_id = "SafetyBallCircle-v0";
@@ -31,7 +31,7 @@ ConfigurationResults config(const std::string& name, Algorithm alg, std::vector<
 
 TEST(Selection, ScoreAveragesOverSeeds) {
   const ConfigurationScore s =
-      score_configuration(config("a", Algorithm::cpo, {seed(0, 10, 20), seed(1, 30, 40)}), SelectionScore::mean_return);
+      score_configuration(selection_config("a", Algorithm::cpo, {seed(0, 10, 20), seed(1, 30, 40)}), SelectionScore::mean_return);
   EXPECT_DOUBLE_EQ(s.mean_return, 20.0);
   EXPECT_DOUBLE_EQ(s.mean_cost, 30.0);
   EXPECT_DOUBLE_EQ(s.score, 20.0);
@@ -40,9 +40,9 @@ TEST(Selection, ScoreAveragesOverSeeds) {
 
 TEST(Selection, PicksTheBestReturnAmongFeasibleConfigurations) {
   const std::vector<ConfigurationResults> candidates = {
-      config("high-but-unsafe", Algorithm::lag_trpo, {seed(0, 100, 30), seed(1, 100, 30)}),
-      config("feasible-low", Algorithm::lag_trpo, {seed(0, 10, 5), seed(1, 20, 5)}),
-      config("feasible-high", Algorithm::lag_trpo, {seed(0, 50, 24), seed(1, 40, 26)}),  // H = 25 = d
+      selection_config("high-but-unsafe", Algorithm::lag_trpo, {seed(0, 100, 30), seed(1, 100, 30)}),
+      selection_config("feasible-low", Algorithm::lag_trpo, {seed(0, 10, 5), seed(1, 20, 5)}),
+      selection_config("feasible-high", Algorithm::lag_trpo, {seed(0, 50, 24), seed(1, 40, 26)}),  // H = 25 = d
   };
   const std::optional<Selection> selection = select_configuration(candidates, SelectionScore::mean_return);
   ASSERT_TRUE(selection);
@@ -53,9 +53,9 @@ TEST(Selection, PicksTheBestReturnAmongFeasibleConfigurations) {
 
 TEST(Selection, WithoutAFeasibleConfigurationPicksTheLowestViolationAndMarksIt) {
   const std::vector<ConfigurationResults> candidates = {
-      config("a", Algorithm::pdo, {seed(0, 100, 60)}),
-      config("b", Algorithm::pdo, {seed(0, 1, 30)}),
-      config("c", Algorithm::pdo, {seed(0, 50, 40)}),
+      selection_config("a", Algorithm::pdo, {seed(0, 100, 60)}),
+      selection_config("b", Algorithm::pdo, {seed(0, 1, 30)}),
+      selection_config("c", Algorithm::pdo, {seed(0, 50, 40)}),
   };
   const std::optional<Selection> selection = select_configuration(candidates, SelectionScore::mean_return);
   ASSERT_TRUE(selection);
@@ -65,8 +65,8 @@ TEST(Selection, WithoutAFeasibleConfigurationPicksTheLowestViolationAndMarksIt) 
 
 TEST(Selection, TrpoIsSelectedByReturnAlone) {
   const std::vector<ConfigurationResults> candidates = {
-      config("target_kl=0.001", Algorithm::trpo, {seed(0, 10, 1)}),
-      config("target_kl=0.01", Algorithm::trpo, {seed(0, 90, 80)}),
+      selection_config("target_kl=0.001", Algorithm::trpo, {seed(0, 10, 1)}),
+      selection_config("target_kl=0.01", Algorithm::trpo, {seed(0, 90, 80)}),
   };
   const std::optional<Selection> selection = select_configuration(candidates, SelectionScore::mean_return);
   ASSERT_TRUE(selection);
@@ -78,21 +78,21 @@ TEST(Selection, MissingRunsAreSkippedNeverZero) {
   // "missing" has no finished seed: a zero return would make it feasible and, with
   // negative returns elsewhere, the best.
   const std::vector<ConfigurationResults> candidates = {
-      config("missing", Algorithm::cpo, {}),
-      config("finished", Algorithm::cpo, {seed(0, -5, 10)}),
+      selection_config("missing", Algorithm::cpo, {}),
+      selection_config("finished", Algorithm::cpo, {seed(0, -5, 10)}),
   };
   const std::optional<Selection> selection = select_configuration(candidates, SelectionScore::mean_return);
   ASSERT_TRUE(selection);
   EXPECT_EQ(selection->index, 1u);
-  EXPECT_FALSE(select_configuration({config("missing", Algorithm::cpo, {})}, SelectionScore::mean_return));
-  EXPECT_THROW(score_configuration(config("missing", Algorithm::cpo, {}), SelectionScore::mean_return),
+  EXPECT_FALSE(select_configuration({selection_config("missing", Algorithm::cpo, {})}, SelectionScore::mean_return));
+  EXPECT_THROW(score_configuration(selection_config("missing", Algorithm::cpo, {}), SelectionScore::mean_return),
                std::invalid_argument);
 }
 
 TEST(Selection, TiesKeepTheFirstConfiguration) {
   const std::vector<ConfigurationResults> candidates = {
-      config("first", Algorithm::cpo, {seed(0, 7, 1)}),
-      config("second", Algorithm::cpo, {seed(0, 7, 1)}),
+      selection_config("first", Algorithm::cpo, {seed(0, 7, 1)}),
+      selection_config("second", Algorithm::cpo, {seed(0, 7, 1)}),
   };
   EXPECT_EQ(select_configuration(candidates, SelectionScore::mean_return)->index, 0u);
 }
@@ -100,21 +100,21 @@ TEST(Selection, TiesKeepTheFirstConfiguration) {
 TEST(Selection, MeanMinusStdPoolsTheEpisodeReturnsOfAllSeeds) {
   // Pooled returns {0, 10, 20, 30}: mean 15, population std sqrt(125).
   const ConfigurationResults steady =
-      config("steady", Algorithm::cpo, {seed(0, 5, 1, {0, 10}), seed(1, 25, 1, {20, 30})});
+      selection_config("steady", Algorithm::cpo, {seed(0, 5, 1, {0, 10}), seed(1, 25, 1, {20, 30})});
   const ConfigurationScore s = score_configuration(steady, SelectionScore::mean_minus_std);
   EXPECT_NEAR(s.score, 15.0 - std::sqrt(125.0), 1e-12);
   EXPECT_DOUBLE_EQ(s.mean_return, 15.0);  // J itself is still the mean
 
   // Higher mean but much wider: the mean rule picks it, mean - std does not.
   const ConfigurationResults risky =
-      config("risky", Algorithm::cpo, {seed(0, 0, 1, {-100, 100}), seed(1, 40, 1, {-60, 140})});
+      selection_config("risky", Algorithm::cpo, {seed(0, 0, 1, {-100, 100}), seed(1, 40, 1, {-60, 140})});
   const std::vector<ConfigurationResults> candidates = {steady, risky};
   EXPECT_EQ(select_configuration(candidates, SelectionScore::mean_return)->index, 1u);
   EXPECT_EQ(select_configuration(candidates, SelectionScore::mean_minus_std)->index, 0u);
 }
 
 TEST(Selection, MeanMinusStdNeedsTheEpisodeReturns) {
-  EXPECT_THROW(score_configuration(config("a", Algorithm::cpo, {seed(0, 1, 1)}), SelectionScore::mean_minus_std),
+  EXPECT_THROW(score_configuration(selection_config("a", Algorithm::cpo, {seed(0, 1, 1)}), SelectionScore::mean_minus_std),
                std::invalid_argument);
 }
 

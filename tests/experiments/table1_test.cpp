@@ -17,7 +17,7 @@ namespace {
 
 using testing::contains;
 
-ConfigurationResults config(const std::string& env, Algorithm alg, const std::string& name,
+ConfigurationResults table1_config(const std::string& env, Algorithm alg, const std::string& name,
                             std::vector<SeedResult> seeds, std::size_t expected = 2, double d = 25.0) {
   ConfigurationResults results;
   results.env_id = env;
@@ -30,22 +30,22 @@ ConfigurationResults config(const std::string& env, Algorithm alg, const std::st
 }
 
 // BallRun (listed first here, last in the report) and BallCircle.
-std::vector<ConfigurationResults> results() {
+std::vector<ConfigurationResults> table1_results() {
   const std::string circle = "SafetyBallCircle-v0";
   return {
-      config("SafetyBallRun-v0", Algorithm::trpo, "default", {{0, 10, 50, {}}, {1, 10, 50, {}}}),
-      config("SafetyBallRun-v0", Algorithm::cpo, "default", {}),  // nothing finished
-      config(circle, Algorithm::trpo, "target_kl=0.001", {{0, 100, 70, {}}, {1, 100, 90, {}}}),
-      config(circle, Algorithm::trpo, "target_kl=0.01", {{0, 200, 80, {}}, {1, 200, 80, {}}}),
-      config(circle, Algorithm::lag_trpo, "a", {{0, 190, 24, {}}, {1, 194, 24.5, {}}}),
-      config(circle, Algorithm::cpo, "a", {{0, 150, 20, {}}}),  // 1 of 2 seeds
-      config(circle, Algorithm::pdo, "a", {{0, 300, 30, {}}, {1, 300, 34, {}}}),
-      config(circle, Algorithm::pdo, "b", {{0, 250, 26, {}}, {1, 250, 28, {}}}),
+      table1_config("SafetyBallRun-v0", Algorithm::trpo, "default", {{0, 10, 50, {}}, {1, 10, 50, {}}}),
+      table1_config("SafetyBallRun-v0", Algorithm::cpo, "default", {}),  // nothing finished
+      table1_config(circle, Algorithm::trpo, "target_kl=0.001", {{0, 100, 70, {}}, {1, 100, 90, {}}}),
+      table1_config(circle, Algorithm::trpo, "target_kl=0.01", {{0, 200, 80, {}}, {1, 200, 80, {}}}),
+      table1_config(circle, Algorithm::lag_trpo, "a", {{0, 190, 24, {}}, {1, 194, 24.5, {}}}),
+      table1_config(circle, Algorithm::cpo, "a", {{0, 150, 20, {}}}),  // 1 of 2 seeds
+      table1_config(circle, Algorithm::pdo, "a", {{0, 300, 30, {}}, {1, 300, 34, {}}}),
+      table1_config(circle, Algorithm::pdo, "b", {{0, 250, 26, {}}, {1, 250, 28, {}}}),
   };
 }
 
 TEST(Table1, SelectsNormalisesAndOrdersRowsLikeTheReport) {
-  const Table1 table = build_table1(results(), SelectionScore::mean_return);
+  const Table1 table = build_table1(table1_results(), SelectionScore::mean_return);
   EXPECT_EQ(table.columns, (std::vector<Table1Column>{{Algorithm::trpo, false},
                                                       {Algorithm::lag_trpo, false},
                                                       {Algorithm::cpo, false},
@@ -70,7 +70,7 @@ TEST(Table1, SelectsNormalisesAndOrdersRowsLikeTheReport) {
 }
 
 TEST(Table1, WithoutTrpoRawReturnsAreShown) {
-  const Table1 table = build_table1({config("SafetyBallReach-v0", Algorithm::cpo, "a", {{0, 12.5, 5, {}}},
+  const Table1 table = build_table1({table1_config("SafetyBallReach-v0", Algorithm::cpo, "a", {{0, 12.5, 5, {}}},
                                             1, 10.0)},
                                     SelectionScore::mean_return);
   EXPECT_TRUE(contains(table1_markdown(table), "| BallReach | **J=12.5 (0.50)** |"));
@@ -78,18 +78,18 @@ TEST(Table1, WithoutTrpoRawReturnsAreShown) {
 
 TEST(Table1, BestConstrainedPrefersMeetingTheLimitThenReturnThenLowerCost) {
   const std::string env = "SafetyCarGather-v0";
-  Table1 table = build_table1({config(env, Algorithm::cpo, "a", {{0, 5, 0.1, {}}}, 1, 0.2),
-                               config(env, Algorithm::pdo, "a", {{0, 50, 0.3, {}}}, 1, 0.2)},
+  Table1 table = build_table1({table1_config(env, Algorithm::cpo, "a", {{0, 5, 0.1, {}}}, 1, 0.2),
+                               table1_config(env, Algorithm::pdo, "a", {{0, 50, 0.3, {}}}, 1, 0.2)},
                               SelectionScore::mean_return);
   EXPECT_TRUE(table.rows[0].cells[0].best_constrained);
-  table = build_table1({config(env, Algorithm::cpo, "a", {{0, 5, 0.5, {}}}, 1, 0.2),
-                        config(env, Algorithm::pdo, "a", {{0, 50, 0.3, {}}}, 1, 0.2)},
+  table = build_table1({table1_config(env, Algorithm::cpo, "a", {{0, 5, 0.5, {}}}, 1, 0.2),
+                        table1_config(env, Algorithm::pdo, "a", {{0, 50, 0.3, {}}}, 1, 0.2)},
                        SelectionScore::mean_return);
   EXPECT_TRUE(table.rows[0].cells[1].best_constrained);
 }
 
 TEST(Table1, CsvHasOneLinePerCellWithMissingFieldsEmpty) {
-  const Table1 table = build_table1(results(), SelectionScore::mean_return);
+  const Table1 table = build_table1(table1_results(), SelectionScore::mean_return);
   const std::string csv = table1_csv(table);
   EXPECT_TRUE(contains(csv, "env_id,alg,status,config,config_dir,seeds_finished,seeds_expected,mean_return,"));
   EXPECT_TRUE(contains(csv, "SafetyBallCircle-v0,pdo,infeasible,b,SafetyBallCircle-v0/pdo/b,2,2,250.0,27.0,0.0,25.0,1.25,1.08,false,false,PDO\n"));
@@ -101,8 +101,8 @@ TEST(Table1, CsvHasOneLinePerCellWithMissingFieldsEmpty) {
 TEST(Table1, CsvCarriesTheMeanTrainingCostRateOverSeeds) {
   SeedResult first{0, 190, 24, {}, 0.01};
   SeedResult second{1, 194, 24.5, {}, 0.04};
-  const Table1 table = build_table1({config("SafetyBallCircle-v0", Algorithm::trpo, "t", {{0, 200, 80, {}, 0.5}}),
-                                     config("SafetyBallCircle-v0", Algorithm::lag_trpo, "a", {first, second})},
+  const Table1 table = build_table1({table1_config("SafetyBallCircle-v0", Algorithm::trpo, "t", {{0, 200, 80, {}, 0.5}}),
+                                     table1_config("SafetyBallCircle-v0", Algorithm::lag_trpo, "a", {first, second})},
                                     SelectionScore::mean_return);
   const std::string csv = table1_csv(table);
   // (0.01 + 0.04) / 2 = 0.025 beside J = 192 and H = 24.25.
@@ -111,13 +111,13 @@ TEST(Table1, CsvCarriesTheMeanTrainingCostRateOverSeeds) {
   EXPECT_TRUE(contains(configurations_csv(table), "SafetyBallCircle-v0,trpo,t,1,2,200.0,80.0,0.5,25.0,"));
   // A run from before the cost rate (NaN) leaves the field empty.
   const Table1 old = build_table1(
-      {config("SafetyBallCircle-v0", Algorithm::trpo, "t", {{0, 200, 80, {}, std::nan("")}})}, SelectionScore::mean_return);
+      {table1_config("SafetyBallCircle-v0", Algorithm::trpo, "t", {{0, 200, 80, {}, std::nan("")}})}, SelectionScore::mean_return);
   EXPECT_TRUE(contains(table1_csv(old), ",1,2,200.0,80.0,,25.0,"));
 }
 
 TEST(Table1, ConfigurationNamesWithCommasAreQuotedInCsv) {
   const Table1 table = build_table1(
-      {config("SafetyBallCircle-v0", Algorithm::trpo, "target_kl=0.001,lam_c=0.5", {{0, 1, 1, {}}}, 1)},
+      {table1_config("SafetyBallCircle-v0", Algorithm::trpo, "target_kl=0.001,lam_c=0.5", {{0, 1, 1, {}}}, 1)},
       SelectionScore::mean_return);
   const std::string csv = table1_csv(table);
   const std::string line = csv.substr(csv.find('\n') + 1, csv.find('\n', csv.find('\n') + 1) - csv.find('\n') - 1);
@@ -128,7 +128,7 @@ TEST(Table1, ConfigurationNamesWithCommasAreQuotedInCsv) {
 }
 
 TEST(Table1, LatexMarksBestInfeasibleAndMissing) {
-  const std::string latex = table1_latex(build_table1(results(), SelectionScore::mean_return));
+  const std::string latex = table1_latex(build_table1(table1_results(), SelectionScore::mean_return));
   EXPECT_TRUE(contains(latex, "\\begin{tabular}{lcccc}"));
   EXPECT_TRUE(contains(latex, "BallCircle & 1.00 (3.20) & \\textbf{0.96 (0.97)} & 0.75 (0.80) [1/2] & "
                               "1.25 (1.08)$^\\dagger$ \\\\\n"));
@@ -148,10 +148,10 @@ TEST(Table1, PidMultiplierConfigurationsFormColumnsOfTheirOwn) {
   // selection, nor SGD's it: each column holds its own best.
   const std::string circle = "SafetyBallCircle-v0";
   std::vector<ConfigurationResults> all = {
-      config(circle, Algorithm::trpo, "default", {{0, 200, 80, {}}}, 1),
-      config(circle, Algorithm::lag_trpo, "sgd", {{0, 150, 24, {}}}, 1),
-      config(circle, Algorithm::lag_trpo, "pid", {{0, 170, 25, {}}}, 1),
-      config(circle, Algorithm::pdo, "pid", {{0, 100, 40, {}}}, 1),
+      table1_config(circle, Algorithm::trpo, "default", {{0, 200, 80, {}}}, 1),
+      table1_config(circle, Algorithm::lag_trpo, "sgd", {{0, 150, 24, {}}}, 1),
+      table1_config(circle, Algorithm::lag_trpo, "pid", {{0, 170, 25, {}}}, 1),
+      table1_config(circle, Algorithm::pdo, "pid", {{0, 100, 40, {}}}, 1),
   };
   all[2].pid_multiplier = true;
   all[3].pid_multiplier = true;
@@ -182,10 +182,10 @@ TEST(Table1, CorrectedLearnerConfigurationsFormColumnsAfterTheFaithfulOnes) {
   // column's (by the corrected TRPO's only in a table without a faithful one).
   const std::string run = "SafetyBallRun-v0";
   std::vector<ConfigurationResults> all = {
-      config(run, Algorithm::trpo, "default", {{0, 400, 230, {}}}, 1),
-      config(run, Algorithm::lag_trpo, "a", {{0, 100, 60, {}}}, 1),
-      config(run, Algorithm::trpo, "default", {{0, 2000, 230, {}}}, 1),
-      config(run, Algorithm::lag_trpo, "a", {{0, 500, 20, {}}}, 1),
+      table1_config(run, Algorithm::trpo, "default", {{0, 400, 230, {}}}, 1),
+      table1_config(run, Algorithm::lag_trpo, "a", {{0, 100, 60, {}}}, 1),
+      table1_config(run, Algorithm::trpo, "default", {{0, 2000, 230, {}}}, 1),
+      table1_config(run, Algorithm::lag_trpo, "a", {{0, 500, 20, {}}}, 1),
   };
   all[2].corrected_learner = true;
   all[3].corrected_learner = true;
@@ -222,12 +222,12 @@ TEST(Table1, FirstOrderColumnsCppoPidAndPpoAsAnUnconstrainedColumn) {
   EXPECT_EQ(table1_column_label(Algorithm::cup), "CUP");
   const std::string circle = "SafetyBallCircle-v0";
   std::vector<ConfigurationResults> all = {
-      config(circle, Algorithm::trpo, "default", {{0, 200, 80, {}}}, 1),
-      config(circle, Algorithm::ppo, "default", {{0, 300, 90, {}}}, 1),
-      config(circle, Algorithm::ppo_lag, "default", {{0, 150, 24, {}}}, 1),
-      config(circle, Algorithm::ppo_lag, "pid", {{0, 160, 30, {}}}, 1),
-      config(circle, Algorithm::focops, "default", {{0, 120, 20, {}}}, 1),
-      config(circle, Algorithm::cup, "default", {{0, 180, 25, {}}}, 1),
+      table1_config(circle, Algorithm::trpo, "default", {{0, 200, 80, {}}}, 1),
+      table1_config(circle, Algorithm::ppo, "default", {{0, 300, 90, {}}}, 1),
+      table1_config(circle, Algorithm::ppo_lag, "default", {{0, 150, 24, {}}}, 1),
+      table1_config(circle, Algorithm::ppo_lag, "pid", {{0, 160, 30, {}}}, 1),
+      table1_config(circle, Algorithm::focops, "default", {{0, 120, 20, {}}}, 1),
+      table1_config(circle, Algorithm::cup, "default", {{0, 180, 25, {}}}, 1),
   };
   all[3].pid_multiplier = true;
   const Table1 table = build_table1(all, SelectionScore::mean_return);
