@@ -164,24 +164,12 @@ int usage_error(const std::string& problem) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool torch = false;
-  int rounds = 5;
-  for (int i = 1; i < argc; ++i) {
-    const std::string argument = argv[i];
-    if (argument == "--torch") {
-      torch = true;
-    } else if (argument == "--rounds") {
-      if (i + 1 >= argc) return usage_error("--rounds needs a value");
-      char* end = nullptr;
-      const long value = std::strtol(argv[++i], &end, 10);
-      if (*end != '\0' || value < 1 || value > 1000) {
-        return usage_error(std::string("--rounds must be a whole number from 1 to 1000, got '") + argv[i] + "'");
-      }
-      rounds = static_cast<int>(value);
-    } else {
-      return usage_error("unknown argument '" + argument + "'");
-    }
+  bsg::bench::TorchComparisonOptions options;
+  if (const std::string problem = bsg::bench::parse_torch_comparison_options(argc, argv, options); !problem.empty()) {
+    return usage_error(problem);
   }
+  const bool torch = options.torch;
+  const int rounds = options.rounds;
   std::printf("offline update: obs %d, act %d, batch %d, 256 x 256 networks, VAE 400 x 400, 10 sampled actions "
               "(us per gradient step, medians over the steps)\n",
               kObservations, kActions, kBatch);

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <optional>
 #include <string>
 #include <vector>
@@ -90,6 +91,33 @@ inline double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// The options both comparison benchmarks take: [--torch] [--rounds R]. Returns the problem with
+// `arguments` in one line, or an empty string when they parse.
+struct TorchComparisonOptions {
+  bool torch = false;
+  int rounds = 5;
+};
+
+inline std::string parse_torch_comparison_options(int argc, char** argv, TorchComparisonOptions& options) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string argument = argv[i];
+    if (argument == "--torch") {
+      options.torch = true;
+    } else if (argument == "--rounds") {
+      if (i + 1 >= argc) return "--rounds needs a value";
+      char* end = nullptr;
+      const long value = std::strtol(argv[++i], &end, 10);
+      if (*end != '\0' || value < 1 || value > 1000) {
+        return std::string("--rounds must be a whole number from 1 to 1000, got '") + argv[i] + "'";
+      }
+      options.rounds = static_cast<int>(value);
+    } else {
+      return "unknown argument '" + argument + "'";
+    }
+  }
+  return "";
 }
 
 }  // namespace bsg::bench
