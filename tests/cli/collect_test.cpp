@@ -24,7 +24,7 @@ using bsg::testing::write_text_file;
 
 namespace {
 
-const std::string kConfigs = std::string(" --configs ") + BSG_SOURCE_DIR + "/configs";
+using bsg::testing::kConfigsOption;
 
 // One epoch of 1000 steps of TRPO-L on `env_id`.
 std::string train_tiny_run(const TemporaryDirectory& dir, const std::string& env_id) {
@@ -32,7 +32,7 @@ std::string train_tiny_run(const TemporaryDirectory& dir, const std::string& env
   write_text_file(file, "env_id: " + env_id +
                             "\nalg: lag-trpo\nseed: 1\nepochs: 1\nsteps_per_epoch: 1000\neval_episodes: 1\n");
   const std::string out = (dir.path() / env_id).string();
-  const auto trained = run_bsg("train " + file.string() + kConfigs + " --quiet --out " + out);
+  const auto trained = run_bsg("train " + file.string() + kConfigsOption + " --quiet --out " + out);
   EXPECT_EQ(trained.exit_code, 0) << trained.output;
   return out;
 }
@@ -82,7 +82,7 @@ TEST(Collect, AnOffPolicyCheckpointActsWithItsDeterministicActor) {
                   "num_envs: 2\nstart_steps: 200\nupdate_every: 50\nbatch_size: 32\nbuffer_size: 1000\n"
                   "hidden_sizes: [16, 16]\neval_episodes: 1\n");
   const std::string run = (dir.path() / "sac").string();
-  const auto trained = run_bsg("train " + config_file.string() + kConfigs + " --quiet --out " + run);
+  const auto trained = run_bsg("train " + config_file.string() + kConfigsOption + " --quiet --out " + run);
   ASSERT_EQ(trained.exit_code, 0) << trained.output;
   const std::string file = (dir.path() / "sac.hdf5").string();
   const auto result = run_bsg("collect --out " + file + " --policy " + run + " --actions mean --episodes 1 --seed 3");
@@ -156,7 +156,7 @@ TEST(Collect, CheckpointsMustHaveTheSameConstraints) {
                           "eval_episodes: 1\nconstraints:\n  - terms: [cost_gathered_bombs]\n    limit: " +
                               bomb_limit + "\n  - terms: [cost_out_of_range]\n    limit: 0.1\n");
     const std::string out = (dir.path() / name).string();
-    const auto trained = run_bsg("train " + file.string() + kConfigs + " --quiet --out " + out);
+    const auto trained = run_bsg("train " + file.string() + kConfigsOption + " --quiet --out " + out);
     EXPECT_EQ(trained.exit_code, 0) << trained.output;
     return out;
   };

@@ -22,7 +22,7 @@ using bsg::testing::write_text_file;
 
 namespace {
 
-const std::string kConfigs = std::string(" --configs ") + BSG_SOURCE_DIR + "/configs";
+using bsg::testing::kConfigsOption;
 
 const char* const kTinyRecipe =
     "description: two one-epoch TRPO-L runs on the fork's BallRun\n"
@@ -42,7 +42,7 @@ TEST(DatasetMake, TinyRecipeAndItsResume) {
   TemporaryDirectory dir("dataset_make");
   write_text_file(dir.path() / "tiny.yaml", kTinyRecipe);
   const std::string out = (dir.path() / "out").string();
-  const std::string command = "dataset make " + (dir.path() / "tiny.yaml").string() + " --out " + out + kConfigs;
+  const std::string command = "dataset make " + (dir.path() / "tiny.yaml").string() + " --out " + out + kConfigsOption;
   const auto made = run_bsg(command);
   ASSERT_EQ(made.exit_code, 0) << made.output;
   const fs::path file = dir.path() / "out" / "SafetyBallRun-fork.hdf5";
@@ -75,7 +75,7 @@ TEST(DatasetMake, UnknownKeyIsOneLineAndWritesNothing) {
   TemporaryDirectory dir("dataset_make");
   write_text_file(dir.path() / "bad.yaml", std::string(kTinyRecipe).append("colect: {seed: 1}\n"));
   const auto result =
-      run_bsg("dataset make " + (dir.path() / "bad.yaml").string() + " --out " + (dir.path() / "out").string() + kConfigs);
+      run_bsg("dataset make " + (dir.path() / "bad.yaml").string() + " --out " + (dir.path() / "out").string() + kConfigsOption);
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_NE(result.output.find("bad.yaml:13: unknown key 'colect' (expected description, grid, collect)"),
             std::string::npos)
@@ -86,7 +86,7 @@ TEST(DatasetMake, UnknownKeyIsOneLineAndWritesNothing) {
                   std::string(kTinyRecipe).replace(std::string(kTinyRecipe).find("episodes_per_run: 2"), 19,
                                                    "episodes_per_run: 0"));
   const auto zero =
-      run_bsg("dataset make " + (dir.path() / "bad.yaml").string() + " --out " + (dir.path() / "out").string() + kConfigs);
+      run_bsg("dataset make " + (dir.path() / "bad.yaml").string() + " --out " + (dir.path() / "out").string() + kConfigsOption);
   EXPECT_EQ(zero.exit_code, 1) << zero.output;
   EXPECT_NE(zero.output.find("collect.episodes_per_run must be at least 1, got 0"), std::string::npos) << zero.output;
 }
@@ -96,7 +96,7 @@ TEST(DatasetMake, EveryShippedRecipePlans) {
   for (const fs::directory_entry& entry : fs::directory_iterator(fs::path(BSG_SOURCE_DIR) / "configs" / "datasets")) {
     if (entry.path().extension() != ".yaml") continue;
     ++recipes;
-    const auto planned = run_bsg("dataset make " + entry.path().string() + " --dry-run --out /nonexistent/x" + kConfigs);
+    const auto planned = run_bsg("dataset make " + entry.path().string() + " --dry-run --out /nonexistent/x" + kConfigsOption);
     EXPECT_EQ(planned.exit_code, 0) << entry.path() << "\n" << planned.output;
     EXPECT_NE(planned.output.find("random episodes"), std::string::npos) << planned.output;
   }

@@ -23,9 +23,9 @@ using bsg::testing::write_text_file;
 
 namespace {
 
-const std::string kConfigs = std::string(" --configs ") + BSG_SOURCE_DIR + "/configs";
+using bsg::testing::kConfigsOption;
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using bsg::testing::contains;
 
 TEST(EnvsDescribe, PrintsTheResolvedDescriptionWithItsSizes) {
   const auto result = run_bsg("envs --describe SafetyAntGather-v0 --set bombs=16");
@@ -83,7 +83,7 @@ TEST(CustomRun, ResumeAndEvalRebuildTheSameEnvironment) {
   // rebuilt the standard environment could not load its own checkpoint.
   const std::string file = run_file(
       dir, "env_id: SafetyBallGather-v0\nenv: {bombs: 12, gather_sensor_bins: 8, max_episode_steps: 100}\n");
-  const auto whole = run_bsg("train " + file + kConfigs + " --quiet --out " + dir.str("whole"));
+  const auto whole = run_bsg("train " + file + kConfigsOption + " --quiet --out " + dir.str("whole"));
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
   const std::string config = read_text_file(dir.path() / "whole" / "config.yaml");
   EXPECT_TRUE(contains(config, "\nenv: {name: SafetyBallGather-v0, agent: Ball, task: Gather,")) << config;
@@ -91,7 +91,7 @@ TEST(CustomRun, ResumeAndEvalRebuildTheSameEnvironment) {
   EXPECT_TRUE(contains(config, "gather_sensor_bins: 8,")) << config;
   EXPECT_TRUE(contains(config, "\nmax_ep_len: 100  #")) << "max_ep_len follows max_episode_steps: " << config;
 
-  const auto first = run_bsg("train " + file + kConfigs + " --quiet --stop-after 2 --out " + dir.str("split"));
+  const auto first = run_bsg("train " + file + kConfigsOption + " --quiet --stop-after 2 --out " + dir.str("split"));
   ASSERT_EQ(first.exit_code, 0) << first.output;
   const auto resumed = run_bsg("train --resume " + dir.str("split") + " --quiet");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
@@ -107,7 +107,7 @@ TEST(CustomRun, ResumeAndEvalRebuildTheSameEnvironment) {
 TEST(CustomRun, AWholeDescriptionNamesItsStandardEnvironment) {
   const TemporaryDirectory dir;
   const std::string file = run_file(dir, "env: {agent: Ant, task: Gather, bombs: 16, name: AntGather16}\n");
-  const auto result = run_bsg("train --print-config " + file + kConfigs + " --set steps_per_epoch=2000");
+  const auto result = run_bsg("train --print-config " + file + kConfigsOption + " --set steps_per_epoch=2000");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_TRUE(contains(result.output, "\nenv_id: SafetyAntGather-v0  #")) << result.output;
   EXPECT_TRUE(contains(result.output, "name: AntGather16, agent: Ant, task: Gather")) << result.output;
@@ -118,7 +118,7 @@ TEST(CustomRun, AWholeDescriptionNamesItsStandardEnvironment) {
 TEST(CustomRun, ABadEnvBlockIsAnErrorNamingTheKey) {
   const TemporaryDirectory dir;
   const auto result =
-      run_bsg("train " + run_file(dir, "env_id: SafetyBallGather-v0\nenv: {bomb: 3}\n") + kConfigs + " --quiet");
+      run_bsg("train " + run_file(dir, "env_id: SafetyBallGather-v0\nenv: {bomb: 3}\n") + kConfigsOption + " --quiet");
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_TRUE(contains(result.output, "bomb=3: unknown parameter (did you mean bombs?)")) << result.output;
 }

@@ -4,11 +4,18 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <sys/wait.h>
 
 namespace bsg::testing {
+
+// The repository's root, and its configs folder as a command line's --configs
+// option (with its leading space): shared, so that test files compiled as one
+// batch define neither twice.
+inline const std::filesystem::path kSource{BSG_SOURCE_DIR};
+inline const std::string kConfigsOption = std::string(" --configs ") + BSG_SOURCE_DIR + "/configs";
 
 struct ProgramResult {
   int exit_code = -1;

@@ -30,7 +30,7 @@ using bsg::testing::run_bsg;
 
 namespace {
 
-const fs::path kSource(BSG_SOURCE_DIR);
+using bsg::testing::kSource;
 
 using bsg::testing::run_command;
 
@@ -41,6 +41,10 @@ std::size_t count_of(const std::string& text, const std::string& part) {
   return count;
 }
 
+}  // namespace
+
+// Outside the anonymous namespace: the tests derive from it, and a test file
+// compiled in a batch is an included file, where GCC warns about such a base.
 class LocalSlurmCluster : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -77,8 +81,6 @@ class LocalSlurmCluster : public ::testing::Test {
   fs::path dir_;
   bool running_ = false;
 };
-
-}  // namespace
 
 TEST_F(LocalSlurmCluster, ACancelledTaskResumesOnResubmissionAndEveryRunFinishesOnceLikeALocalSweep) {
   // The quick grid's two TRPO seeds with epochs enough to cancel one mid-run: an epoch of 2000

@@ -16,10 +16,10 @@ using bsg::testing::run_bsg;
 
 namespace {
 
-const fs::path kSource(BSG_SOURCE_DIR);
+using bsg::testing::kSource;
 const std::string kQuick = (kSource / "configs" / "grids" / "quick.yaml").string();
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using bsg::testing::contains;
 
 }  // namespace
 

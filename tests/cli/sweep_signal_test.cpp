@@ -39,7 +39,7 @@ using bsg::testing::TemporaryDirectory;
 
 namespace {
 
-const fs::path kSource(BSG_SOURCE_DIR);
+using bsg::testing::kSource;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }

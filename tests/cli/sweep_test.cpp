@@ -39,7 +39,7 @@ using bsg::testing::start_sweep_in_own_group;
 
 namespace {
 
-const fs::path kSource(BSG_SOURCE_DIR);
+using bsg::testing::kSource;
 const fs::path kQuickGrid = kSource / "configs" / "grids" / "quick.yaml";
 
 std::vector<std::string> lines_of(const std::string& text) {

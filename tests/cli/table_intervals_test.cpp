@@ -25,7 +25,7 @@ using bsg::testing::TemporaryDirectory;
 
 namespace {
 
-const fs::path kSource(BSG_SOURCE_DIR);
+using bsg::testing::kSource;
 
 void write(const fs::path& path, const std::string& text) {
   std::ofstream(path) << text;

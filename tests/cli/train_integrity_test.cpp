@@ -26,7 +26,7 @@ using bsg::testing::write_text_file;
 
 namespace {
 
-const std::string kConfigs = std::string(" --configs ") + BSG_SOURCE_DIR + "/configs";
+using bsg::testing::kConfigsOption;
 
 std::string run_file(const TemporaryDirectory& dir, const std::string& name, const std::string& env_alg) {
   const fs::path path = dir.path() / name;
@@ -38,7 +38,7 @@ const std::string kBallTrpoL = "env_id: SafetyBallCircle-v0\nalg: lag-trpo\n";
 
 // Trains `file` into `out` for `epochs` epochs, stopping there with a checkpoint; its exit code.
 int train_and_stop(const std::string& file, const fs::path& out, int epochs) {
-  return run_bsg("train " + file + " --out " + out.string() + kConfigs + " --quiet --stop-after " +
+  return run_bsg("train " + file + " --out " + out.string() + kConfigsOption + " --quiet --stop-after " +
                  std::to_string(epochs))
       .exit_code;
 }
@@ -66,7 +66,7 @@ TEST(TrainIntegrity, ATornProgressRowIsRestoredAndTheRunEqualsAnUninterruptedOne
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("rows of epochs 1 to 1 restored from the checkpoint"), std::string::npos)
       << resumed.output;
-  ASSERT_EQ(run_bsg("train " + file + " --out " + oracle.string() + kConfigs + " --quiet").exit_code, 0);
+  ASSERT_EQ(run_bsg("train " + file + " --out " + oracle.string() + kConfigsOption + " --quiet").exit_code, 0);
   const std::vector<std::size_t> counts = field_counts(run / "progress.csv");
   ASSERT_EQ(counts.size(), 4u);
   for (const std::size_t count : counts) EXPECT_EQ(count, counts.front());
@@ -151,17 +151,17 @@ TEST(TrainIntegrity, ACheckpointThatIsADirectoryIsCalledOne) {
 TEST(TrainIntegrity, PrintConfigRunsTheChecksTrainingRuns) {
   TemporaryDirectory dir;
   const std::string file = run_file(dir, "run.yaml", kBallTrpoL);
-  const auto lean = run_bsg("train --print-config " + file + kConfigs + " --set physics=lean");
+  const auto lean = run_bsg("train --print-config " + file + kConfigsOption + " --set physics=lean");
   EXPECT_EQ(lean.exit_code, 1) << lean.output;
   EXPECT_NE(lean.output.find("physics = lean: SafetyBallCircle-v0: the Ball has no lean physics model"),
             std::string::npos)
       << lean.output;
-  const auto minibatches = run_bsg("train --print-config " + file + kConfigs + " --set num_mini_batches=100");
+  const auto minibatches = run_bsg("train --print-config " + file + kConfigsOption + " --set num_mini_batches=100");
   EXPECT_EQ(minibatches.exit_code, 1) << minibatches.output;
   EXPECT_NE(minibatches.output.find("value-net minibatch floor(1000 / num_mini_batches = 100) = 10 is below 16"),
             std::string::npos)
       << minibatches.output;
-  EXPECT_EQ(run_bsg("train --print-config " + file + kConfigs).exit_code, 0);
+  EXPECT_EQ(run_bsg("train --print-config " + file + kConfigsOption).exit_code, 0);
 }
 
 // Issue 25, reproduction 5: hidden_sizes of 262,144 entries passed validation.
@@ -170,7 +170,7 @@ TEST(TrainIntegrity, TooManyHiddenLayersAreRefusedNamingTheKey) {
   std::string layers;
   for (int i = 0; i < 262144; ++i) layers += i == 0 ? "4" : ",4";
   const std::string file = run_file(dir, "run.yaml", kBallTrpoL + "hidden_sizes: [" + layers + "]\n");
-  const auto result = run_bsg("train --print-config " + file + kConfigs);
+  const auto result = run_bsg("train --print-config " + file + kConfigsOption);
   EXPECT_EQ(result.exit_code, 1) << result.output.substr(0, 2000);
   EXPECT_NE(result.output.find("lists 262144 hidden layers; at most 32 are allowed"), std::string::npos)
       << result.output.substr(0, 2000);
@@ -186,7 +186,7 @@ TEST(TrainIntegrity, NetworksBeyondTheMemoryAvailableAreRefusedWithTheEstimate) 
       run_file(dir, "run.yaml", kBallTrpoL + "hidden_sizes: [4096, 4096]\n");
   // A 2 GB address-space limit makes the memory available smaller than the estimate.
   const auto result = bsg::testing::run_command("ulimit -v 2000000 && " + std::string(BSG_BINARY) +
-                                                " train --print-config " + file + kConfigs);
+                                                " train --print-config " + file + kConfigsOption);
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_NE(result.output.find("hidden_sizes = [4096, 4096] needs an estimated"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("address-space limit (ulimit -v) 1.91 GB"), std::string::npos) << result.output;
@@ -196,12 +196,12 @@ TEST(TrainIntegrity, NetworksBeyondTheMemoryAvailableAreRefusedWithTheEstimate) 
 TEST(TrainIntegrity, LongValuesAreCutWithTheirLengthAndControlBytesEscaped) {
   TemporaryDirectory dir;
   const std::string file = run_file(dir, "run.yaml", kBallTrpoL + "target_kl: " + std::string(8 * 1024 * 1024, 'x') + "\n");
-  const auto long_result = run_bsg("train " + file + kConfigs);
+  const auto long_result = run_bsg("train " + file + kConfigsOption);
   EXPECT_EQ(long_result.exit_code, 1);
   EXPECT_LT(long_result.output.size(), 2000u) << long_result.output.substr(0, 2000);
   EXPECT_NE(long_result.output.find("xxx... (8388608 bytes)'"), std::string::npos) << long_result.output.substr(0, 2000);
 
-  const auto control = run_bsg("train " + run_file(dir, "plain.yaml", kBallTrpoL) + kConfigs +
+  const auto control = run_bsg("train " + run_file(dir, "plain.yaml", kBallTrpoL) + kConfigsOption +
                                " --set \"$(printf 'physics=le\\033[31man\\377')\"");
   EXPECT_EQ(control.exit_code, 1) << control.output;
   EXPECT_EQ(control.output.find('\x1b'), std::string::npos) << control.output;

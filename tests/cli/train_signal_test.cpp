@@ -26,7 +26,7 @@ using bsg::testing::run_bsg;
 
 namespace {
 
-const fs::path kSource(BSG_SOURCE_DIR);
+using bsg::testing::kSource;
 
 fs::path write_run_file(const fs::path& dir) {
   const fs::path path = dir / "run.yaml";

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../test_support.h"
+#include "progress_rows.h"
 #include "run_bsg.h"
 
 namespace fs = std::filesystem;
@@ -21,7 +22,7 @@ using bsg::testing::write_text_file;
 
 namespace {
 
-const std::string kConfigs = std::string(" --configs ") + BSG_SOURCE_DIR + "/configs";
+using bsg::testing::kConfigsOption;
 
 // A small TRPO-L run on SafetyBallCircle-v0: 4 episodes per epoch; `extra`
 // adds lines to the run file.
@@ -40,28 +41,13 @@ const std::string kPidSettings =
     "lambda_optimizer: PID\npid_kp: 0.2\npid_ki: 0.05\npid_kd: 0.3\npid_d_delay: 2\n"
     "pid_delta_p_ema_alpha: 0.5\npid_delta_d_ema_alpha: 0.5\n";
 
-// progress.csv without the wall-clock columns (time_*, fps).
-std::vector<std::vector<std::string>> progress_without_timings(const fs::path& path) {
-  std::vector<std::vector<std::string>> rows;
-  std::vector<bool> keep;
-  for (const std::vector<std::string>& fields : read_csv_rows(path)) {
-    if (keep.empty()) {
-      for (const std::string& name : fields) keep.push_back(!(name.rfind("time_", 0) == 0 || name == "fps"));
-    }
-    std::vector<std::string> kept;
-    for (std::size_t i = 0; i < fields.size() && i < keep.size(); ++i) {
-      if (keep[i]) kept.push_back(fields[i]);
-    }
-    rows.push_back(kept);
-  }
-  return rows;
-}
+using bsg::testing::progress_without_timings;
 
 }  // namespace
 
 TEST(Train, WritesTheRunDirectory) {
   TemporaryDirectory dir;
-  const auto result = run_bsg("train " + tiny_run_file(dir, 2) + kConfigs + " --out " + dir.str("run"));
+  const auto result = run_bsg("train " + tiny_run_file(dir, 2) + kConfigsOption + " --out " + dir.str("run"));
   ASSERT_EQ(result.exit_code, 0) << result.output;
   for (const char* file : {"config.yaml", "progress.csv", "checkpoint.bin", "returns.csv", "costs.csv",
                            "evaluation.json"}) {
@@ -82,12 +68,12 @@ namespace {
 // Trains `run_file` for 6 epochs whole and split after 3 (with a stale row of
 // a killed process), and checks that both give the same files.
 void expect_resume_reproduces_whole_run(const TemporaryDirectory& dir, const std::string& run_file) {
-  const auto whole = run_bsg("train " + run_file + kConfigs + " --quiet --out " + dir.str("whole"));
+  const auto whole = run_bsg("train " + run_file + kConfigsOption + " --quiet --out " + dir.str("whole"));
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
 
   // Stop after 3 epochs; then pretend the process went on to write a row for
   // epoch 3 and was killed before its next checkpoint.
-  const auto first = run_bsg("train " + run_file + kConfigs + " --stop-after 3 --out " + dir.str("split"));
+  const auto first = run_bsg("train " + run_file + kConfigsOption + " --stop-after 3 --out " + dir.str("split"));
   ASSERT_EQ(first.exit_code, 0) << first.output;
   EXPECT_NE(first.output.find("--resume"), std::string::npos) << first.output;
   EXPECT_FALSE(fs::exists(dir.path() / "split" / "evaluation.json"));
@@ -144,7 +130,7 @@ TEST(Train, AResumedPidRunReproducesAnUninterruptedOne) {
 
 TEST(Train, PrintConfigShowsTheResolvedConfiguration) {
   TemporaryDirectory dir;
-  const auto result = run_bsg("train --print-config " + tiny_run_file(dir, 2) + kConfigs + " --set target_kl=0.005");
+  const auto result = run_bsg("train --print-config " + tiny_run_file(dir, 2) + kConfigsOption + " --set target_kl=0.005");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   for (const char* line : {"alg: lag-trpo", "target_kl: 0.005", "lambda_lr:", "max_ep_len: 250"}) {
     EXPECT_NE(result.output.find(line), std::string::npos) << line << " in\n" << result.output;
@@ -153,14 +139,14 @@ TEST(Train, PrintConfigShowsTheResolvedConfiguration) {
 }
 
 TEST(Train, AMissingRunFileIsAnErrorNamingIt) {
-  const auto result = run_bsg("train /nonexistent/run.yaml" + kConfigs);
+  const auto result = run_bsg("train /nonexistent/run.yaml" + kConfigsOption);
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find("/nonexistent/run.yaml"), std::string::npos) << result.output;
 }
 
 TEST(Train, AnUnknownKeyIsAnErrorNamingTheKey) {
   TemporaryDirectory dir;
-  const auto result = run_bsg("train " + tiny_run_file(dir, 2) + kConfigs + " --set no_such_key=3");
+  const auto result = run_bsg("train " + tiny_run_file(dir, 2) + kConfigsOption + " --set no_such_key=3");
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find("no_such_key"), std::string::npos) << result.output;
 }
@@ -168,7 +154,7 @@ TEST(Train, AnUnknownKeyIsAnErrorNamingTheKey) {
 TEST(Train, MalformedYamlIsAnErrorNamingTheFile) {
   TemporaryDirectory dir;
   write_text_file(dir.path() / "bad.yaml", "env_id: [unclosed\nalg: trpo\n");
-  const auto result = run_bsg("train " + dir.str("bad.yaml") + kConfigs);
+  const auto result = run_bsg("train " + dir.str("bad.yaml") + kConfigsOption);
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find("bad.yaml"), std::string::npos) << result.output;
 }
@@ -188,7 +174,7 @@ TEST(Train, ResumeOfADirectoryWithoutARunIsAnError) {
 
 TEST(Train, ResumeWithACorruptCheckpointNamesTheFile) {
   TemporaryDirectory dir;
-  ASSERT_EQ(run_bsg("train " + tiny_run_file(dir, 3) + kConfigs + " --quiet --stop-after 1 --out " + dir.str("run"))
+  ASSERT_EQ(run_bsg("train " + tiny_run_file(dir, 3) + kConfigsOption + " --quiet --stop-after 1 --out " + dir.str("run"))
                 .exit_code,
             0);
   const fs::path checkpoint = dir.path() / "run" / "checkpoint.bin";
@@ -202,7 +188,7 @@ TEST(Train, ResumeWithACorruptCheckpointNamesTheFile) {
 
 TEST(Train, ANewRunIntoAnExistingRunDirectoryIsRefused) {
   TemporaryDirectory dir;
-  const std::string command = "train " + tiny_run_file(dir, 1) + kConfigs + " --quiet --out " + dir.str("run");
+  const std::string command = "train " + tiny_run_file(dir, 1) + kConfigsOption + " --quiet --out " + dir.str("run");
   ASSERT_EQ(run_bsg(command).exit_code, 0);
   const std::string before = read_text_file(dir.path() / "run" / "progress.csv");
   const auto again = run_bsg(command);
@@ -213,7 +199,7 @@ TEST(Train, ANewRunIntoAnExistingRunDirectoryIsRefused) {
 
 TEST(Eval, PrintsJAndHAndPerEpisodeJson) {
   TemporaryDirectory dir;
-  ASSERT_EQ(run_bsg("train " + tiny_run_file(dir, 1) + kConfigs + " --quiet --out " + dir.str("run")).exit_code, 0);
+  ASSERT_EQ(run_bsg("train " + tiny_run_file(dir, 1) + kConfigsOption + " --quiet --out " + dir.str("run")).exit_code, 0);
   const auto plain = run_bsg("eval " + dir.str("run") + " --episodes 2");
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
   EXPECT_NE(plain.output.find("J (mean return)"), std::string::npos) << plain.output;
@@ -230,7 +216,7 @@ TEST(Eval, PrintsJAndHAndPerEpisodeJson) {
 TEST(Eval, ASampledEvaluationIsRepeatedByEvalAndItsActionsCanBeChosen) {
   TemporaryDirectory dir;
   // One epoch: the last epoch's sigma is sigma_0 = 0.509.
-  ASSERT_EQ(run_bsg("train " + tiny_run_file(dir, 1, "sampled_evaluation: true\n") + kConfigs + " --quiet --out " +
+  ASSERT_EQ(run_bsg("train " + tiny_run_file(dir, 1, "sampled_evaluation: true\n") + kConfigsOption + " --quiet --out " +
                     dir.str("run"))
                 .exit_code,
             0);
@@ -260,7 +246,7 @@ TEST(Eval, ADirectoryWithoutARunIsAnError) {
 
 TEST(Train, AnErrorOnOneMpiRankEndsTheWholeJob) {
   TemporaryDirectory dir;
-  const std::string command = "train " + tiny_run_file(dir, 1) + kConfigs + " --quiet --out " + dir.str("run");
+  const std::string command = "train " + tiny_run_file(dir, 1) + kConfigsOption + " --quiet --out " + dir.str("run");
   ASSERT_EQ(run_bsg(command).exit_code, 0);
   // Only rank 0 checks the run directory: rank 1 goes on into the first
   // collective and must be ended by rank 0's abort, not left waiting.

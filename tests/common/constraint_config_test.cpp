@@ -23,21 +23,21 @@ using testing::contains;
 const char* const kTwoConstraints =
     "constraints=[{terms: [cost_outside_bounds], limit: 20}, {terms: [cost_velocity_violation], limit: 5}]";
 
-RunConfigRequest shipped(const std::string& alg, std::vector<std::string> sets) {
+RunConfigRequest ball_run_request(const std::string& alg, std::vector<std::string> sets) {
   return testing::shipped_request("SafetyBallRun-v0", alg, std::move(sets));
 }
 
-std::string error_of(const RunConfigRequest& request) { return testing::config_error_of(request); }
+using testing::config_error_of;
 
 TEST(ConstraintConfig, AbsentByDefaultAndLeftOutOfTheResolvedYaml) {
-  const RunConfig config = resolve_run_config(shipped("cpo", {})).config;
+  const RunConfig config = resolve_run_config(ball_run_request("cpo", {})).config;
   EXPECT_TRUE(config.constraints.empty());
   EXPECT_EQ(to_yaml(config).find("constraints"), std::string::npos);
   EXPECT_EQ(run_config_from_yaml(to_yaml(config), "round trip"), config);
 }
 
 TEST(ConstraintConfig, AListFromSetIsReadAndRoundTripsThroughTheYaml) {
-  const RunConfig config = resolve_run_config(shipped("cpo", {kTwoConstraints})).config;
+  const RunConfig config = resolve_run_config(ball_run_request("cpo", {kTwoConstraints})).config;
   ASSERT_EQ(config.constraints.size(), 2u);
   EXPECT_EQ(config.constraints[0].terms, std::vector<std::string>{"cost_outside_bounds"});
   EXPECT_EQ(config.constraints[0].limit, 20.0);
@@ -80,18 +80,18 @@ TEST(ConstraintConfig, MalformedListsAreRejectedNamingTheFault) {
   };
   for (const auto& [set, fault] : cases) {
     SCOPED_TRACE(set);
-    const std::string message = error_of(shipped("cpo", {set}));
+    const std::string message = config_error_of(ball_run_request("cpo", {set}));
     EXPECT_TRUE(contains(message, "'constraints'"));
     EXPECT_TRUE(contains(message, fault));
   }
 }
 
 TEST(ConstraintConfig, SeveralConstraintsForTrpoAreRejectedBecauseItIgnoresCost) {
-  const std::string message = error_of(shipped("trpo", {kTwoConstraints}));
+  const std::string message = config_error_of(ball_run_request("trpo", {kTwoConstraints}));
   EXPECT_TRUE(contains(message, "'constraints'"));
   EXPECT_TRUE(contains(message, "ignores cost"));
   // One constraint is allowed: it is what TRPO's policy is judged by.
-  EXPECT_EQ(resolve_run_config(shipped("trpo", {"constraints=[{terms: all, limit: 10}]"})).config.constraints.size(),
+  EXPECT_EQ(resolve_run_config(ball_run_request("trpo", {"constraints=[{terms: all, limit: 10}]"})).config.constraints.size(),
             1u);
 }
 

@@ -4,25 +4,22 @@
 
 #include "common/mlp.h"
 #include "finite_differences.h"
+#include "random_matrices.h"
 
 namespace bsg {
 namespace {
 
 using testing::relative_error;
 
-Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
-  Eigen::MatrixXd m(rows, cols);
-  for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = uniform(rng, -1.5, 1.5);
-  return m;
-}
+using testing::uniform_matrix;
 
 // The loss is L = sum_i w_i . y_i, so dL/dx_i = J_i^T w_i.
 void check_input_gradient(Dtype dtype, double tolerance) {
   Rng rng(7);
   Mlp net({5, 9, 7, 3}, rng, {.dtype = Dtype::float64});
   const Eigen::Index rows = kBatchChunkRows + 13;  // two chunks
-  const Eigen::MatrixXd inputs = random_matrix(rows, 5, rng);
-  const Eigen::MatrixXd weights = random_matrix(rows, 3, rng);
+  const Eigen::MatrixXd inputs = uniform_matrix(rows, 5, 1.5, rng);
+  const Eigen::MatrixXd weights = uniform_matrix(rows, 3, 1.5, rng);
   // The oracle: central differences of the float64 single-sample forward.
   Eigen::MatrixXd expected(rows, 5);
   const double h = 1e-6;
@@ -50,8 +47,8 @@ TEST(MlpInputGradient, MatchesCentralDifferencesInFloat32) { check_input_gradien
 TEST(MlpInputGradient, LeavesTheParameterGradientOfTheSameForwardPassUnchanged) {
   Rng rng(3);
   Mlp net({4, 6, 2}, rng, {.dtype = Dtype::float64});
-  const Eigen::MatrixXd inputs = random_matrix(10, 4, rng);
-  const Eigen::MatrixXd weights = random_matrix(10, 2, rng);
+  const Eigen::MatrixXd inputs = uniform_matrix(10, 4, 1.5, rng);
+  const Eigen::MatrixXd weights = uniform_matrix(10, 2, 1.5, rng);
   MlpBatchWorkspace workspace;
   net.forward_batch(inputs, workspace);
   Eigen::VectorXd before(net.num_parameters()), after(net.num_parameters());

@@ -8,6 +8,7 @@
 
 #include "common/mlp.h"
 #include "finite_differences.h"
+#include "random_matrices.h"
 #include "reference_mlp.h"
 
 namespace bsg {
@@ -20,11 +21,7 @@ using testing::relative_error;
 
 constexpr MlpOptions kRelu64{.dtype = Dtype::float64, .activation = Activation::relu};
 
-Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
-  Eigen::MatrixXd m(rows, cols);
-  for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = uniform(rng, -2.0, 2.0);
-  return m;
-}
+using testing::uniform_matrix;
 
 // Rows of inputs with every hidden pre-activation at least `margin` away from the kink, so that
 // central differences of step h < margin see a smooth function.
@@ -32,7 +29,7 @@ Eigen::MatrixXd inputs_away_from_kinks(const Mlp& net, Eigen::Index rows, double
   Eigen::MatrixXd inputs(rows, net.input_size());
   Eigen::Index kept = 0;
   while (kept < rows) {
-    const Eigen::VectorXd x = random_matrix(net.input_size(), 1, rng);
+    const Eigen::VectorXd x = uniform_matrix(net.input_size(), 1, 2.0, rng);
     Eigen::VectorXd a = x;
     bool clear = true;
     for (int layer = 0; layer + 1 < net.num_layers() && clear; ++layer) {
@@ -50,7 +47,7 @@ TEST(MlpRelu, ForwardMatchesTheLoopForSampleAndBatchInBothDtypes) {
   const std::vector<int> sizes{5, 7, 6, 3};
   Mlp net(sizes, rng, kRelu64);
   EXPECT_EQ(net.activation(), Activation::relu);
-  const Eigen::MatrixXd inputs = random_matrix(kBatchChunkRows + 9, 5, rng);
+  const Eigen::MatrixXd inputs = uniform_matrix(kBatchChunkRows + 9, 5, 2.0, rng);
   for (const Dtype dtype : {Dtype::float64, Dtype::float32}) {
     net.set_dtype(dtype);
     const double tolerance = dtype == Dtype::float64 ? 1e-13 : 2e-6;
@@ -88,9 +85,9 @@ TEST(MlpRelu, ParameterGradientJvpAndGaussNewtonMatchCentralDifferences) {
   Rng rng(23);
   Mlp net({4, 9, 6, 3}, rng, kRelu64);
   const Eigen::MatrixXd inputs = inputs_away_from_kinks(net, kBatchChunkRows + 5, 1e-3, rng);
-  const Eigen::MatrixXd weights = random_matrix(inputs.rows(), 3, rng);  // L = sum_ij w_ij y_ij
+  const Eigen::MatrixXd weights = uniform_matrix(inputs.rows(), 3, 2.0, rng);  // L = sum_ij w_ij y_ij
   const Eigen::VectorXd theta = net.parameters();
-  const Eigen::VectorXd direction = random_matrix(net.num_parameters(), 1, rng);
+  const Eigen::VectorXd direction = uniform_matrix(net.num_parameters(), 1, 2.0, rng);
   Mlp probe = net;
   const auto outputs = [&](const Eigen::VectorXd& t) -> Eigen::MatrixXd {
     probe.set_parameters(t);
@@ -122,7 +119,7 @@ TEST(MlpRelu, InputGradientMatchesCentralDifferences) {
   Rng rng(24);
   Mlp net({5, 9, 7, 2}, rng, kRelu64);
   const Eigen::MatrixXd inputs = inputs_away_from_kinks(net, kBatchChunkRows + 13, 1e-3, rng);
-  const Eigen::MatrixXd weights = random_matrix(inputs.rows(), 2, rng);
+  const Eigen::MatrixXd weights = uniform_matrix(inputs.rows(), 2, 2.0, rng);
   Eigen::MatrixXd expected(inputs.rows(), 5);
   const double h = 1e-6;
   for (Eigen::Index i = 0; i < inputs.rows(); ++i) {
@@ -146,8 +143,8 @@ TEST(MlpRelu, InputGradientMatchesCentralDifferences) {
 TEST(MlpRelu, StreamedPassesEqualTheCachedOnes) {
   Rng rng(25);
   const Mlp net({3, 8, 8, 2}, rng, {.dtype = Dtype::float32, .activation = Activation::relu});
-  const Eigen::MatrixXd inputs = random_matrix(2 * kBatchChunkRows + 3, 3, rng);
-  const Eigen::MatrixXd weights = random_matrix(inputs.rows(), 2, rng);
+  const Eigen::MatrixXd inputs = uniform_matrix(2 * kBatchChunkRows + 3, 3, 2.0, rng);
+  const Eigen::MatrixXd weights = uniform_matrix(inputs.rows(), 2, 2.0, rng);
   MlpBatchWorkspace cached, streamed;
   const Eigen::MatrixXd expected_outputs = net.forward_batch(inputs, cached);
   Eigen::VectorXd expected_gradient(net.num_parameters()), gradient(net.num_parameters());

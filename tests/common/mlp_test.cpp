@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "finite_differences.h"
+#include "random_matrices.h"
 #include "reference_mlp.h"
 
 namespace bsg {
@@ -18,13 +19,9 @@ using testing::finite_difference_gradient;
 using testing::reference_forward;
 using testing::relative_error;
 
-Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
-  Eigen::MatrixXd m(rows, cols);
-  for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = uniform(rng, -2.0, 2.0);
-  return m;
-}
+using testing::uniform_matrix;
 
-Eigen::VectorXd random_vector(Eigen::Index size, Rng& rng) { return random_matrix(size, 1, rng); }
+Eigen::VectorXd random_vector(Eigen::Index size, Rng& rng) { return uniform_matrix(size, 1, 2.0, rng); }
 
 TEST(Mlp, ParameterCountMatchesSpecFormula) {
   Rng rng(1);
@@ -85,7 +82,7 @@ TEST(Mlp, ForwardMatchesLoopImplementationForSampleAndBatch) {
   Rng rng(6);
   const std::vector<int> sizes{5, 7, 6, 3};
   const Mlp net(sizes, rng);
-  const Eigen::MatrixXd inputs = random_matrix(9, 5, rng);
+  const Eigen::MatrixXd inputs = uniform_matrix(9, 5, 2.0, rng);
   MlpBatchWorkspace batch_workspace;
   const Eigen::MatrixXd outputs = net.forward_batch(inputs, batch_workspace);
   MlpSampleWorkspace sample_workspace;
@@ -101,8 +98,8 @@ TEST(Mlp, ForwardMatchesLoopImplementationForSampleAndBatch) {
 TEST(Mlp, BackwardMatchesCentralFiniteDifferences) {
   Rng rng(7);
   Mlp net({4, 6, 5, 3}, rng);
-  const Eigen::MatrixXd inputs = random_matrix(8, 4, rng);
-  const Eigen::MatrixXd weights = random_matrix(8, 3, rng);  // L = sum_ij w_ij y_ij
+  const Eigen::MatrixXd inputs = uniform_matrix(8, 4, 2.0, rng);
+  const Eigen::MatrixXd weights = uniform_matrix(8, 3, 2.0, rng);  // L = sum_ij w_ij y_ij
   const Eigen::VectorXd theta = net.parameters();
   MlpBatchWorkspace workspace;
   net.forward_batch(inputs, workspace);
@@ -121,8 +118,8 @@ TEST(Mlp, BackwardMatchesCentralFiniteDifferences) {
 TEST(Mlp, BackwardOverwritesTheGradientAndSumsOverSamples) {
   Rng rng(8);
   const Mlp net({3, 4, 2}, rng);
-  const Eigen::MatrixXd inputs = random_matrix(2, 3, rng);
-  const Eigen::MatrixXd weights = random_matrix(2, 2, rng);
+  const Eigen::MatrixXd inputs = uniform_matrix(2, 3, 2.0, rng);
+  const Eigen::MatrixXd weights = uniform_matrix(2, 2, 2.0, rng);
   MlpBatchWorkspace workspace;
   net.forward_batch(inputs, workspace);
   Eigen::VectorXd both = Eigen::VectorXd::Constant(net.num_parameters(), 99.0);
@@ -140,7 +137,7 @@ TEST(Mlp, BackwardOverwritesTheGradientAndSumsOverSamples) {
 TEST(Mlp, JacobianVectorProductMatchesCentralFiniteDifferences) {
   Rng rng(9);
   Mlp net({4, 6, 5, 3}, rng);
-  const Eigen::MatrixXd inputs = random_matrix(8, 4, rng);
+  const Eigen::MatrixXd inputs = uniform_matrix(8, 4, 2.0, rng);
   const Eigen::VectorXd theta = net.parameters();
   const Eigen::VectorXd direction = random_vector(net.num_parameters(), rng);
   MlpBatchWorkspace workspace;
@@ -160,9 +157,9 @@ TEST(Mlp, JvpAndBackwardAreAdjoint) {
   // <J v, u> = <v, J^T u>: the two hand-written passes describe the same Jacobian.
   Rng rng(10);
   const Mlp net({3, 5, 4, 2}, rng);
-  const Eigen::MatrixXd inputs = random_matrix(6, 3, rng);
+  const Eigen::MatrixXd inputs = uniform_matrix(6, 3, 2.0, rng);
   const Eigen::VectorXd v = random_vector(net.num_parameters(), rng);
-  const Eigen::MatrixXd u = random_matrix(6, 2, rng);
+  const Eigen::MatrixXd u = uniform_matrix(6, 2, 2.0, rng);
   MlpBatchWorkspace workspace;
   net.forward_batch(inputs, workspace);
   const double left = net.jvp_batch(v, workspace).cwiseProduct(u).sum();
@@ -232,8 +229,8 @@ TEST(Mlp, StreamedPassesEqualTheCachedOnesOverSeveralChunks) {
   // 300 rows = 2 full chunks of kBatchChunkRows and a partial one.
   Rng rng(21);
   const Mlp net({5, 16, 16, 3}, rng);
-  const Eigen::MatrixXd inputs = random_matrix(300, 5, rng);
-  const Eigen::MatrixXd weights = random_matrix(300, 3, rng);
+  const Eigen::MatrixXd inputs = uniform_matrix(300, 5, 2.0, rng);
+  const Eigen::MatrixXd weights = uniform_matrix(300, 3, 2.0, rng);
   MlpBatchWorkspace cached;
   const Eigen::MatrixXd expected_outputs = net.forward_batch(inputs, cached);
   Eigen::VectorXd expected_gradient(net.num_parameters());
@@ -266,7 +263,7 @@ TEST(Mlp, GaussNewtonProductIsJacobianTransposeTimesScaledJacobianProduct) {
   // finite differences of the scalar <y(theta), u>.
   Rng rng(22);
   Mlp net({4, 6, 5, 2}, rng);
-  const Eigen::MatrixXd inputs = random_matrix(150, 4, rng);
+  const Eigen::MatrixXd inputs = uniform_matrix(150, 4, 2.0, rng);
   const Eigen::VectorXd theta = net.parameters();
   const Eigen::VectorXd v = random_vector(net.num_parameters(), rng);
   MlpBatchWorkspace workspace;
@@ -297,8 +294,8 @@ TEST(MlpFloat32, EveryBatchPassMatchesFloat64WithinSinglePrecision) {
   Mlp net64({8, 64, 64, 2}, rng);
   Mlp net32 = net64;
   net32.set_dtype(Dtype::float32);
-  const Eigen::MatrixXd inputs = random_matrix(300, 8, rng);
-  const Eigen::MatrixXd weights = random_matrix(300, 2, rng);
+  const Eigen::MatrixXd inputs = uniform_matrix(300, 8, 2.0, rng);
+  const Eigen::MatrixXd weights = uniform_matrix(300, 2, 2.0, rng);
   const Eigen::VectorXd v = random_vector(net64.num_parameters(), rng);
   MlpBatchWorkspace w64, w32;
 

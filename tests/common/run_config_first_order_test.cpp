@@ -18,14 +18,12 @@ namespace {
 
 using testing::contains;
 
-RunConfigRequest shipped(const std::string& alg, std::vector<std::string> sets) {
-  return testing::shipped_request("SafetyBallCircle-v0", alg, std::move(sets));
-}
+using testing::ball_circle_request;
 
 TEST(FirstOrderConfig, ShippedDefaults) {
   for (const char* alg : {"ppo", "ppo-lag", "focops", "cup"}) {
     SCOPED_TRACE(alg);
-    const RunConfig config = resolve_run_config(shipped(alg, {})).config;
+    const RunConfig config = resolve_run_config(ball_circle_request(alg, {})).config;
     EXPECT_EQ(config.first_order.actor_lr, 3e-4);
     EXPECT_EQ(config.first_order.update_iters, 40);
     EXPECT_EQ(config.first_order.policy_minibatch_size, 64);
@@ -42,14 +40,14 @@ TEST(FirstOrderConfig, ShippedDefaults) {
       EXPECT_EQ(config.multiplier.lagrangian_multiplier_init, 0.001);
     }
   }
-  const RunConfig focops = resolve_run_config(shipped("focops", {})).config;
+  const RunConfig focops = resolve_run_config(ball_circle_request("focops", {})).config;
   EXPECT_EQ(focops.first_order.focops_lam, 1.5);
   EXPECT_EQ(focops.first_order.focops_eta, 0.02);
   EXPECT_EQ(focops.multiplier.lagrangian_upper_bound, 2.0);
-  EXPECT_EQ(resolve_run_config(shipped("ppo", {})).config.first_order.clip, 0.2);
-  EXPECT_EQ(resolve_run_config(shipped("cup", {})).config.first_order.clip, 0.2);
+  EXPECT_EQ(resolve_run_config(ball_circle_request("ppo", {})).config.first_order.clip, 0.2);
+  EXPECT_EQ(resolve_run_config(ball_circle_request("cup", {})).config.first_order.clip, 0.2);
   // CPPO-PID is ppo-lag with the PID rule.
-  EXPECT_EQ(resolve_run_config(shipped("ppo-lag", {"lambda_optimizer=PID"})).config.multiplier.lambda_optimizer,
+  EXPECT_EQ(resolve_run_config(ball_circle_request("ppo-lag", {"lambda_optimizer=PID"})).config.multiplier.lambda_optimizer,
             LambdaOptimizer::pid);
 }
 
@@ -63,7 +61,7 @@ TEST(FirstOrderConfig, KeysOfTheOtherFamilyAreRejected) {
       {"trpo", "learn_log_std=true"},  {"cpo", "learn_log_std=false"}, {"pcpo", "learned_std_init=0.5"}};
   for (const auto& [alg, setting] : cases) {
     SCOPED_TRACE(alg + " " + setting);
-    const std::string m = testing::config_error_of(shipped(alg, {setting}));
+    const std::string m = testing::config_error_of(ball_circle_request(alg, {setting}));
     const std::string key = setting.substr(0, setting.find('='));
     EXPECT_TRUE(contains(m, "'" + key + "' does not apply to alg '" + alg + "'")) << m;
   }
@@ -80,19 +78,19 @@ TEST(FirstOrderConfig, OutOfRangeValuesAreRejectedNamingTheKey) {
       {"learned_std_init=nan", "(0, inf)"}};
   for (const auto& [setting, valid] : cases) {
     SCOPED_TRACE(setting);
-    const std::string m = testing::config_error_of(shipped("ppo-lag", {setting}));
+    const std::string m = testing::config_error_of(ball_circle_request("ppo-lag", {setting}));
     const std::string key = setting.substr(0, setting.find('='));
     EXPECT_TRUE(contains(m, "key '" + key + "'")) << m;
     EXPECT_TRUE(contains(m, valid)) << m;
   }
   for (const char* setting : {"focops_lam=0", "focops_eta=-0.1"}) {
-    const std::string m = testing::config_error_of(shipped("focops", {setting}));
+    const std::string m = testing::config_error_of(ball_circle_request("focops", {setting}));
     EXPECT_TRUE(contains(m, "(0, inf)")) << m;
   }
-  const std::string bound = testing::config_error_of(shipped("focops", {"lagrangian_upper_bound=-1"}));
+  const std::string bound = testing::config_error_of(ball_circle_request("focops", {"lagrangian_upper_bound=-1"}));
   EXPECT_TRUE(contains(bound, "key 'lagrangian_upper_bound'") && contains(bound, "[0, inf)")) << bound;
   const std::string m = testing::config_error_of(
-      shipped("ppo", {"constraints=[{terms: [cost_outside_bounds], limit: 20}, {terms: [cost_velocity_violation], limit: 5}]"}));
+      ball_circle_request("ppo", {"constraints=[{terms: [cost_outside_bounds], limit: 20}, {terms: [cost_velocity_violation], limit: 5}]"}));
   EXPECT_TRUE(contains(m, "alg 'ppo' ignores cost")) << m;
 }
 

@@ -20,16 +20,14 @@ namespace {
 namespace fs = std::filesystem;
 using testing::contains;
 
-RunConfigRequest shipped(const std::string& alg, std::vector<std::string> sets) {
-  return testing::shipped_request("SafetyBallCircle-v0", alg, std::move(sets));
-}
+using testing::ball_circle_request;
 
-std::string error_of(const RunConfigRequest& request) { return testing::config_error_of(request); }
+using testing::config_error_of;
 
 TEST(PidConfig, ShippedDefaultsOfBothLagrangianAlgorithms) {
   for (const char* alg : {"lag-trpo", "pdo"}) {
     SCOPED_TRACE(alg);
-    const RunConfig config = resolve_run_config(shipped(alg, {"lambda_optimizer=PID"})).config;
+    const RunConfig config = resolve_run_config(ball_circle_request(alg, {"lambda_optimizer=PID"})).config;
     EXPECT_EQ(config.multiplier.lambda_optimizer, LambdaOptimizer::pid);
     EXPECT_EQ(config.multiplier.pid_kp, 0.1);
     EXPECT_EQ(config.multiplier.pid_ki, 0.005);
@@ -50,40 +48,40 @@ TEST(PidConfig, OutOfRangeValuesAreRejectedNamingTheKey) {
       {"pid_kp=fast", "a real number"}};
   for (const auto& [setting, valid] : cases) {
     SCOPED_TRACE(setting);
-    const std::string m = error_of(shipped("lag-trpo", {"lambda_optimizer=PID", setting}));
+    const std::string m = config_error_of(ball_circle_request("lag-trpo", {"lambda_optimizer=PID", setting}));
     const std::string key = setting.substr(0, setting.find('='));
     EXPECT_TRUE(contains(m, "key '" + key + "'")) << m;
     EXPECT_TRUE(contains(m, "--set " + setting)) << m;
     EXPECT_TRUE(contains(m, valid)) << m;
   }
-  const std::string m = error_of(shipped("pdo", {"lambda_optimizer=pid"}));
+  const std::string m = config_error_of(ball_circle_request("pdo", {"lambda_optimizer=pid"}));
   EXPECT_TRUE(contains(m, "key 'lambda_optimizer' = 'pid' is not valid; valid values: SGD | Adam | PID")) << m;
 }
 
 TEST(PidConfig, PidKeysBelongToTheLagrangianAlgorithmsOnly) {
   for (const char* alg : {"trpo", "cpo", "pcpo"}) {
-    const std::string m = error_of(shipped(alg, {"pid_kp=0.5"}));
+    const std::string m = config_error_of(ball_circle_request(alg, {"pid_kp=0.5"}));
     EXPECT_TRUE(contains(m, "'pid_kp' does not apply to alg '" + std::string(alg) + "'")) << m;
     EXPECT_TRUE(contains(m, "used by lag-trpo, pdo")) << m;
   }
 }
 
 TEST(PidConfig, AKeyWithoutEffectUnderTheChosenRuleIsAnError) {
-  std::string m = error_of(shipped("lag-trpo", {"pid_kd=0.5"}));
+  std::string m = config_error_of(ball_circle_request("lag-trpo", {"pid_kd=0.5"}));
   EXPECT_TRUE(contains(m, "--set pid_kd=0.5: key 'pid_kd' applies only with lambda_optimizer: PID")) << m;
   EXPECT_TRUE(contains(m, "lambda_optimizer is SGD")) << m;
-  m = error_of(shipped("pdo", {"lambda_optimizer=PID", "lambda_lr=0.1"}));
+  m = config_error_of(ball_circle_request("pdo", {"lambda_optimizer=PID", "lambda_lr=0.1"}));
   EXPECT_TRUE(contains(m, "--set lambda_lr=0.1: key 'lambda_lr' has no effect with lambda_optimizer: PID")) << m;
   EXPECT_TRUE(contains(m, "pid_ki")) << m;
   // The algorithm file's own values are fine: a resolved config lists every key.
-  EXPECT_NO_THROW(resolve_run_config(shipped("lag-trpo", {"pid_kp=0.1", "lambda_lr=0.05"})));
-  EXPECT_NO_THROW(resolve_run_config(shipped("lag-trpo", {"lambda_optimizer=PID", "lambda_lr=0.05"})));
+  EXPECT_NO_THROW(resolve_run_config(ball_circle_request("lag-trpo", {"pid_kp=0.1", "lambda_lr=0.05"})));
+  EXPECT_NO_THROW(resolve_run_config(ball_circle_request("lag-trpo", {"lambda_optimizer=PID", "lambda_lr=0.05"})));
 }
 
 TEST(PidConfig, AResolvedPidConfigReadsBackAsARunFile) {
   // The sweep writes the resolved config (every key) as run.yaml and trains from it.
   const RunConfig config =
-      resolve_run_config(shipped("lag-trpo", {"lambda_optimizer=PID", "pid_kp=0.25", "pid_kd=0.125",
+      resolve_run_config(ball_circle_request("lag-trpo", {"lambda_optimizer=PID", "pid_kp=0.25", "pid_kd=0.125",
                                               "pid_d_delay=3", "pid_delta_p_ema_alpha=0.5",
                                               "pid_delta_d_ema_alpha=0.75", "pid_lambda_max=8"}))
           .config;

@@ -2,6 +2,7 @@
 // file <- --set, and the content of every validation error (key, value,
 // file:line or --set argument, valid keys or values).
 #include "common/run_config_resolve.h"
+#include "shipped_request.h"
 
 #include <gtest/gtest.h>
 
@@ -20,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kShippedConfigs = fs::path(BSG_SOURCE_DIR) / "configs";
+using testing::kShippedConfigs;
 
 using testing::contains;
 using testing::read_text_file;

@@ -17,13 +17,14 @@
 #include "common/run_config.h"
 #include "common/run_config_resolve.h"
 #include "common/run_config_schema.h"
+#include "shipped_request.h"
 
 namespace bsg {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kShippedConfigs = fs::path(BSG_SOURCE_DIR) / "configs";
+using testing::kShippedConfigs;
 // The on-policy algorithms of the table (common/algorithms.h), so that a new row is covered without an edit here.
 const std::vector<std::string> kOnPolicyAlgorithms = [] {
   std::vector<std::string> names;

@@ -1,6 +1,7 @@
 // to_yaml -> load gives the same RunConfig for every algorithm, and loading
 // a resolved config applies the same validation as the configs/ files.
 #include "common/run_config_yaml.h"
+#include "shipped_request.h"
 
 #include <gtest/gtest.h>
 
@@ -10,6 +11,7 @@
 #include "../test_support.h"
 #include "common/config_error.h"
 #include "common/run_config_resolve.h"
+#include "shipped_request.h"
 
 namespace bsg {
 namespace {
@@ -18,7 +20,7 @@ using testing::contains;
 
 namespace fs = std::filesystem;
 
-const fs::path kShippedConfigs = fs::path(BSG_SOURCE_DIR) / "configs";
+using testing::kShippedConfigs;
 
 RunConfig shipped(const std::string& alg, const std::string& env_id,
                   std::vector<std::string> sets = {}) {

@@ -21,6 +21,7 @@
 
 namespace bsg::envs {
 namespace {
+namespace lean_physics_statistics_test {
 
 constexpr int kEpisodes = 100;
 
@@ -122,5 +123,6 @@ std::string case_name(const ::testing::TestParamInfo<Case>& info) {
 INSTANTIATE_TEST_SUITE_P(EveryLeanEnvironment, LeanPhysicsStatistics, ::testing::ValuesIn(cases()),
                          case_name);
 
+}  // namespace lean_physics_statistics_test
 }  // namespace
 }  // namespace bsg::envs

@@ -23,6 +23,7 @@
 
 namespace bsg::algos {
 namespace {
+namespace penalty_function_test {
 
 using testing::SyntheticBatch;
 using testing::central_difference_gradient;
@@ -295,5 +296,6 @@ TEST(PenaltyFunctionConfig, BadKeysAreRefusedInOneLineNamingTheKey) {
   EXPECT_THROW(Ipo{direct}, std::invalid_argument);
 }
 
+}  // namespace penalty_function_test
 }  // namespace
 }  // namespace bsg::algos

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../../common/finite_differences.h"
+#include "../../common/random_matrices.h"
 #include "algos/off_policy/make_off_policy_learner.h"
 #include "algos/off_policy/off_policy_learner.h"
 #include "common/mpi_context.h"
@@ -42,11 +43,7 @@ TEST(GradientNormClipping, SeveralVectorsShareOneNorm) {
 
 constexpr int kObs = 3, kAct = 2, kRows = 9;
 
-Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
-  Eigen::MatrixXd m(rows, cols);
-  for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = uniform(rng, -1.0, 1.0);
-  return m;
-}
+using testing::uniform_matrix;
 
 // Adam's first step from zero moments: m^ = g, v^ = g^2, so theta -= lr g / (|g| + eps).
 Eigen::VectorXd first_adam_step(const Eigen::VectorXd& gradient, double learning_rate) {
@@ -69,11 +66,11 @@ TEST(OffPolicyGradientClipping, TwinCriticsTogetherAndEachCostCriticAloneBeforeT
   OffPolicyLearner& probe = *owned_probe;
   Rng batch_rng(4);
   ReplayBatch batch;
-  batch.observations = random_matrix(kRows, kObs, batch_rng);
-  batch.actions = random_matrix(kRows, kAct, batch_rng);
-  batch.rewards = random_matrix(kRows, 1, batch_rng);
-  batch.costs = random_matrix(kRows, 1, batch_rng).cwiseAbs();
-  batch.next_observations = random_matrix(kRows, kObs, batch_rng);
+  batch.observations = uniform_matrix(kRows, kObs, 1.0, batch_rng);
+  batch.actions = uniform_matrix(kRows, kAct, 1.0, batch_rng);
+  batch.rewards = uniform_matrix(kRows, 1, 1.0, batch_rng);
+  batch.costs = uniform_matrix(kRows, 1, 1.0, batch_rng).cwiseAbs();
+  batch.next_observations = uniform_matrix(kRows, kObs, 1.0, batch_rng);
   batch.discounts = Eigen::VectorXd::Constant(kRows, 0.97);
   batch.terminals = Eigen::VectorXd::Zero(kRows);
 

@@ -21,6 +21,7 @@
 
 namespace bsg::algos {
 namespace {
+namespace off_policy_learner_test {
 
 using learner_test::config_for;
 using learner_test::perturb_targets;
@@ -366,5 +367,6 @@ TEST(OffPolicyLearner, AGradientStepAllocatesNothingOnceSized) {
   }
 }
 
+}  // namespace off_policy_learner_test
 }  // namespace
 }  // namespace bsg::algos

@@ -16,6 +16,7 @@
 
 namespace bsg::algos {
 namespace {
+namespace off_policy_learners_test {
 
 using learner_test::config_for;
 using learner_test::perturb_targets;
@@ -188,5 +189,6 @@ TEST(OffPolicyLearners, DeterministicActorsFillTheCheckpointsTemperatureSlotWith
   }
 }
 
+}  // namespace off_policy_learners_test
 }  // namespace
 }  // namespace bsg::algos

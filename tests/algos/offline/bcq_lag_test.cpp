@@ -19,6 +19,7 @@
 
 namespace bsg::algos {
 namespace {
+namespace bcq_lag_test {
 
 using testing::expect_central_differences;
 using testing::normal_matrix;
@@ -47,7 +48,7 @@ BcqLagOptions small_options(double cost_limit) {
 
 ObservationScaling unit_scaling() { return {Eigen::VectorXd::Zero(kObs), Eigen::VectorXd::Ones(kObs)}; }
 
-OfflineBatch random_batch(Rng& rng) { return testing::random_batch(rng, kObs, kAct); }
+OfflineBatch random_batch(Rng& rng) { return testing::random_offline_batch(rng, kObs, kAct); }
 
 // Moves every target network away from its online copy, so that the targets' use is seen.
 void perturb_targets(BcqLag& bcq, Rng& rng) {
@@ -126,8 +127,8 @@ TEST(BcqLag, TargetsRowByRow) {
   const OfflineBatch batch = random_batch(rng);
   const int m = bcq.options().sampled_actions;
   const int latent = bcq.vae().latent_size();
-  const Eigen::MatrixXd reward_latents = 0.5 * normal_matrix(rng, kRows * m, latent);
-  const Eigen::MatrixXd cost_latents = 0.5 * normal_matrix(rng, kRows * m, latent);
+  const Eigen::MatrixXd reward_latents = 0.5 * normal_matrix(kRows * m, latent, rng);
+  const Eigen::MatrixXd cost_latents = 0.5 * normal_matrix(kRows * m, latent, rng);
   bcq.compute_targets(batch, reward_latents, cost_latents);
   const BcqLagOptions& o = bcq.options();
   for (int i = 0; i < kRows; ++i) {
@@ -175,7 +176,7 @@ TEST(BcqLag, ActorLossByHandAndItsGradient) {
     Rng init(6), rng(7);
     BcqLag bcq(kObs, kAct, unit_scaling(), small_options(5.0), init);
     const OfflineBatch batch = random_batch(rng);
-    const Eigen::MatrixXd latents = 0.5 * normal_matrix(rng, kRows, bcq.vae().latent_size());
+    const Eigen::MatrixXd latents = 0.5 * normal_matrix(kRows, bcq.vae().latent_size(), rng);
     double expected = 0.0, mean_cost = 0.0;
     for (int i = 0; i < kRows; ++i) {
       const Eigen::VectorXd s = batch.observations.row(i).transpose();
@@ -242,5 +243,6 @@ TEST(BcqLag, RefusesOptionsOutOfRange) {
   }
 }
 
+}  // namespace bcq_lag_test
 }  // namespace
 }  // namespace bsg::algos

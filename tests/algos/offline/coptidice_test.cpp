@@ -17,6 +17,7 @@
 
 namespace bsg::algos {
 namespace {
+namespace coptidice_test {
 
 using testing::expect_central_differences;
 using testing::normal_matrix;
@@ -186,8 +187,8 @@ TEST(COptiDice, WeightedLikelihoodByHandAndItsGradient) {
   const int n = 4;
   const OfflineBatch b = random_batch(rng, n);
   const Eigen::VectorXd w = Eigen::Vector4d(0.5, 0.0, 2.0, 1.2);
-  const Eigen::MatrixXd obs_noise = normal_matrix(rng, n, kObs);
-  const Eigen::MatrixXd act_noise = normal_matrix(rng, n, kAct);
+  const Eigen::MatrixXd obs_noise = normal_matrix(n, kObs, rng);
+  const Eigen::MatrixXd act_noise = normal_matrix(n, kAct, rng);
   double expected = 0.0;
   for (int i = 0; i < n; ++i) {
     const Eigen::VectorXd out = c.actor().forward((b.observations.row(i) + 0.1 * obs_noise.row(i)).transpose());
@@ -285,5 +286,6 @@ TEST(COptiDice, RefusesOptionsOutOfRange) {
   EXPECT_THROW(COptiDice(kObs, kAct, unit_scaling(), options, init), std::invalid_argument);
 }
 
+}  // namespace coptidice_test
 }  // namespace
 }  // namespace bsg::algos

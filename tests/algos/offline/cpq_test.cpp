@@ -17,6 +17,7 @@
 
 namespace bsg::algos {
 namespace {
+namespace cpq_test {
 
 using testing::expect_central_differences;
 using testing::normal_matrix;
@@ -42,7 +43,7 @@ CpqOptions small_options(double cost_limit) {
 
 ObservationScaling unit_scaling() { return {Eigen::VectorXd::Zero(kObs), Eigen::VectorXd::Ones(kObs)}; }
 
-OfflineBatch random_batch(Rng& rng) { return testing::random_batch(rng, kObs, kAct); }
+OfflineBatch random_batch(Rng& rng) { return testing::random_offline_batch(rng, kObs, kAct); }
 
 // Moves every target critic away from its online copy, so that the targets' use is seen.
 void perturb_targets(Cpq& cpq, Rng& rng) {
@@ -81,7 +82,7 @@ TEST(Cpq, TargetsRowByRow) {
     Cpq cpq(kObs, kAct, unit_scaling(), small_options(cost_limit), init);
     perturb_targets(cpq, rng);
     const OfflineBatch batch = random_batch(rng);
-    const Eigen::MatrixXd next_noise = normal_matrix(rng, kRows, kAct);
+    const Eigen::MatrixXd next_noise = normal_matrix(kRows, kAct, rng);
     cpq.compute_targets(batch, next_noise);
     const CpqOptions& o = cpq.options();
     for (int i = 0; i < kRows; ++i) {
@@ -102,7 +103,7 @@ TEST(Cpq, OutOfDistributionFlagsAreTheTopQuarterOfTheLatentKl) {
   Cpq cpq(kObs, kAct, unit_scaling(), small_options(5.0), init);
   const OfflineBatch batch = random_batch(rng);
   const int m = cpq.options().sampled_actions;
-  const Eigen::MatrixXd noise = normal_matrix(rng, kRows * m, kAct);
+  const Eigen::MatrixXd noise = normal_matrix(kRows * m, kAct, rng);
   cpq.sample_out_of_distribution(batch, noise);
   // By hand: sample j of row i is row j N + i; its KL from the encoder's single-sample pass.
   std::vector<double> kl;
@@ -140,7 +141,7 @@ TEST(Cpq, CriticLossesByHandAndTheirGradients) {
   Cpq cpq(kObs, kAct, unit_scaling(), small_options(5.0), init);
   const OfflineBatch batch = random_batch(rng);
   const Eigen::VectorXd targets = Eigen::Vector4d(0.5, -1.0, 2.0, 0.1);
-  cpq.sample_out_of_distribution(batch, normal_matrix(rng, kRows * cpq.options().sampled_actions, kAct));
+  cpq.sample_out_of_distribution(batch, normal_matrix(kRows * cpq.options().sampled_actions, kAct, rng));
   const double alpha = 0.7;
   const double l_ood = cpq.options().qc_scalar * cpq.options().cost_threshold();
   for (double weight : {0.0, alpha}) {
@@ -169,7 +170,7 @@ TEST(Cpq, ActorLossByHandAndItsGradient) {
     Rng init(7), rng(8);
     Cpq cpq(kObs, kAct, unit_scaling(), small_options(cost_limit), init);
     const OfflineBatch batch = random_batch(rng);
-    const Eigen::MatrixXd noise = normal_matrix(rng, kRows, kAct);
+    const Eigen::MatrixXd noise = normal_matrix(kRows, kAct, rng);
     double expected = 0.0;
     for (int i = 0; i < kRows; ++i) {
       const Eigen::VectorXd s = batch.observations.row(i).transpose();
@@ -228,5 +229,6 @@ TEST(Cpq, RefusesOptionsOutOfRange) {
   EXPECT_THROW(Cpq(kObs, kAct, unit_scaling(), options, init), std::invalid_argument);
 }
 
+}  // namespace cpq_test
 }  // namespace
 }  // namespace bsg::algos

@@ -1,5 +1,5 @@
-// Helpers of the offline learners' tests (cpq_test.cpp, bcq_lag_test.cpp, coptidice_test.cpp): standard
-// normal matrices, one critic's value at one row, and central differences over a network's parameters.
+// Helpers of the offline learners' tests (cpq_test.cpp, bcq_lag_test.cpp, coptidice_test.cpp): a
+// batch, one critic's value at one row, and central differences over a network's parameters.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -9,19 +9,14 @@
 #include "algos/offline/offline_algorithm.h"
 #include "common/mlp.h"
 #include "common/random.h"
+#include "../../common/random_matrices.h"
 
-namespace bsg::algos::testing {
-
-inline Eigen::MatrixXd normal_matrix(Rng& rng, Eigen::Index rows, Eigen::Index cols) {
-  Eigen::MatrixXd m(rows, cols);
-  for (Eigen::Index k = 0; k < m.size(); ++k) m.data()[k] = standard_normal(rng);
-  return m;
-}
+namespace bsg::testing {
 
 // Four rows: observations uniform in [-1.5, 1.5], actions in [-0.9, 0.9], fixed rewards and costs,
 // the third row terminal.
-inline OfflineBatch random_batch(Rng& rng, int observation_size, int action_size) {
-  OfflineBatch b;
+inline algos::OfflineBatch random_offline_batch(Rng& rng, int observation_size, int action_size) {
+  algos::OfflineBatch b;
   b.observations.resize(4, observation_size);
   b.next_observations.resize(4, observation_size);
   b.actions.resize(4, action_size);
@@ -59,4 +54,4 @@ void expect_central_differences(Mlp& network, const Eigen::VectorXd& analytic, L
   }
 }
 
-}  // namespace bsg::algos::testing
+}  // namespace bsg::testing

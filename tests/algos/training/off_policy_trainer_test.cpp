@@ -27,6 +27,7 @@ using bsg::testing::ScriptedEnv;
 using bsg::testing::TemporaryDirectory;
 
 namespace {
+namespace off_policy_trainer_test {
 
 bsg::RunConfig scripted_config(bsg::Algorithm alg) {
   bsg::RunConfig config;
@@ -322,4 +323,5 @@ TEST(OffPolicyLearning, EachFamilyLearnsBallCircleOnAShortBudget) {
   }
 }
 
+}  // namespace off_policy_trainer_test
 }  // namespace

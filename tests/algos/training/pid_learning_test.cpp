@@ -18,6 +18,7 @@
 #include "../cost_steadiness.h"
 
 namespace {
+namespace pid_learning_test {
 
 using bsg::testing::SecondHalf;
 using bsg::testing::train_ball_circle_second_half;
@@ -55,4 +56,5 @@ TEST(PidLearning, TheShippedGainsSteadyTheEpochCostOfTrpoLOnBallCircleAtTheSameC
       << "PID return " << pid.return_mean << ", SGD " << sgd.return_mean;
 }
 
+}  // namespace pid_learning_test
 }  // namespace

@@ -29,7 +29,7 @@ using bsg::testing::TemporaryDirectory;
 
 namespace {
 
-constexpr double kCostLimit = 2.0;
+constexpr double kSmokeCostLimit = 2.0;
 
 using Columns = std::map<std::string, std::vector<double>>;
 
@@ -83,7 +83,7 @@ void expect_cost_moves_towards_limit(const Columns& progress, const std::string&
   ASSERT_EQ(costs.size(), trpo_costs.size());
   const std::size_t n = costs.size();
   const double peak = *std::max_element(costs.begin(), costs.end());
-  EXPECT_GT(peak, 4.0 * kCostLimit);
+  EXPECT_GT(peak, 4.0 * kSmokeCostLimit);
   EXPECT_LT(mean(costs, n - 10, n), 0.5 * mean(trpo_costs, n - 10, n));
 }
 
@@ -104,7 +104,7 @@ TEST(TrainerSmoke, LagTrpoImprovesTheReturnAndDrivesTheCostDown) {
   const std::vector<double>& costs = run.progress.at("episode_cost_mean");
   double previous = run.config.multiplier.lagrangian_multiplier_init;
   for (std::size_t k = 0; k < lambda.size(); ++k) {
-    const double expected = std::max(0.0, previous + run.config.multiplier.lambda_lr * (costs[k] - kCostLimit));
+    const double expected = std::max(0.0, previous + run.config.multiplier.lambda_lr * (costs[k] - kSmokeCostLimit));
     EXPECT_NEAR(lambda[k], expected, 1e-9 * (1.0 + expected)) << "epoch " << k;
     previous = lambda[k];
   }
@@ -120,7 +120,7 @@ TEST(TrainerSmoke, PdoImprovesTheReturnAndDrivesTheCostDown) {
   const std::vector<double>& lambda = run.progress.at("lagrange_multiplier");
   const std::vector<double>& costs = run.progress.at("episode_cost_mean");
   for (std::size_t k = 1; k < lambda.size(); ++k) {
-    if (costs[k] > kCostLimit && costs[k - 1] > kCostLimit) {
+    if (costs[k] > kSmokeCostLimit && costs[k - 1] > kSmokeCostLimit) {
       EXPECT_GT(lambda[k], lambda[k - 1]) << "epoch " << k;
     }
     EXPECT_GE(lambda[k], 0.0);
@@ -134,7 +134,7 @@ TEST(TrainerSmoke, CpoImprovesTheReturnAndDrivesTheCostDown) {
   const std::vector<double>& cases = run.progress.at("cpo_optim_case");
   const std::vector<double>& costs = run.progress.at("episode_cost_mean");
   for (std::size_t k = 0; k < cases.size(); ++k) {
-    EXPECT_EQ(cases[k] <= 1.0, costs[k] >= kCostLimit) << "epoch " << k << " case " << cases[k];
+    EXPECT_EQ(cases[k] <= 1.0, costs[k] >= kSmokeCostLimit) << "epoch " << k << " case " << cases[k];
   }
 }
 
@@ -146,6 +146,6 @@ TEST(TrainerSmoke, PcpoImprovesTheReturnAndDrivesTheCostDown) {
   const std::vector<double>& cases = run.progress.at("cpo_optim_case");
   const std::vector<double>& costs = run.progress.at("episode_cost_mean");
   for (std::size_t k = 0; k < cases.size(); ++k) {
-    EXPECT_EQ(cases[k] == 1.0, costs[k] >= kCostLimit) << "epoch " << k << " case " << cases[k];
+    EXPECT_EQ(cases[k] == 1.0, costs[k] >= kSmokeCostLimit) << "epoch " << k << " case " << cases[k];
   }
 }

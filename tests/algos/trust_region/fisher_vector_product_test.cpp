@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "../../common/finite_differences.h"
+#include "../../common/random_matrices.h"
 
 namespace bsg::algos {
 namespace {
@@ -14,11 +15,7 @@ namespace {
 using testing::finite_difference_gradient;
 using testing::relative_error;
 
-Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, Rng& rng) {
-  Eigen::MatrixXd m(rows, cols);
-  for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = standard_normal(rng);
-  return m;
-}
+using testing::normal_matrix;
 
 Eigen::MatrixXd every_fourth_row(const Eigen::MatrixXd& m) {
   Eigen::MatrixXd rows((m.rows() + 3) / 4, m.cols());
@@ -29,8 +26,8 @@ Eigen::MatrixXd every_fourth_row(const Eigen::MatrixXd& m) {
 struct Fixture {
   Rng rng{11};
   GaussianPolicy policy{3, 2, {5, 4}, rng};
-  Eigen::MatrixXd observations = random_matrix(10, 3, rng);
-  Eigen::VectorXd direction = random_matrix(policy.mean_net().num_parameters(), 1, rng);
+  Eigen::MatrixXd observations = normal_matrix(10, 3, rng);
+  Eigen::VectorXd direction = normal_matrix(policy.mean_net().num_parameters(), 1, rng);
 };
 
 TEST(FisherVectorProduct, EqualsFiniteDifferenceHessianOfMeanKlPlusDamping) {
@@ -81,7 +78,7 @@ TEST(FisherVectorProduct, IsSymmetricAndDampedPositiveDefinite) {
   Fixture f;
   FisherVectorProduct fvp(f.policy, f.observations, MpiContext::single_process());
   Rng rng(3);
-  const Eigen::VectorXd u = random_matrix(f.direction.size(), 1, rng);
+  const Eigen::VectorXd u = normal_matrix(f.direction.size(), 1, rng);
   Eigen::VectorXd fu(u.size()), fv(u.size());
   fvp.apply(u, fu);
   fvp.apply(f.direction, fv);

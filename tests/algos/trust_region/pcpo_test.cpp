@@ -12,6 +12,7 @@
 
 namespace bsg::algos {
 namespace {
+namespace pcpo_test {
 
 using testing::SyntheticBatch;
 using testing::vec2;
@@ -158,5 +159,6 @@ TEST(Pcpo, RejectedLineSearchLeavesParametersBitIdentical) {
   EXPECT_TRUE(testing::bit_identical(batch.policy.mean_net().parameters(), theta_old));
 }
 
+}  // namespace pcpo_test
 }  // namespace
 }  // namespace bsg::algos

@@ -17,6 +17,7 @@
 
 namespace bsg::envs {
 namespace {
+namespace car_agent_test {
 
 using bsg::testing::golden_joints_at;
 using bsg::testing::golden_quat;
@@ -370,5 +371,6 @@ TEST(CarAgentTest, MalformedInputsAreRejected) {
   EXPECT_THROW(car.write_observation(short_obs), std::invalid_argument);
 }
 
+}  // namespace car_agent_test
 }  // namespace
 }  // namespace bsg::envs

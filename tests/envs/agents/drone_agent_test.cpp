@@ -25,6 +25,7 @@
 
 namespace bsg::envs {
 namespace {
+namespace drone_agent_test {
 
 using bsg::testing::golden_quat;
 using bsg::testing::golden_vec3;
@@ -409,5 +410,6 @@ TEST(DroneAgent, WrongActionSizeIsRejected) {
   EXPECT_THROW(agent->set_joint_positions(three_angles), std::invalid_argument);
 }
 
+}  // namespace drone_agent_test
 }  // namespace
 }  // namespace bsg::envs

@@ -117,7 +117,7 @@ struct HitCounts {
   long rays = 0, ground = 0, walls = 0, box = 0;
 };
 
-class LidarFanInReach : public testing::TestWithParam<std::string> {};
+class LidarFanInReach : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(LidarFanInReach, MatchesOneRayTestPerRayWithinRoundingOverRandomPoses) {
   const auto env = make(GetParam());
@@ -232,9 +232,9 @@ TEST_P(LidarFanInReach, MatchesOneRayTestPerRayWithinRoundingOverRandomPoses) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryReachWorld, LidarFanInReach,
-                         testing::Values("SafetyBallReach-v0", "SafetyCarReach-v0",
+                         ::testing::Values("SafetyBallReach-v0", "SafetyCarReach-v0",
                                          "SafetyDroneReach-v0", "SafetyAntReach-v0"),
-                         [](const testing::TestParamInfo<std::string>& info) {
+                         [](const ::testing::TestParamInfo<std::string>& info) {
                            std::string name = info.param;
                            for (char& c : name) {
                              if (c == '-') c = '_';

@@ -19,6 +19,7 @@
 
 namespace bsg::envs {
 namespace {
+namespace ray_box_cast_test {
 
 btQuaternion random_orientation(Rng& rng) {
   // Uniform on the sphere of unit quaternions (Shoemake).
@@ -354,5 +355,6 @@ TEST(RayBoxCast, RoundedBoxTakesTheCoreAndMarginBulletMeasuresAgainst) {
   EXPECT_TRUE(box.transform.getOrigin() == btVector3(1, 2, 3));
 }
 
+}  // namespace ray_box_cast_test
 }  // namespace
 }  // namespace bsg::envs

@@ -14,6 +14,7 @@
 
 namespace bsg::envs {
 namespace {
+namespace gather_task_test {
 
 const std::vector<double> kZero{0, 0};
 
@@ -135,5 +136,6 @@ TEST(GatherTask, RandomPlayRewardsAreMultiplesOfTenOrTheDeathPenalty) {
   }
 }
 
+}  // namespace gather_task_test
 }  // namespace
 }  // namespace bsg::envs

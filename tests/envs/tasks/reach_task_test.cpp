@@ -14,6 +14,7 @@
 
 namespace bsg::envs {
 namespace {
+namespace reach_task_test {
 
 const std::vector<double> kZero{0, 0};
 
@@ -228,5 +229,6 @@ TEST(ReachTask, MissingOrMalformedLayoutFieldsAreNamed) {
   EXPECT_THROW(env->reset_to(layout), std::invalid_argument);
 }
 
+}  // namespace reach_task_test
 }  // namespace
 }  // namespace bsg::envs
