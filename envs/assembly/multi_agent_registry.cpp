@@ -3,36 +3,22 @@
 // conformance suite, `bsg envs`) stay single-agent. It defines
 // make_multi_agent, describe_multi_agent and multi_agent_ids of envs/multi_agent_env.h.
 #include <map>
-#include <stdexcept>
 
 #include "envs/assembly/env_builder.h"
+#include "envs/assembly/id_map.h"
 #include "envs/multi_agent_env.h"
 
 namespace bsg::envs {
 namespace {
 
 const std::map<std::string, MultiAgentDescription>& multi_agent_registry() {
-  static const std::map<std::string, MultiAgentDescription> entries = [] {
-    std::map<std::string, MultiAgentDescription> result;
-    for (const MultiAgentDescription& description : multi_agent_descriptions()) {
-      if (!result.emplace(description.name, description).second) {
-        throw std::logic_error("multi-agent environment registered twice: " + description.name);
-      }
-    }
-    return result;
-  }();
+  static const std::map<std::string, MultiAgentDescription> entries =
+      id_map({multi_agent_descriptions()}, "multi-agent environment");
   return entries;
 }
 
 const MultiAgentDescription& find_multi_agent_description(const std::string& id) {
-  const auto& entries = multi_agent_registry();
-  const auto found = entries.find(id);
-  if (found == entries.end()) {
-    std::string valid;
-    for (const auto& [name, entry] : entries) valid += (valid.empty() ? "" : ", ") + name;
-    throw std::invalid_argument("unknown multi-agent environment id '" + id + "'; valid ids: " + valid);
-  }
-  return found->second;
+  return find_id(multi_agent_registry(), id, "multi-agent environment");
 }
 
 }  // namespace

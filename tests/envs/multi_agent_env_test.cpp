@@ -192,6 +192,22 @@ TEST(MultiAgentEnvBalls, UncountedCollisionsAreReportedButCostNothingAndTeamCost
   EXPECT_EQ(t.costs_agent1[kContactStep - 1], 2);
 }
 
+TEST(MultiAgentEnvBalls, TeamRewardIsTheSumOfTheBallsOwnRewards) {
+  auto own = make_multi_agent("SafetyBallCircle3-v0");
+  auto team = make_multi_agent(describe_multi_agent("SafetyBallCircle3-v0", {{"reward", "team"}}));
+  own->reset(2);
+  team->reset(2);
+  const std::vector<double> a0 = {0.5, -1}, a1 = {1, 0.25}, a2 = {-0.75, 0.5};
+  const std::vector<std::span<const double>> actions = {a0, a1, a2};
+  for (int step = 0; step < 20; ++step) {
+    const MultiAgentStepResult mine = own->step(actions);
+    const MultiAgentStepResult ours = team->step(actions);
+    const double sum = mine.rewards[0] + mine.rewards[1] + mine.rewards[2];
+    EXPECT_NE(mine.rewards[0], mine.rewards[1]);
+    for (size_t i = 0; i < 3; ++i) EXPECT_EQ(ours.rewards[i], sum) << "step " << step;
+  }
+}
+
 TEST(MultiAgentEnvBalls, SpawnsKeepTheirSpacingInsideTheAnnulus) {
   auto env = make_multi_agent(describe_multi_agent("SafetyBallCircle3-v0", {{"agent_spacing", "2.5"}}));
   for (std::uint64_t seed = 0; seed < 30; ++seed) {
