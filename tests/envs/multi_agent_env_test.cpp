@@ -281,6 +281,55 @@ TEST(MultiAgentEnvDeterminism, SameSeedSameEpisodeOtherSeedAnother) {
   }
 }
 
+// Joints (action entries) of one robot, docs/environments.md#agents.
+int robot_action_dim(const std::string& agent) { return agent == "Ant" ? 8 : 2; }
+
+TEST(MultiAgentEnvConformance, EveryIdStepsWithinItsSpecAndTruncatesOnTime) {
+  for (const std::string& id : multi_agent_ids()) {
+    SCOPED_TRACE(id);
+    auto env = make_multi_agent(describe_multi_agent(id, {{"max_episode_steps", "5"}}));
+    const MultiAgentSpec& spec = env->spec();
+    const auto agents = static_cast<size_t>(spec.agent_count());
+    ASSERT_EQ(spec.observation_dims.size(), agents);
+    ASSERT_EQ(spec.action_dims.size(), agents);
+    EXPECT_EQ(std::accumulate(spec.action_dims.begin(), spec.action_dims.end(), 0),
+              spec.bodies * robot_action_dim(spec.agent));
+    const auto check_observations = [&](std::span<const std::span<const double>> observations) {
+      ASSERT_EQ(observations.size(), agents);
+      for (size_t k = 0; k < agents; ++k) {
+        ASSERT_EQ(observations[k].size(), static_cast<size_t>(spec.observation_dims[k]));
+        for (const double x : observations[k]) ASSERT_TRUE(std::isfinite(x));
+      }
+      ASSERT_EQ(env->global_state().size(), static_cast<size_t>(spec.state_dim));
+    };
+    check_observations(env->reset(1));
+    Rng rng(3);
+    std::vector<std::vector<double>> actions(agents);
+    for (int episode = 0; episode < 2; ++episode) {
+      for (int step = 1; step <= 5; ++step) {
+        for (size_t k = 0; k < agents; ++k) {
+          actions[k].resize(static_cast<size_t>(spec.action_dims[k]));
+          for (double& a : actions[k]) a = uniform(rng, -1, 1);
+        }
+        const MultiAgentStepResult result = env->step(std::vector<std::span<const double>>(actions.begin(), actions.end()));
+        check_observations(result.observations);
+        ASSERT_EQ(result.rewards.size(), agents);
+        ASSERT_EQ(result.cost_terms.size(), agents);
+        for (size_t k = 0; k < agents; ++k) {
+          EXPECT_TRUE(std::isfinite(result.rewards[k]));
+          // Own: 0 or 1; team: a sum of at most one 0-or-1 cost per robot.
+          EXPECT_GE(result.costs[k], 0);
+          EXPECT_LE(result.costs[k], spec.team_cost ? spec.bodies : 1);
+          EXPECT_EQ(result.cost_terms[k].size(), spec.cost_term_names.size());
+        }
+        EXPECT_FALSE(result.terminated);
+        EXPECT_EQ(result.truncated, step == 5);
+      }
+      check_observations(env->reset());
+    }
+  }
+}
+
 TEST(MultiAgentEnvRegistry, ListsItsIdsApartFromTheSingleAgentOnes) {
   const std::vector<std::string> ids = multi_agent_ids();
   const std::vector<std::string> expected = {"SafetyAntCircle2x4-v0", "SafetyAntCircle4x2-v0",
