@@ -20,6 +20,8 @@
 
 namespace bsg::envs {
 namespace {
+// Its own names apart from the other files of its test batch (tests/CMakeLists.txt).
+namespace multi_agent_env_test {
 
 using Indices = std::vector<int>;
 
@@ -388,5 +390,6 @@ TEST(MultiAgentEnvSteps, RefuseBadActionsWithOneLine) {
                         "agent_0's action entry 1 is not finite");
 }
 
+}  // namespace multi_agent_env_test
 }  // namespace
 }  // namespace bsg::envs
