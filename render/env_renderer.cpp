@@ -24,7 +24,14 @@ EnvRenderer::EnvRenderer(const RenderOptions& options)
     : options_(checked(options)), renderer_(options.width, options.height) {}
 
 void EnvRenderer::render(const envs::Env& env, Image& image, std::vector<float>* depth) {
-  const envs::SceneView scene = envs::scene_view(env);
+  draw(envs::scene_view(env), image, depth);
+}
+
+void EnvRenderer::render(const envs::MultiAgentEnv& env, Image& image, std::vector<float>* depth) {
+  draw(envs::scene_view(env), image, depth);
+}
+
+void EnvRenderer::draw(const envs::SceneView& scene, Image& image, std::vector<float>* depth) {
   const double aspect = static_cast<double>(options_.width) / options_.height;
   renderer_.draw(scene, camera_for(scene, options_.camera, aspect), image, depth);
 }

@@ -1,4 +1,4 @@
-// Renders an environment made by envs::make: its scene (envs/assembly/scene.h) from a
+// Renders an environment made by envs::make or envs::make_multi_agent: its scene (envs/assembly/scene.h) from a
 // named camera (camera.h) at a fixed size. One renderer per environment; its
 // OpenGL context is created here, never by the environment, so an environment
 // that is not rendered creates none.
@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "envs/env.h"
+#include "envs/multi_agent_env.h"
 #include "render/image.h"
 #include "render/scene_renderer.h"
 
@@ -38,8 +39,12 @@ class EnvRenderer {
   // The environment's current state as the camera sees it; with `depth`, each
   // pixel's distance along the view axis in metres.
   void render(const envs::Env& env, Image& image, std::vector<float>* depth = nullptr);
+  // The same for a multi-agent environment made by make_multi_agent: every robot drawn.
+  void render(const envs::MultiAgentEnv& env, Image& image, std::vector<float>* depth = nullptr);
 
  private:
+  void draw(const envs::SceneView& scene, Image& image, std::vector<float>* depth);
+
   RenderOptions options_;
   SceneRenderer renderer_;
 };

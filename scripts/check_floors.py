@@ -31,10 +31,10 @@ FLOORS = {
     "envs/agents": ["envs/physics", "envs/description", "common"],
     "envs/sensors": ["envs/agents", "envs/physics", "envs/description", "common"],
     "envs/tasks": ["envs/sensors", "envs/agents", "envs/physics", "envs/description", "common"],
-    # The assembly implements the face's Env interface (envs/env.h): the one
-    # header it reads from the floor above, as a game implements spiel.h.
+    # The assembly implements the face's Env and MultiAgentEnv interfaces (envs/env.h,
+    # envs/multi_agent_env.h): the headers it reads from the floor above, as a game implements spiel.h.
     "envs/assembly": ["envs/tasks", "envs/sensors", "envs/agents", "envs/physics", "envs/description", "common",
-                      "envs/env.h"],
+                      "envs/env.h", "envs/multi_agent_env.h"],
     "envs": ENVS_BELOW_FACE + ["common"],
     "algos/core": ["envs", "envs/description", "common"],
     "algos/lagrange": ["algos/core", "envs", "envs/description", "common"],

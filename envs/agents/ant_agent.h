@@ -35,6 +35,11 @@ class AntAgent final : public Agent {
  public:
   static constexpr int kActionDim = 8;
   static constexpr int kObservationDim = 33;
+  // The observation's layout (write_observation): the body's 13 entries first
+  // (0.1·p, 0.3·v, quaternion, 0.15·ω), then (ρ_k/2, 0.05·q̇_k) per joint k,
+  // then the 4 feet contacts; leg l drives joints 2l and 2l+1 and stands on foot l.
+  static constexpr int kBodyObservationDim = 13;
+  static constexpr int kFeetObservationOffset = 29;
   // PyBullet's links of the MJCF ant: 5 per leg (leg stub, hip joint link,
   // thigh, ankle joint link, foot), legs in the order front_left,
   // front_right, left_back, right_back (docs/environments.md#ant).

@@ -125,22 +125,24 @@ void AssembledEnv::write_observation() {
   task_->write_observation(out.subspan(agent_dim));
 }
 
-EnvState AssembledEnv::state() const {
+EnvState snapshot_state(const Agent& agent, const Task& task, int elapsed_steps) {
   EnvState state;
-  state.elapsed_steps = elapsed_steps_;
-  state.agent_position = to_vec3(agent_->position());
-  state.agent_orientation = to_quat(agent_->orientation());
-  state.agent_linear_velocity = to_vec3(agent_->linear_velocity());
-  state.agent_angular_velocity = to_vec3(agent_->angular_velocity());
-  const auto joints = static_cast<size_t>(agent_->movable_joint_count());
+  state.elapsed_steps = elapsed_steps;
+  state.agent_position = to_vec3(agent.position());
+  state.agent_orientation = to_quat(agent.orientation());
+  state.agent_linear_velocity = to_vec3(agent.linear_velocity());
+  state.agent_angular_velocity = to_vec3(agent.angular_velocity());
+  const auto joints = static_cast<size_t>(agent.movable_joint_count());
   state.joint_positions.resize(joints);
   state.joint_velocities.resize(joints);
-  agent_->joint_state(state.joint_positions, state.joint_velocities);
-  state.agent_reward = agent_->specific_reward();
-  state.alive = agent_->alive();
-  task_->write_state(state);
+  agent.joint_state(state.joint_positions, state.joint_velocities);
+  state.agent_reward = agent.specific_reward();
+  state.alive = agent.alive();
+  task.write_state(state);
   return state;
 }
+
+EnvState AssembledEnv::state() const { return snapshot_state(*agent_, *task_, elapsed_steps_); }
 
 void AssembledEnv::teleport_agent(const Vec3& com_position) {
   agent_->set_base_pose(to_bt(com_position), agent_->orientation());

@@ -15,6 +15,9 @@
 
 namespace bsg::envs {
 
+// The state of one agent and its task (EnvState), as Env::state() reports it.
+EnvState snapshot_state(const Agent& agent, const Task& task, int elapsed_steps);
+
 class AssembledEnv final : public Env {
  public:
   // `spec.observation_dim` is computed here from the agent and the task.

@@ -12,6 +12,8 @@
 #include "envs/tasks/gather_task.h"
 #include "envs/tasks/reach_task.h"
 #include "envs/tasks/run_task.h"
+#include "envs/assembly/limb_split_env.h"
+#include "envs/assembly/multi_body_env.h"
 
 namespace bsg::envs {
 namespace {
@@ -44,19 +46,35 @@ WorldLayout parse_world_layout(const std::string& world) {
   throw std::invalid_argument("env: world=" + world + ": unknown world; valid: SmallRoom, Octagon, Plane200");
 }
 
-std::unique_ptr<Env> build_env(const EnvDescription& d, const EnvOptions& options) {
-  check_env_description(d);
+namespace {
+
+void require_model(const EnvDescription& d, const EnvOptions& options) {
   if (options.physics == PhysicsModel::kLean && !agent_has_lean_model(d.agent)) {
     throw std::invalid_argument(d.name + ": the " + d.agent +
                                 " has no lean physics model (only the Ant and the "
                                 "Car have one); use physics: faithful");
   }
-  auto world = std::make_unique<World>(parse_world_layout(d.world), d.frame_skip, d.time_step);
+}
+
+std::unique_ptr<World> make_world(const EnvDescription& d) {
+  return std::make_unique<World>(parse_world_layout(d.world), d.frame_skip, d.time_step);
+}
+
+std::unique_ptr<Agent> make_agent(const EnvDescription& d, World& world, const EnvOptions& options) {
   AgentOptions agent_options;
   agent_options.power_upgrade = d.power_upgrade;
   agent_options.physics = options.physics;
   agent_options.clip_actions = d.clip_actions;
-  std::unique_ptr<Agent> agent = agent_factory(d.agent)(*world, agent_options);
+  return agent_factory(d.agent)(world, agent_options);
+}
+
+}  // namespace
+
+std::unique_ptr<Env> build_env(const EnvDescription& d, const EnvOptions& options) {
+  check_env_description(d);
+  require_model(d, options);
+  auto world = make_world(d);
+  std::unique_ptr<Agent> agent = make_agent(d, *world, options);
   std::unique_ptr<Task> task = make_task(d, *world, *agent, options);
   EnvSpec spec;
   spec.id = d.name;
@@ -66,6 +84,28 @@ std::unique_ptr<Env> build_env(const EnvDescription& d, const EnvOptions& option
   spec.cost_limit = d.cost_limit;
   return std::make_unique<AssembledEnv>(std::move(spec), options, std::move(world),
                                         std::move(agent), std::move(task));
+}
+
+std::unique_ptr<MultiAgentEnv> build_multi_agent_env(const MultiAgentDescription& d,
+                                                     const EnvOptions& options) {
+  check_multi_agent_description(d);
+  if (d.partition != "body") return std::make_unique<LimbSplitEnv>(d, build_env(d.env, options));
+  require_model(d.env, options);
+  auto world = make_world(d.env);
+  std::vector<Body> bodies;
+  for (int i = 0; i < d.bodies; ++i) {
+    Body body;
+    body.agent = make_agent(d.env, *world, options);
+    body.task = make_task(d.env, *world, *body.agent, options);
+    bodies.push_back(std::move(body));
+  }
+  const double radius = bodies.front().agent->traits().collision_radius;
+  if (d.agent_spacing < 2 * radius) {
+    throw std::invalid_argument("multi-agent env: agent_spacing=" + std::to_string(d.agent_spacing) +
+                                ": below twice the " + d.env.agent + "'s collision radius (" +
+                                std::to_string(2 * radius) + " m): robots would spawn inside each other");
+  }
+  return std::make_unique<MultiBodyEnv>(d, std::move(world), std::move(bodies));
 }
 
 }  // namespace bsg::envs

@@ -10,6 +10,7 @@
 
 #include "envs/agents/agent.h"
 #include "envs/env.h"
+#include "envs/multi_agent_env.h"
 #include "envs/description/env_description.h"
 #include "envs/physics/world.h"
 
@@ -28,5 +29,11 @@ WorldLayout parse_world_layout(const std::string& world);
 // std::invalid_argument naming the key at fault, or the agent if options ask
 // for a lean model it does not have.
 std::unique_ptr<Env> build_env(const EnvDescription& description, const EnvOptions& options);
+
+// Checks a multi-agent description and builds it: a limb split over the
+// single-agent environment built above, or several robots in one world.
+// Throws std::invalid_argument with one line naming the key at fault.
+std::unique_ptr<MultiAgentEnv> build_multi_agent_env(const MultiAgentDescription& description,
+                                                     const EnvOptions& options);
 
 }  // namespace bsg::envs

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "envs/assembly/env_builder.h"
+#include "envs/assembly/id_map.h"
 #include "envs/description/env_parameters.h"
 #include "envs/description/fork_descriptions.h"
 #include "envs/description/standard_descriptions.h"
@@ -10,29 +11,13 @@
 namespace bsg::envs {
 
 const std::map<std::string, EnvDescription>& registry() {
-  static const std::map<std::string, EnvDescription> entries = [] {
-    std::map<std::string, EnvDescription> result;
-    for (const auto& list : {standard_descriptions(), fork_descriptions()}) {
-      for (const EnvDescription& description : list) {
-        if (!result.emplace(description.name, description).second) {
-          throw std::logic_error("environment registered twice: " + description.name);
-        }
-      }
-    }
-    return result;
-  }();
+  static const std::map<std::string, EnvDescription> entries =
+      id_map({standard_descriptions(), fork_descriptions()}, "environment");
   return entries;
 }
 
 const EnvDescription& find_description(const std::string& id) {
-  const auto& entries = registry();
-  const auto found = entries.find(id);
-  if (found == entries.end()) {
-    std::string valid;
-    for (const auto& [name, entry] : entries) valid += (valid.empty() ? "" : ", ") + name;
-    throw std::invalid_argument("unknown environment id '" + id + "'; valid ids: " + valid);
-  }
-  return found->second;
+  return find_id(registry(), id, "environment");
 }
 
 std::unique_ptr<Env> make(const std::string& id, const EnvOptions& options) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "envs/env.h"
+#include "envs/multi_agent_env.h"
 #include "envs/tasks/marking.h"
 
 class btCollisionObject;
@@ -29,5 +30,8 @@ struct SceneView {
 // The view of an environment made by make(); throws std::invalid_argument for
 // any other Env implementation (it has no world to show).
 SceneView scene_view(const Env& env);
+// The view of a multi-agent environment made by make_multi_agent: every robot's
+// colliders drawn as the agent's, the camera's agent the first robot.
+SceneView scene_view(const MultiAgentEnv& env);
 
 }  // namespace bsg::envs

@@ -19,27 +19,31 @@ envs::EnvOptions env_options(const std::string& box_clock) {
   return options;
 }
 
+envs::EnvOverrides env_overrides(py::handle parameters) {
+  envs::EnvOverrides overrides;
+  if (parameters.is_none()) return overrides;
+  for (const auto& [key, value] : py::cast<py::dict>(parameters)) {
+    const std::string name = py::cast<std::string>(key);
+    std::string text;
+    if (PyBool_Check(value.ptr())) {
+      text = value.ptr() == Py_True ? "true" : "false";
+    } else if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) ||
+               py::isinstance<py::str>(value)) {
+      text = py::cast<std::string>(py::str(value));  // repr of a float round-trips
+    } else {
+      throw py::type_error("environment parameter " + name + " must be a bool, int, float or str, got " +
+                           std::string(py::str(value.get_type())));
+    }
+    overrides.emplace_back(name, text);
+  }
+  return overrides;
+}
+
 envs::EnvDescription env_description(py::handle env_id, py::handle parameters) {
   if (!env_id.is_none() && !py::isinstance<py::str>(env_id)) {
     throw py::type_error("env_id must be a str or None, got " + std::string(py::str(env_id.get_type())));
   }
-  envs::EnvOverrides overrides;
-  if (!parameters.is_none()) {
-    for (const auto& [key, value] : py::cast<py::dict>(parameters)) {
-      const std::string name = py::cast<std::string>(key);
-      std::string text;
-      if (PyBool_Check(value.ptr())) {
-        text = value.ptr() == Py_True ? "true" : "false";
-      } else if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value) ||
-                 py::isinstance<py::str>(value)) {
-        text = py::cast<std::string>(py::str(value));  // repr of a float round-trips
-      } else {
-        throw py::type_error("environment parameter " + name + " must be a bool, int, float or str, got " +
-                             std::string(py::str(value.get_type())));
-      }
-      overrides.emplace_back(name, text);
-    }
-  }
+  const envs::EnvOverrides overrides = env_overrides(parameters);
   const std::string id = env_id.is_none() ? std::string("SafetyBallCircle-v0") : py::cast<std::string>(env_id);
   return envs::describe(id, overrides);
 }

@@ -14,6 +14,11 @@ namespace bsg::python {
 // box_clock: "episode_phase" (default) or "simulated" (env.h EnvOptions).
 envs::EnvOptions env_options(const std::string& box_clock);
 
+// The keyword arguments in `parameters` (a dict, or None) as (key, text)
+// pairs: bools as true/false, ints and floats as Python writes them, strings as
+// they are; TypeError for another value type.
+envs::EnvOverrides env_overrides(pybind11::handle parameters);
+
 // The description of `env_id` with the keyword arguments in `parameters` (a
 // dict of environment parameters, envs/description/env_parameters.h) applied: bools as
 // true/false, ints and floats as Python writes them, strings as they are.

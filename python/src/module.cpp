@@ -9,6 +9,7 @@
 #include "envs/env.h"
 #include "envs/standard_envs.h"
 #include "python_env.h"
+#include "python_multi_agent_env.h"
 #include "python_policy.h"
 #include "python_render.h"
 #include "python_sweep.h"
@@ -29,6 +30,7 @@ PYBIND11_MODULE(_core, module) {
       "The resolved description as (key, text) pairs, as `bsg envs --describe` prints it.");
   bsg::python::bind_env(module);
   bsg::python::bind_vector_env(module);
+  bsg::python::bind_multi_agent_env(module);
   bsg::python::bind_bench_helpers(module);
   bsg::python::bind_render(module);
   bsg::python::bind_policy(module);

@@ -8,6 +8,7 @@
 #include "exclusive_use.h"
 #include "render/camera.h"
 #include "python_env.h"
+#include "python_multi_agent_env.h"
 #include "python_vector_env.h"
 
 namespace py = pybind11;
@@ -28,8 +29,9 @@ std::vector<py::ssize_t> PythonRenderer::frame_shape() const {
   return {options_.height, options_.width, 3};
 }
 
+template <typename Environment>
 void PythonRenderer::render_into(std::unique_ptr<render::EnvRenderer>& renderer,
-                                 const envs::Env& env, void* out) {
+                                 const Environment& env, void* out) {
   if (!renderer) renderer = std::make_unique<render::EnvRenderer>(options_);
   render::Image image;
   if (depth_) {
@@ -42,17 +44,26 @@ void PythonRenderer::render_into(std::unique_ptr<render::EnvRenderer>& renderer,
   }
 }
 
-py::array PythonRenderer::render(PythonEnv& env) {
-  const ExclusiveUse use(env.busy(), env.spec().id);
-  const envs::Env& environment = env.env("render");
+template <typename Environment>
+py::array PythonRenderer::frame_of(const Environment& env) {
   py::array frame = depth_ ? py::array(py::array_t<float>(frame_shape()))
                            : py::array(py::array_t<std::uint8_t>(frame_shape()));
   void* out = frame.mutable_data();
   {
     const py::gil_scoped_release release;
-    render_into(single_, environment, out);
+    render_into(single_, env, out);
   }
   return frame;
+}
+
+py::array PythonRenderer::render(PythonEnv& env) {
+  const ExclusiveUse use(env.busy(), env.spec().id);
+  return frame_of(env.env("render"));
+}
+
+py::array PythonRenderer::render_multi_agent(PythonMultiAgentEnv& env) {
+  const ExclusiveUse use(env.busy(), env.spec().id);
+  return frame_of(env.env("render"));
 }
 
 py::array PythonRenderer::render_vector(PythonVectorEnv& vector_env) {
@@ -80,7 +91,8 @@ void bind_render(py::module_& module) {
       .def(py::init<int, int, const std::string&, bool>(), py::arg("width"), py::arg("height"),
            py::arg("camera"), py::arg("depth"))
       .def("render", &PythonRenderer::render, py::arg("env"))
-      .def("render_vector", &PythonRenderer::render_vector, py::arg("vector_env"));
+      .def("render_vector", &PythonRenderer::render_vector, py::arg("vector_env"))
+      .def("render_multi_agent", &PythonRenderer::render_multi_agent, py::arg("env"));
   module.attr("camera_names") = render::camera_names();
 }
 

@@ -18,6 +18,7 @@
 namespace bsg::python {
 
 class PythonEnv;
+class PythonMultiAgentEnv;
 class PythonVectorEnv;
 
 class PythonRenderer {
@@ -27,11 +28,17 @@ class PythonRenderer {
 
   pybind11::array render(PythonEnv& env);
   pybind11::array render_vector(PythonVectorEnv& vector_env);
+  pybind11::array render_multi_agent(PythonMultiAgentEnv& env);
 
  private:
   std::vector<pybind11::ssize_t> frame_shape() const;
   // Renders `env` with `renderer` (created here on first use) into `out`.
-  void render_into(std::unique_ptr<render::EnvRenderer>& renderer, const envs::Env& env, void* out);
+  // One frame of `env` with the single renderer. These two templates take an
+  // envs::Env or an envs::MultiAgentEnv and are instantiated in the source file.
+  template <typename Environment>
+  pybind11::array frame_of(const Environment& env);
+  template <typename Environment>
+  void render_into(std::unique_ptr<render::EnvRenderer>& renderer, const Environment& env, void* out);
 
   render::RenderOptions options_;
   bool depth_;

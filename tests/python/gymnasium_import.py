@@ -68,3 +68,19 @@ def import_gymnasium():
             return gymnasium
     _skip(f"gymnasium {WANTED or ''} is neither installed nor in shared/pydeps beside the "
           f"repository")
+
+
+def import_pettingzoo():
+    """pettingzoo (with a Gymnasium 1.x it needs), installed first, else the core kept in
+    shared/pydeps beside the repository; or skips the calling test module."""
+    try:
+        return importlib.import_module("pettingzoo")
+    except ImportError:
+        pass
+    for folder in pydeps_folders():
+        if (folder / "pettingzoo" / "__init__.py").is_file():
+            import_gymnasium()  # an installed 1.x, else the folder's, which PettingZoo needs
+            if str(folder) not in sys.path:
+                sys.path.insert(0, str(folder))
+            return importlib.import_module("pettingzoo")
+    _skip("pettingzoo is neither installed nor in shared/pydeps beside the repository")
