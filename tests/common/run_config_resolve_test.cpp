@@ -130,7 +130,7 @@ TEST_F(ScratchConfigs, SetAlgChoosesThatAlgorithmsDefaults) {
   const fs::path run = write_run(kTrpoRun);
   const RunConfig c = resolve_run_config(request(run, {"alg=cpo"})).config;
   EXPECT_EQ(c.alg, Algorithm::cpo);
-  EXPECT_EQ(c.trust_region.target_kl, 1e-4);       // configs/algorithms/cpo.yaml
+  EXPECT_EQ(c.trust_region.target_kl, 0.01);       // configs/algorithms/cpo.yaml
   EXPECT_EQ(c.trust_region.backtrack_budget, 20);  // Q11
   EXPECT_TRUE(c.use_cost_value_function);
 }

@@ -145,7 +145,7 @@ TEST(ShippedConfigs, AlgorithmDefaultsMatchTheSpec) {
     bool use_cost_value_function;
   };
   const std::map<std::string, Expected> expected = {
-      {"trpo", {0.01, 15, false}},  {"lag-trpo", {0.01, 15, true}}, {"cpo", {1e-4, 20, true}},
+      {"trpo", {0.01, 15, false}},  {"lag-trpo", {0.01, 15, true}}, {"cpo", {0.01, 20, true}},
       {"pdo", {1e-3, 15, true}},    {"pcpo", {1e-4, 25, true}},
   };
   for (const auto& [alg, e] : expected) {

@@ -26,6 +26,24 @@ TEST(LagrangeMultiplier, AdamOracleOfSection7_3) {
   EXPECT_NEAR(multiplier.value(), 0.002, 1e-11);
 }
 
+TEST(LagrangeMultiplier, AdamMovesByItsRatePerEpochWhateverTheViolation) {
+  // PPO-Lag's rule (docs/algorithms.md#ppo-lag): under a constant gradient g = -(J_C - d), Adam's
+  // bias-corrected moments are m_hat = g and v_hat = g^2 at every step, so each step is
+  // lr |g| / (|g| + 1e-8): after 15 epochs at J_C = 34 against d = 10 (violation 24) lambda is
+  // 0.001 + 15 * 0.035 = 0.526, and ten times the violation gives the same lambda. The SGD rule
+  // (TRPO-L's) moves by alpha (J_C - d): 0.001 + 15 * 0.05 * 24 = 18.001.
+  constexpr int kEpochs = 15;
+  for (const double episode_cost : {34.0, 250.0}) {
+    LagrangeMultiplier adam(0.001, LambdaOptimizer::adam, 0.035);
+    for (int epoch = 0; epoch < kEpochs; ++epoch) adam.update(episode_cost, 10.0);
+    const double violation = episode_cost - 10.0;
+    EXPECT_NEAR(adam.value(), 0.001 + kEpochs * 0.035 * violation / (violation + 1e-8), 1e-12) << episode_cost;
+  }
+  LagrangeMultiplier sgd(0.001, LambdaOptimizer::sgd, 0.05);
+  for (int epoch = 0; epoch < kEpochs; ++epoch) sgd.update(34.0, 10.0);
+  EXPECT_NEAR(sgd.value(), 18.001, 1e-12);
+}
+
 TEST(LagrangeMultiplier, InitialValueIsAtLeastTenToTheMinusFive) {
   EXPECT_EQ(LagrangeMultiplier(0.0, LambdaOptimizer::sgd, 0.1).value(), 1e-5);
   EXPECT_EQ(LagrangeMultiplier(0.3, LambdaOptimizer::sgd, 0.1).value(), 0.3);

@@ -1,6 +1,7 @@
 // CPO (docs/algorithms.md#cpo, #test-oracles): the 2-D oracles of all four cases under both r
 // sign conventions (Q10), case 4, case 3 = the TRPO step, the degenerate-A
-// guard, and one end-to-end update with the constrained line search.
+// guard, one end-to-end update with the constrained line search, and the
+// recovery (case 1) that the original sign leaves at a zero step.
 #include "algos/trust_region/cpo.h"
 
 #include <gtest/gtest.h>
@@ -144,6 +145,59 @@ TEST(Cpo, EndToEndStepPassesTheConstrainedTests) {
     testing::expect_passes_constrained_tests(batch, before, c, config.trust_region.target_kl);
   }
   EXPECT_EQ(accepted_updates, 2);
+}
+
+TEST(CpoStep, OriginalSignRecoveryStepRaisesTheLinearisedCost) {
+  // Case 1 of the 2-D oracle (c = +0.1): the original's lambda* = sqrt(2) and nu* = (sqrt(2) 0.1 - 1)_+ = 0
+  // give D = x / lambda* = (1, 1)/sqrt(2), so b^T D = 0.707 > 0: every fraction 0.8^j D raises the
+  // linearised cost, and the line search's test D_j <= max(-c, 0) = 0 rejects them all. The corrected
+  // D = (-0.1, 0.99499) ends on the boundary c + b^T D = 0 at the trust region's edge 1/2 D^T D = delta.
+  const LinearOperator identity = testing::dense_operator(Eigen::MatrixXd::Identity(2, 2));
+  CpoStepOptions options;
+  options.target_kl = 0.5;
+  const CpoStep original = cpo_step(identity, vec2(1.0, 1.0), vec2(1.0, 0.0), 0.1, options);
+  EXPECT_EQ(original.nu_star, 0.0);
+  EXPECT_NEAR(original.full_step[0], 1.0 / std::sqrt(2.0), 1e-5);  // b^T D
+  options.r_sign = CpoRSign::corrected;
+  const CpoStep corrected = cpo_step(identity, vec2(1.0, 1.0), vec2(1.0, 0.0), 0.1, options);
+  EXPECT_NEAR(0.1 + corrected.full_step[0], 0.0, 1e-5);
+  EXPECT_NEAR(0.5 * corrected.full_step.squaredNorm(), 0.5, 1e-5);
+}
+
+TEST(Cpo, OriginalSignLeavesARecoveryWithAlignedCostAtZeroStep) {
+  // Cost advantages that share most of the reward advantages' direction (r = g^T F^-1 b > 0, as on
+  // BallCircle, where a faster ball earns and costs more) and an episode cost just over the limit
+  // (case 1): the original sign keeps nu* = 0, its step climbs the cost surrogate and no fraction
+  // passes the cost test, so the policy stays put; the corrected sign steps and lowers L_C.
+  for (const CpoRSign sign : {CpoRSign::original, CpoRSign::corrected}) {
+    SyntheticBatch batch(64, 3, 4);
+    Rng rng(5);
+    for (Eigen::Index i = 0; i < batch.advantages.size(); ++i) {
+      batch.cost_advantages[i] = 0.8 * batch.advantages[i] + 0.6 * standard_normal(rng);
+    }
+    RunConfig config = testing::config_for(Algorithm::cpo);
+    config.trust_region.target_kl = 0.01;
+    config.trust_region.cpo_r_sign = sign;
+    constexpr double kEpisodeCost = 25.5;  // c = (25.5 - 25)/100 = 0.005, B = 2 delta - c^2/s > 0
+    const double c = (kEpisodeCost - 25.0) / (100.0 + 1e-8);
+    const Eigen::VectorXd theta_old = batch.policy.mean_net().parameters();
+    const testing::BeforeConstrainedUpdate before(batch);
+    PolicySurrogate surrogate = batch.surrogate();
+    Cpo cpo(config);
+    const PolicyUpdateResult result = cpo.update(testing::inputs_for(batch, surrogate, kEpisodeCost, 100.0));
+    ASSERT_EQ(result.value("Misc/OptimCase"), static_cast<double>(CpoCase::feasible_recovery));
+    ASSERT_GT(result.value("Misc/r"), 0.0);
+    if (sign == CpoRSign::original) {
+      EXPECT_EQ(result.value("Misc/Nu_star"), 0.0);
+      EXPECT_EQ(result.value("Misc/AcceptanceStep"), 0.0);
+      EXPECT_TRUE(testing::bit_identical(batch.policy.mean_net().parameters(), theta_old));
+    } else {
+      EXPECT_GT(result.value("Misc/Nu_star"), 0.0);
+      EXPECT_GT(result.value("Misc/AcceptanceStep"), 0.0);
+      testing::expect_passes_constrained_tests(batch, before, c, config.trust_region.target_kl);
+      EXPECT_LT(batch.cost_surrogate(), before.cost_surrogate);
+    }
+  }
 }
 
 TEST(Cpo, RejectedLineSearchLeavesParametersBitIdentical) {
