@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <sstream>
 #include <stdexcept>
 #include <string_view>
 
@@ -157,6 +158,28 @@ EnvOverrides to_multi_agent_overrides(const MultiAgentDescription& d) {
     if (entry.first != "name") list.push_back(std::move(entry));
   }
   return list;
+}
+
+std::string to_multi_agent_yaml(const MultiAgentDescription& d) {
+  // The meanings of kKeys, in its order (docs/multi_agent.md#descriptions).
+  constexpr std::array<std::string_view, kKeys.size()> kMeanings = {
+      "id reported by the spec",
+      "robots in the arena",
+      "body: one agent per robot; 2x4, 4x2: the Ant's legs split into agents",
+      "own: each agent its robot's task reward; team: every agent the sum",
+      "own: each agent its robot's cost; team: every agent the sum",
+      "least planar distance between robots' centres at spawn [m]",
+      "whether cost_agent_collisions counts in the cost"};
+  const EnvOverrides pairs = to_multi_agent_overrides(d);
+  std::ostringstream out;
+  for (size_t k = 0; k < kKeys.size(); ++k) {
+    out << pairs[k].first << ": " << pairs[k].second << "  # " << kMeanings[k] << "\n";
+  }
+  std::istringstream robot(to_yaml(d.env));
+  for (std::string line; std::getline(robot, line);) {
+    if (!line.starts_with("name: ")) out << line << "\n";
+  }
+  return out.str();
 }
 
 std::vector<MultiAgentDescription> multi_agent_descriptions() {
