@@ -126,7 +126,7 @@ TEST(EnvsCommand, DescribesAMultiAgentIdWithItsOverrides) {
   EXPECT_NE(result.output.find("\nbodies: 3  #"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("\npartition: body  #"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("\nagent: Ball  #"), std::string::npos) << result.output;
-  EXPECT_NE(result.output.find("\ncircle_radius: 6  #"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("\ncircle_radius: 6.0  #"), std::string::npos) << result.output;
   EXPECT_EQ(result.output.find("\nname:"), result.output.rfind("\nname:"));  // one name line
   const auto bad = run_bsg("envs --describe SafetyAntRun2x4-v0 --set partition=3x3");
   EXPECT_NE(bad.exit_code, 0);
