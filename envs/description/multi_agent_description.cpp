@@ -46,10 +46,10 @@ MultiAgentDescription split_ant(const std::string& task, const std::string& part
   return d;
 }
 
-MultiAgentDescription several(const std::string& agent, int bodies) {
+MultiAgentDescription several(const std::string& agent, const std::string& task, int bodies) {
   MultiAgentDescription d;
-  d.env = standard_description(agent, "Circle");
-  d.name = "Safety" + agent + "Circle" + std::to_string(bodies) + "-v0";
+  d.env = standard_description(agent, task);
+  d.name = "Safety" + agent + task + std::to_string(bodies) + "-v0";
   d.env.name = d.name;
   d.bodies = bodies;
   return d;
@@ -109,9 +109,11 @@ void check_multi_agent_description(const MultiAgentDescription& d) {
     return;
   }
   if (d.bodies < 2) fail("bodies", std::to_string(d.bodies), "partition body needs at least 2 robots");
-  if (d.env.task != "Circle") {
-    fail("task", d.env.task, "several robots share an arena on Circle only so far");
+  if (d.env.task != "Circle" && d.env.task != "Reach") {
+    fail("task", d.env.task, "several robots share an arena on Circle and Reach only so far");
   }
+  // Reach (MultiGoal): the placement sampler's attempt guard refuses what does not fit.
+  if (d.env.task == "Reach") return;
   // The robots' spawn discs must fit the Circle's spawn annulus.
   const double r_min = d.env.circle_spawn_min_radius, r_max = d.env.circle_spawn_max_radius;
   const double discs = d.bodies * 0.25 * d.agent_spacing * d.agent_spacing;
@@ -183,7 +185,8 @@ std::string to_multi_agent_yaml(const MultiAgentDescription& d) {
 }
 
 std::vector<MultiAgentDescription> multi_agent_descriptions() {
-  return {several("Ball", 2), several("Ball", 3), several("Car", 2),
+  return {several("Ball", "Circle", 2), several("Ball", "Circle", 3), several("Car", "Circle", 2),
+          several("Ball", "Reach", 2), several("Car", "Reach", 2),
           split_ant("Run", "2x4"), split_ant("Run", "4x2"),
           split_ant("Circle", "2x4"), split_ant("Circle", "4x2")};
 }

@@ -75,7 +75,7 @@ TEST(EnvsCommand, ListsTheMultiAgentIdsInASectionOfTheirOwn) {
     EXPECT_LT(result.output.find(id + " "), section) << id;  // single-agent ids above it
   }
   const std::vector<std::string> ids = bsg::envs::multi_agent_ids();
-  ASSERT_EQ(ids.size(), 7u);  // docs/multi_agent.md#ids
+  ASSERT_EQ(ids.size(), 9u);  // docs/multi_agent.md#ids
   for (const std::string& id : ids) {
     const size_t at = result.output.find(id + " ");
     EXPECT_NE(at, std::string::npos) << id;
