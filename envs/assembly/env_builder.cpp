@@ -96,7 +96,16 @@ std::unique_ptr<MultiAgentEnv> build_multi_agent_env(const MultiAgentDescription
   for (int i = 0; i < d.bodies; ++i) {
     Body body;
     body.agent = make_agent(d.env, *world, options);
-    body.task = make_task(d.env, *world, *body.agent, options);
+    if (d.env.task == "Reach" && i > 0) {
+      // MultiGoal: robot 0's task holds the zones and the Box, placed once for all.
+      EnvDescription own_goal_only = d.env;
+      own_goal_only.zones = 0;
+      own_goal_only.box = false;
+      const auto* hazards = static_cast<const ReachTask*>(bodies.front().task.get());
+      body.task = std::make_unique<ReachTask>(*world, *body.agent, own_goal_only, options.box_clock, hazards);
+    } else {
+      body.task = make_task(d.env, *world, *body.agent, options);
+    }
     bodies.push_back(std::move(body));
   }
   const double radius = bodies.front().agent->traits().collision_radius;

@@ -47,6 +47,8 @@ MultiBodyEnv::MultiBodyEnv(const MultiAgentDescription& description, std::unique
     : spec_(multi_body_spec(description, bodies)),
       agent_spacing_(description.agent_spacing),
       count_agent_collisions_(description.count_agent_collisions),
+      shared_hazards_(description.env.task == "Reach"),
+      hazard_spacing_(description.env.reach_spacing),
       world_(std::move(world)),
       bodies_(std::move(bodies)),
       buffers_(spec_),
@@ -55,6 +57,17 @@ MultiBodyEnv::MultiBodyEnv(const MultiAgentDescription& description, std::unique
   for (const Body& body : bodies_) {
     for (const btCollisionObject* collider : body.agent->colliders()) all_colliders_.push_back(collider);
   }
+}
+
+bool MultiBodyEnv::clear_of_shared_hazards(const Layout& robot, const Layout& first) const {
+  std::vector<Vec3> hazards = first.zones;
+  if (first.box) hazards.push_back(first.box->position);
+  for (const Vec3& hazard : hazards) {
+    for (const Vec3& point : {robot.agent_position, robot.goal.value_or(robot.agent_position)}) {
+      if (std::hypot(point[0] - hazard[0], point[1] - hazard[1]) < hazard_spacing_) return false;
+    }
+  }
+  return true;
 }
 
 void MultiBodyEnv::sample_layouts(std::vector<Layout>& layouts) {
@@ -70,7 +83,7 @@ void MultiBodyEnv::sample_layouts(std::vector<Layout>& layouts) {
       }
       layouts[i] = Layout{};
       bodies_[i].task->sample_layout(rng_, layouts[i]);
-      clear = true;
+      clear = !shared_hazards_ || i == 0 || clear_of_shared_hazards(layouts[i], layouts[0]);
       for (size_t j = 0; j < i && clear; ++j) {
         const double dx = layouts[i].agent_position[0] - layouts[j].agent_position[0];
         const double dy = layouts[i].agent_position[1] - layouts[j].agent_position[1];
@@ -208,7 +221,12 @@ std::vector<EnvState> MultiBodyEnv::body_states() const {
 
 std::vector<Marking> MultiBodyEnv::markings() const {
   std::vector<Marking> markings;
-  bodies_.front().task->add_markings(markings);  // every robot's task marks the same arena
+  if (!shared_hazards_) {
+    bodies_.front().task->add_markings(markings);  // every robot's task marks the same arena
+    return markings;
+  }
+  // Reach: robot 0's hazards and goal, then every other robot's goal.
+  for (const Body& body : bodies_) body.task->add_markings(markings);
   return markings;
 }
 

@@ -56,12 +56,17 @@ class MultiBodyEnv final : public MultiAgentEnv {
  private:
   std::span<const std::span<const double>> reset_impl(const std::vector<Layout>* injected);
   void sample_layouts(std::vector<Layout>& layouts);
+  // Reach (MultiGoal): whether robot i's spawn and goal keep reach_spacing
+  // from the hazards robot 0's layout placed for all.
+  bool clear_of_shared_hazards(const Layout& robot, const Layout& first) const;
   bool touches_another_robot(size_t body) const;
   std::span<const std::span<const double>> observe();
 
   MultiAgentSpec spec_;
   const double agent_spacing_;
   const bool count_agent_collisions_;
+  const bool shared_hazards_;    // Reach: robot 0's task holds the zones and Box for all
+  const double hazard_spacing_;  // reach_spacing: spawn and goal to every hazard
   // Declared first so that it is destroyed last: agents and tasks borrow from it.
   std::unique_ptr<World> world_;
   std::vector<Body> bodies_;

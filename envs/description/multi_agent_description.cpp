@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <sstream>
 #include <stdexcept>
 #include <string_view>
 
@@ -45,10 +46,10 @@ MultiAgentDescription split_ant(const std::string& task, const std::string& part
   return d;
 }
 
-MultiAgentDescription several(const std::string& agent, int bodies) {
+MultiAgentDescription several(const std::string& agent, const std::string& task, int bodies) {
   MultiAgentDescription d;
-  d.env = standard_description(agent, "Circle");
-  d.name = "Safety" + agent + "Circle" + std::to_string(bodies) + "-v0";
+  d.env = standard_description(agent, task);
+  d.name = "Safety" + agent + task + std::to_string(bodies) + "-v0";
   d.env.name = d.name;
   d.bodies = bodies;
   return d;
@@ -108,9 +109,11 @@ void check_multi_agent_description(const MultiAgentDescription& d) {
     return;
   }
   if (d.bodies < 2) fail("bodies", std::to_string(d.bodies), "partition body needs at least 2 robots");
-  if (d.env.task != "Circle") {
-    fail("task", d.env.task, "several robots share an arena on Circle only so far");
+  if (d.env.task != "Circle" && d.env.task != "Reach") {
+    fail("task", d.env.task, "several robots share an arena on Circle and Reach only so far");
   }
+  // Reach (MultiGoal): the placement sampler's attempt guard refuses what does not fit.
+  if (d.env.task == "Reach") return;
   // The robots' spawn discs must fit the Circle's spawn annulus.
   const double r_min = d.env.circle_spawn_min_radius, r_max = d.env.circle_spawn_max_radius;
   const double discs = d.bodies * 0.25 * d.agent_spacing * d.agent_spacing;
@@ -159,8 +162,31 @@ EnvOverrides to_multi_agent_overrides(const MultiAgentDescription& d) {
   return list;
 }
 
+std::string to_multi_agent_yaml(const MultiAgentDescription& d) {
+  // The meanings of kKeys, in its order (docs/multi_agent.md#descriptions).
+  constexpr std::array<std::string_view, kKeys.size()> kMeanings = {
+      "id reported by the spec",
+      "robots in the arena",
+      "body: one agent per robot; 2x4, 4x2: the Ant's legs split into agents",
+      "own: each agent its robot's task reward; team: every agent the sum",
+      "own: each agent its robot's cost; team: every agent the sum",
+      "least planar distance between robots' centres at spawn [m]",
+      "whether cost_agent_collisions counts in the cost"};
+  const EnvOverrides pairs = to_multi_agent_overrides(d);
+  std::ostringstream out;
+  for (size_t k = 0; k < kKeys.size(); ++k) {
+    out << pairs[k].first << ": " << pairs[k].second << "  # " << kMeanings[k] << "\n";
+  }
+  std::istringstream robot(to_yaml(d.env));
+  for (std::string line; std::getline(robot, line);) {
+    if (!line.starts_with("name: ")) out << line << "\n";
+  }
+  return out.str();
+}
+
 std::vector<MultiAgentDescription> multi_agent_descriptions() {
-  return {several("Ball", 2), several("Ball", 3), several("Car", 2),
+  return {several("Ball", "Circle", 2), several("Ball", "Circle", 3), several("Car", "Circle", 2),
+          several("Ball", "Reach", 2), several("Car", "Reach", 2),
           split_ant("Run", "2x4"), split_ant("Run", "4x2"),
           split_ant("Circle", "2x4"), split_ant("Circle", "4x2")};
 }

@@ -61,6 +61,11 @@ MultiAgentDescription apply_multi_agent_overrides(const MultiAgentDescription& b
 // The multi-agent keys and the robot's keys as (key, text) pairs.
 EnvOverrides to_multi_agent_overrides(const MultiAgentDescription& description);
 
+// The description as YAML (`bsg envs --describe`): one `key: value  # meaning`
+// line per multi-agent key, then the robot's keys as to_yaml() writes them
+// (its name aside: the multi-agent name is the robot's).
+std::string to_multi_agent_yaml(const MultiAgentDescription& description);
+
 // The registered multi-agent ids (docs/multi_agent.md#ids): several Balls and
 // Cars on Circle, the Ant split 2x4 and 4x2 on Run and Circle.
 std::vector<MultiAgentDescription> multi_agent_descriptions();

@@ -22,12 +22,16 @@ ZoneKind zone_kind(const std::string& zone_type) {
 }  // namespace
 
 ReachTask::ReachTask(World& world, Agent& agent, const EnvDescription& description,
-                     BoxClock box_clock)
+                     BoxClock box_clock, const ReachTask* hazards)
     : world_(world),
       agent_(agent),
       description_(description),
       box_clock_(box_clock),
-      zones_(zone_kind(description.zone_type), description.zones, description.zone_radius) {
+      zones_(zone_kind(description.zone_type), description.zones, description.zone_radius),
+      hazards_(hazards) {
+  if (hazards != nullptr && (description.zones != 0 || description.box)) {
+    throw std::invalid_argument("Reach: a task sharing another's hazards has no zones or Box of its own");
+  }
   if (description.lidar_rays > 0) lidar_.emplace(world, description.lidar_rays, description.lidar_range);
   if (description.reach_sensor_bins > 0) {
     pseudo_lidar_.emplace(description.reach_sensor_bins, description.reach_sensor_range);
@@ -153,9 +157,10 @@ void ReachTask::respawn_goal(Rng& rng) {
                                std::to_string(kMaxPlacementAttempts) + " draws");
     }
     const btVector3 goal = uniform_room_point(rng, description_.placement_half_width);
+    const MovingBox* box = hazard_box();
     bool clear = planar_distance(goal, agent) > clearance &&
-                 (!box_ || planar_distance(goal, box_->position()) > clearance);
-    for (const btVector3& zone : zones_.positions()) {
+                 (box == nullptr || planar_distance(goal, box->position()) > clearance);
+    for (const btVector3& zone : hazard_zones().positions()) {
       clear = clear && planar_distance(goal, zone) > clearance;
     }
     if (clear) {
@@ -172,9 +177,10 @@ TaskOutcome ReachTask::evaluate(Rng& rng) {
   outcome.reward = description_.reach_reward_scale * (d_prev_ - d) + 0.01 * agent_.specific_reward();
   d_prev_ = d;
 
+  const MovingBox* box = hazard_box();
   const int box_contact =
-      box_ && world_.contact_points(box_->collider(), agent_.colliders()) > 0 ? 1 : 0;
-  const int collisions = box_contact + zones_.collisions(p, agent_.traits().collision_radius);
+      box != nullptr && world_.contact_points(box->collider(), agent_.colliders()) > 0 ? 1 : 0;
+  const int collisions = box_contact + hazard_zones().collisions(p, agent_.traits().collision_radius);
   const double out_of_range = p.z() > description_.max_altitude ? 1.0 : 0.0;
   terms_[0].value = collisions;
   terms_[1].value = collisions;
@@ -196,7 +202,7 @@ void ReachTask::write_observation(std::span<double> out) const {
   const auto bins = static_cast<size_t>(sensor_bins());
   const btVector3 p = agent_.position();
   if (lidar_) lidar_->measure(agent_, out.first(rays));
-  if (pseudo_lidar_) pseudo_lidar_->measure(p, zones_.positions(), out.subspan(rays, bins));
+  if (pseudo_lidar_) pseudo_lidar_->measure(p, hazard_zones().positions(), out.subspan(rays, bins));
   const double scale = 2 * world_.env_dim();
   out[rays + bins] = (goal_.x() - p.x()) / scale;
   out[rays + bins + 1] = (goal_.y() - p.y()) / scale;

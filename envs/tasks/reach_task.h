@@ -23,6 +23,9 @@
 //   out of range          agent z > 2 (max_altitude; cost_out_of_range)
 //   Box clock             EnvOptions::box_clock (phase per episode, or simulated time)
 //   physics               1 sub-step of 1/60 s
+//   shared hazards        MultiGoal (docs/multi_agent.md#several-robots-on-reach): a task
+//                         built with `hazards` has no zones or Box of its own; it
+//                         senses, costs and respawns its goal against those of `hazards`
 #pragma once
 
 #include <array>
@@ -39,7 +42,10 @@ namespace bsg::envs {
 
 class ReachTask final : public Task {
  public:
-  ReachTask(World& world, Agent& agent, const EnvDescription& description, BoxClock box_clock);
+  // `hazards`: the task whose zones and Box this one shares (then `description`
+  // must have zones 0 and no Box); nullptr: its own, as in the single-agent env.
+  ReachTask(World& world, Agent& agent, const EnvDescription& description, BoxClock box_clock,
+            const ReachTask* hazards = nullptr);
 
   int observation_dim() const override { return lidar_rays() + sensor_bins() + 2; }
   std::span<const CostTerm> cost_terms() const override { return terms_; }
@@ -61,6 +67,11 @@ class ReachTask final : public Task {
   // The fork's update_goal: (6, 6) if the flag is set, else (−6, 6); then the
   // flag flips. The flag is never reset, not even between episodes.
   btVector3 next_corner();
+  const ZoneObstacles& hazard_zones() const { return hazards_ ? hazards_->zones_ : zones_; }
+  const MovingBox* hazard_box() const {
+    const std::optional<MovingBox>& box = hazards_ ? hazards_->box_ : box_;
+    return box ? &*box : nullptr;
+  }
   int lidar_rays() const { return lidar_ ? lidar_->rays() : 0; }
   int sensor_bins() const { return pseudo_lidar_ ? pseudo_lidar_->bins() : 0; }
 
@@ -72,6 +83,7 @@ class ReachTask final : public Task {
   std::optional<PseudoLidarSensor> pseudo_lidar_;
   std::optional<MovingBox> box_;
   ZoneObstacles zones_;
+  const ReachTask* hazards_ = nullptr;  // shares its zones and Box (MultiGoal)
   std::vector<btVector3> zone_placement_;  // reused by place()
   btVector3 goal_{0, 0, 0};
   double d_prev_ = 0;

@@ -1,11 +1,15 @@
 // `bsg envs`, `bsg rollout` and `bsg bench` end to end: output content, JSON
-// that parses, errors for unknown ids (listing the valid ones) and bad counts.
+// that parses, errors for unknown ids (listing the valid ones) and bad counts;
+// the multi-agent ids listed against their registry and docs/multi_agent.md's table.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "envs/env.h"
+#include "envs/multi_agent_env.h"
 #include "run_bsg.h"
 
 namespace {
@@ -46,6 +50,87 @@ TEST(EnvsCommand, JsonParsesAndMatchesTheSpecTable) {
     }
   }
   EXPECT_TRUE(found);
+}
+
+// The whitespace-separated words of the first line of `output` that starts
+// with `id` followed by a space; empty if there is none.
+std::vector<std::string> row_of(const std::string& output, const std::string& id) {
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.starts_with(id + " ")) continue;
+    std::istringstream words(line);
+    std::vector<std::string> row;
+    for (std::string word; words >> word;) row.push_back(word);
+    return row;
+  }
+  return {};
+}
+
+TEST(EnvsCommand, ListsTheMultiAgentIdsInASectionOfTheirOwn) {
+  const auto result = run_bsg("envs");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const size_t section = result.output.find("\nmulti-agent");
+  ASSERT_NE(section, std::string::npos) << result.output;
+  for (const std::string& id : bsg::envs::registered_ids()) {
+    EXPECT_LT(result.output.find(id + " "), section) << id;  // single-agent ids above it
+  }
+  const std::vector<std::string> ids = bsg::envs::multi_agent_ids();
+  ASSERT_EQ(ids.size(), 9u);  // docs/multi_agent.md#ids
+  for (const std::string& id : ids) {
+    const size_t at = result.output.find(id + " ");
+    EXPECT_NE(at, std::string::npos) << id;
+    EXPECT_GT(at, section) << id;
+  }
+  // Rows of docs/multi_agent.md#ids: agents, observation and action per agent, state, steps, d.
+  EXPECT_EQ(row_of(result.output, "SafetyBallCircle3-v0"),
+            (std::vector<std::string>{"SafetyBallCircle3-v0", "3", "12,12,12", "2,2,2", "24", "250", "25"}));
+  EXPECT_EQ(row_of(result.output, "SafetyCarCircle2-v0"),
+            (std::vector<std::string>{"SafetyCarCircle2-v0", "2", "10,10", "2,2", "16", "500", "25"}));
+  EXPECT_EQ(row_of(result.output, "SafetyAntRun4x2-v0"),
+            (std::vector<std::string>{"SafetyAntRun4x2-v0", "4", "18,18,18,18", "2,2,2,2", "33", "1000", "25"}));
+  EXPECT_EQ(row_of(result.output, "SafetyAntCircle2x4-v0"),
+            (std::vector<std::string>{"SafetyAntCircle2x4-v0", "2", "24,24", "4,4", "34", "1000", "25"}));
+}
+
+TEST(EnvsCommand, MultiAgentJsonIsItsOwnArrayAndTheSingleAgentOneStaysAsItWas) {
+  const nlohmann::json single = parse_json(run_bsg("envs --json").output);
+  for (const auto& entry : single) EXPECT_FALSE(entry.contains("agents")) << entry.at("id");
+  const auto result = run_bsg("envs --multi-agent --json");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json list = parse_json(result.output);
+  std::vector<std::string> listed;
+  for (const auto& entry : list) listed.push_back(entry.at("id"));
+  EXPECT_EQ(listed, bsg::envs::multi_agent_ids());
+  for (const auto& entry : list) {
+    if (entry.at("id") != "SafetyAntRun2x4-v0") continue;
+    EXPECT_EQ(entry.at("agents"), 2);  // MaMuJoCo's 2x4: front and back legs
+    EXPECT_EQ(entry.at("observation_dims"), nlohmann::json({23, 23}));  // 13 + 8 + 2
+    EXPECT_EQ(entry.at("action_dims"), nlohmann::json({4, 4}));
+    EXPECT_EQ(entry.at("state_dim"), 33);  // the Ant's single-agent observation (report Table 3)
+    EXPECT_EQ(entry.at("team_reward"), true);
+    EXPECT_EQ(entry.at("team_cost"), true);
+  }
+  const auto table = run_bsg("envs --multi-agent");
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  EXPECT_EQ(table.output.find("SafetyBallReach-v0"), std::string::npos) << table.output;
+  EXPECT_NE(table.output.find("SafetyBallCircle2-v0"), std::string::npos) << table.output;
+}
+
+TEST(EnvsCommand, DescribesAMultiAgentIdWithItsOverrides) {
+  const auto result = run_bsg("envs --describe SafetyBallCircle2-v0 --set bodies=3 --set circle_radius=6");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  // Three Balls: 7 + 1 + 2*(3-1) = 12 entries each, 8 per robot in the state (docs/multi_agent.md).
+  EXPECT_NE(result.output.find("# SafetyBallCircle2-v0: 3 agents, observation 12,12,12, action 2,2,2, state 24"),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("\nbodies: 3  #"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("\npartition: body  #"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("\nagent: Ball  #"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("\ncircle_radius: 6.0  #"), std::string::npos) << result.output;
+  EXPECT_EQ(result.output.find("\nname:"), result.output.rfind("\nname:"));  // one name line
+  const auto bad = run_bsg("envs --describe SafetyAntRun2x4-v0 --set partition=3x3");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("partition=3x3"), std::string::npos) << bad.output;
 }
 
 TEST(RolloutCommand, PrintsEpisodesAndSummary) {

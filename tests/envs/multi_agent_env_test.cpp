@@ -337,7 +337,8 @@ TEST(MultiAgentEnvRegistry, ListsItsIdsApartFromTheSingleAgentOnes) {
   const std::vector<std::string> expected = {"SafetyAntCircle2x4-v0", "SafetyAntCircle4x2-v0",
                                              "SafetyAntRun2x4-v0",    "SafetyAntRun4x2-v0",
                                              "SafetyBallCircle2-v0",  "SafetyBallCircle3-v0",
-                                             "SafetyCarCircle2-v0"};
+                                             "SafetyBallReach2-v0",   "SafetyCarCircle2-v0",
+                                             "SafetyCarReach2-v0"};
   EXPECT_EQ(ids, expected);
   for (const std::string& id : registered_ids()) EXPECT_EQ(std::count(ids.begin(), ids.end(), id), 0);
 }
@@ -365,7 +366,7 @@ TEST(MultiAgentEnvRegistry, RefusesBadIdsAndDescriptionsWithOneLine) {
   refuse("SafetyBallCircle2-v0", {{"bodies", "9"}}, "bodies=9: must be in [1, 8]");
   refuse("SafetyBallCircle2-v0", {{"bodies", "two"}}, "bodies=two: not an integer");
   refuse("SafetyBallCircle2-v0", {{"reward", "shared"}}, "reward=shared: not one of own, team");
-  refuse("SafetyBallCircle2-v0", {{"task", "Reach"}}, "task=Reach: several robots share an arena on Circle only");
+  refuse("SafetyBallCircle2-v0", {{"task", "Gather"}}, "task=Gather: several robots share an arena on Circle and Reach only");
   refuse("SafetyBallCircle2-v0", {{"agent_spacing", "0.6"}}, "agent_spacing=0.6");
   refuse("SafetyBallCircle2-v0", {{"bodies", "8"}, {"agent_spacing", "3"}}, "do not fit the spawn annulus");
   refuse("SafetyBallCircle2-v0", {{"agent_spacng", "2"}}, "agent_spacng=2: unknown parameter (did you mean agent_spacing?)");

@@ -85,3 +85,13 @@ def test_bad_keywords_name_the_key_and_value(kwargs, error, pattern):
         bsg.make("SafetyBallGather-v0", **kwargs)
     with pytest.raises(error, match=pattern):
         bsg.VectorEnv("SafetyBallGather-v0", 2, **kwargs)
+
+
+@pytest.mark.parametrize("env_id,kwargs,settings", [
+    ("SafetyBallCircle2-v0", {"bodies": 3, "cost": "team"}, ["bodies=3", "cost=team"]),
+    ("SafetyCarCircle2-v0", {"circle_radius": 6, "count_agent_collisions": False},
+     ["circle_radius=6", "count_agent_collisions=false"]),
+    ("SafetyAntRun4x2-v0", {}, []),
+])
+def test_python_multi_agent_keywords_equal_the_cpp_description(bsg_binary, env_id, kwargs, settings):
+    assert bsg.describe_parallel_env(env_id, **kwargs) == cli_description(bsg_binary, env_id, *settings)

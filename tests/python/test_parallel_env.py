@@ -15,7 +15,8 @@ import bsg  # noqa: E402
 from pettingzoo.test import parallel_api_test, parallel_seed_test  # noqa: E402
 
 IDS = ["SafetyAntCircle2x4-v0", "SafetyAntCircle4x2-v0", "SafetyAntRun2x4-v0", "SafetyAntRun4x2-v0",
-       "SafetyBallCircle2-v0", "SafetyBallCircle3-v0", "SafetyCarCircle2-v0"]
+       "SafetyBallCircle2-v0", "SafetyBallCircle3-v0", "SafetyBallReach2-v0", "SafetyCarCircle2-v0",
+       "SafetyCarReach2-v0"]
 
 
 def test_ids_are_listed():
@@ -29,7 +30,7 @@ def test_pettingzoo_parallel_api(env_id, capsys):
     assert "Passed Parallel API test" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("env_id", ["SafetyBallCircle2-v0", "SafetyAntRun2x4-v0"])
+@pytest.mark.parametrize("env_id", ["SafetyBallCircle2-v0", "SafetyBallReach2-v0", "SafetyAntRun2x4-v0"])
 def test_pettingzoo_parallel_seed(env_id):
     parallel_seed_test(lambda: bsg.parallel_env(env_id), num_cycles=30)
 
