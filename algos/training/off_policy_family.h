@@ -14,7 +14,8 @@
 //      episode costs against the limits;
 //   4. the networks checked finite; the run skeleton (trainer.h) logs the epoch
 //      (off_policy_epoch_log.h) and saves a checkpoint after save_freq, 2 save_freq, ... epochs.
-// After the last epoch: deterministic evaluation episodes (the actor's tanh(mu)).
+// After the last epoch: deterministic evaluation episodes (the actor's tanh(mu)), then the same
+// episodes with the exploring policy (evaluation.json's "exploring_policy").
 //
 // Resuming: the checkpoint (off_policy_checkpoint.h) holds the networks, optimisers, temperature,
 // multipliers and the update schedule's carry, and every rank's replay buffer is in its append-only

@@ -1,6 +1,7 @@
 // The off-policy loop (docs/algorithms.md#the-off-policy-loop): a run stopped and resumed from its
 // checkpoint (networks, optimisers, multipliers and the replay buffer) continues with the same
-// numbers as an uninterrupted one, on the scripted environment; the update schedule takes
+// numbers as an uninterrupted one, on the scripted environment, under both multiplier schedules; the
+// final evaluation adds the exploring policy's episodes; the update schedule takes
 // update_every * updates_per_step gradient steps per round after start_steps; and a short learning
 // run per family (SAC-Lag, TD3-Lag, DDPG-Lag) on SafetyBallCircle-v0 lifts the return clearly
 // above a random policy's.
