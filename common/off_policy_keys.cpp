@@ -15,6 +15,7 @@ constexpr AlgorithmSet kSacFamily = algorithm_bit(Algorithm::sac) | algorithm_bi
 constexpr AlgorithmSet kTd3Family = algorithm_bit(Algorithm::td3) | algorithm_bit(Algorithm::td3_lag);
 constexpr AlgorithmSet kDeterministicActor =
     kTd3Family | algorithm_bit(Algorithm::ddpg) | algorithm_bit(Algorithm::ddpg_lag);
+constexpr AlgorithmSet kOffPolicyLagrangian = kOffPolicy & kLagrangian;
 }  // namespace
 
 // clang-format off
@@ -61,6 +62,13 @@ std::vector<ConfigKeyRow> off_policy_rows() {
             "SAC: learn log alpha towards the target entropy -|A| (false: alpha stays alpha_init)"),
     real("alpha_lr", field<&R::off_policy, &K::alpha_lr>(), L::algorithm, N::above(0), kSacFamily,
          "SAC: Adam step size of log alpha (auto_alpha)"),
+    choice("multiplier_schedule", enum_access<&R::off_policy, &K::multiplier_schedule>(), kMultiplierScheduleNames,
+           L::algorithm, kOffPolicyLagrangian,
+           "when the Lagrange multipliers step: epoch (once, on the epoch's episodes) or update_round "
+           "(before every round of gradient steps, on the last multiplier_window episodes)"),
+    integer("multiplier_window", field<&R::off_policy, &K::multiplier_window>(), L::algorithm, N::closed(1, 1000000),
+            kOffPolicyLagrangian,
+            "update_round: the multipliers' cost is the mean of each rank's last multiplier_window episodes"),
   };
 }
 // clang-format on

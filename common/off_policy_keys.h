@@ -15,9 +15,20 @@
 //   exploration_noise = 0.1                          td3, ddpg
 //   policy_noise = 0.2, noise_clip = 0.5             td3
 //   alpha_init = 0.2, auto_alpha = false, alpha_lr = 0.0003   sac
+//   multiplier_schedule = epoch, multiplier_window = 10        sac-lag, td3-lag, ddpg-lag
 #pragma once
 
+#include <array>
+#include <string_view>
+
 namespace bsg {
+
+// When an off-policy -lag run steps its Lagrange multipliers
+// (docs/algorithms.md#when-the-off-policy-multipliers-step): once per epoch on the epoch's
+// episodes, or before every round of gradient steps on the last multiplier_window episodes
+// (OmniSafe steps in every update, FSRL before every round of updates).
+enum class MultiplierSchedule { epoch, update_round };
+inline constexpr std::array<std::string_view, 2> kMultiplierScheduleNames = {"epoch", "update_round"};
 
 struct OffPolicyKeys {
   int num_envs = 1;                // environments per rank, stepped in turn
@@ -36,6 +47,8 @@ struct OffPolicyKeys {
   double alpha_init = 0.2;         // SAC: initial entropy temperature
   bool auto_alpha = false;         // SAC: learn alpha towards the target entropy -|A|
   double alpha_lr = 0.0003;        // SAC: Adam step size of log alpha
+  MultiplierSchedule multiplier_schedule = MultiplierSchedule::epoch;  // -lag: when the multipliers step
+  int multiplier_window = 10;      // -lag, update_round: episodes (per rank) in the cost a step sees
 
   bool operator==(const OffPolicyKeys&) const = default;
 };

@@ -36,6 +36,14 @@ RunConfig from_document(const YAML::Node& document, const std::string& source_na
   if (origins.count("env") == 0) origins["env"] = source_name + " (no env: the standard description)";
   // No tensorboard: on (to_yaml names the key only when it is off).
   if (origins.count("tensorboard") == 0) origins["tensorboard"] = source_name + " (no tensorboard: on)";
+  // No multiplier_schedule: epoch, the off-policy -lag schedule before the key (to_yaml names the
+  // key, and the window with it, only for update_round or a window of its own).
+  if (origins.count("multiplier_schedule") == 0) {
+    origins["multiplier_schedule"] = source_name + " (no multiplier_schedule: epoch, as before the key)";
+  }
+  if (origins.count("multiplier_window") == 0 && config.off_policy.multiplier_schedule == MultiplierSchedule::epoch) {
+    origins["multiplier_window"] = source_name + " (no multiplier_window: unused by the epoch schedule)";
+  }
   if (origins.count("dtype") == 0) {
     config.dtype = Dtype::float64;
     origins["dtype"] = source_name + " (no dtype: written before the key existed, float64)";
@@ -66,6 +74,14 @@ std::string to_yaml(const RunConfig& config) {
     if (key.type == ValueType::mapping && config.env.empty()) continue;
     // tensorboard only when off: a default run's config.yaml and checkpoint as before the key.
     if (key.key == "tensorboard" && config.tensorboard) continue;
+    // The multiplier schedule only when it is not the epoch schedule of before the keys (and the
+    // window then only if it is not the default): an epoch run's config.yaml and checkpoint as before.
+    const bool epoch_schedule = config.off_policy.multiplier_schedule == MultiplierSchedule::epoch;
+    if (key.key == "multiplier_schedule" && epoch_schedule) continue;
+    if (key.key == "multiplier_window" && epoch_schedule &&
+        config.off_policy.multiplier_window == OffPolicyKeys{}.multiplier_window) {
+      continue;
+    }
     if (first || key.default_source != section) {
       section = key.default_source;
       out << "# --- " << to_string(section) << " ---\n";

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,15 @@ struct EvaluationEpisode {
   std::vector<double> term_costs{};        // each named cost term's episode sum (when asked for)
 };
 
+// The same episodes acted with the policy that explores while collecting (an off-policy run's
+// final evaluation: the policy whose training episodes its multipliers constrain).
+struct ExploringEvaluation {
+  long long episodes = 0;
+  double mean_return = 0.0;  // J
+  double mean_cost = 0.0;    // H
+  double mean_length = 0.0;
+};
+
 struct EvaluationSummary {
   std::vector<EvaluationEpisode> episodes;  // every rank's, in rank order (rank 0 only)
   double mean_return = 0.0;                 // J (NaN without episodes)
@@ -41,6 +51,7 @@ struct EvaluationSummary {
   std::vector<std::string> term_names{};        // the environment's cost terms, when asked for
   std::vector<double> mean_term_costs{};        // each term's mean episode sum
   double action_std = 0.0;                      // sigma of sampled Gaussian actions; 0 = mean actions
+  std::optional<ExploringEvaluation> exploring{};  // off-policy final evaluations only
 };
 
 // The episodes of this rank.

@@ -59,6 +59,15 @@ std::string evaluation_json(const EvaluationSummary& summary, bool per_episode, 
   text += "  \"mean_length\": " + json_number(summary.mean_length);
   // Only a sampled evaluation says so: the mean-action file stays as it always was.
   if (summary.action_std > 0.0) text += ",\n  \"action_std\": " + json_number(summary.action_std);
+  // An off-policy run's exploring policy beside its deterministic actor (the numbers above).
+  if (summary.exploring) {
+    const ExploringEvaluation& exploring = *summary.exploring;
+    text += ",\n  \"actions\": \"deterministic actor\"";
+    text += ",\n  \"exploring_policy\": {\"episodes\": " + std::to_string(exploring.episodes) +
+            ", \"mean_return\": " + json_number(exploring.mean_return) +
+            ", \"mean_cost\": " + json_number(exploring.mean_cost) +
+            ", \"mean_length\": " + json_number(exploring.mean_length) + "}";
+  }
   if (safety != nullptr) {
     text += ",\n  \"cumulative_cost\": " + json_number(safety->training_cost.cumulative_cost);
     text += ",\n  \"cost_rate\": " +

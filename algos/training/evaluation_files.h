@@ -1,7 +1,10 @@
 // The evaluation files of a run directory (docs/reproducing.md#evaluation): returns.csv and
 // costs.csv with one value per line and no header, and evaluation.json:
 //   {"mean_return": J, "mean_cost": H, "episodes": n, "mean_length": L}
-// (with "action_std": sigma after it when the actions were sampled, sampled_evaluation)
+// (with "action_std": sigma after it when the actions were sampled, sampled_evaluation; after an
+// off-policy run's training "actions": "deterministic actor", naming what J and H acted with, and
+// "exploring_policy": {"episodes", "mean_return", "mean_cost", "mean_length"}, the same episodes
+// acted with the exploring policy)
 // and, after training (docs/algorithms.md#safety-during-training), the training cost and every
 // constraint (docs/algorithms.md#several-constraints; without `constraints:` the one on the
 // environment's cost against cost_limit):

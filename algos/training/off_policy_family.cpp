@@ -57,14 +57,12 @@ OffPolicyFamily::OffPolicyFamily(const RunConfig& config, const RunDirectory& di
   learner_ = make_off_policy_learner(config_, observation_size, action_size, critic_cost_count_, init_rng);
   if (has_lagrange_multiplier(config_.alg)) multipliers_.emplace(config_);
   lambdas_.assign(static_cast<std::size_t>(critic_cost_count_), 0.0);
-  if (multipliers_) {
-    for (int i = 0; i < critic_cost_count_; ++i) lambdas_[static_cast<std::size_t>(i)] = multipliers_->value(i);
-  }
+  refresh_lambdas();
   action_.resize(action_size);
   log_layout_.critic_cost_count = critic_cost_count_;
   log_layout_.prefixed_cost_critics = constraint_count_ > 1;
   log_layout_.alpha = learner_->actor_kind() == ActorKind::squashed_gaussian;
-  if (multipliers_) log_layout_.multiplier_names = multipliers_->diagnostic_names();
+  if (multipliers_) log_layout_.multiplier_names = multipliers_->multipliers().diagnostic_names();
   log_layout_.per_constraint = config_.constraints.empty() ? 0 : constraint_count_;
 }
 
@@ -80,8 +78,8 @@ TrainingProgress OffPolicyFamily::load_checkpoint(const std::filesystem::path& p
   schedule_.steps_since_update = saved.steps_since_update;
   schedule_.owed_updates = saved.owed_updates;
   if (multipliers_) {
-    multipliers_->restore_state(saved.multipliers);
-    for (int i = 0; i < critic_cost_count_; ++i) lambdas_[static_cast<std::size_t>(i)] = multipliers_->value(i);
+    multipliers_->multipliers().restore_state(saved.multipliers);
+    refresh_lambdas();
   }
   buffer_log_.restore(buffer_, saved.replay_transitions);
   return saved.progress;
@@ -97,7 +95,7 @@ void OffPolicyFamily::save_checkpoint(const std::filesystem::path& path, const T
   if (mpi_.is_root()) {
     const OffPolicyCheckpoint state{progress, buffer_.total_added(), schedule_.steps_since_update,
                                     schedule_.owed_updates,
-                                    multipliers_ ? multipliers_->state() : std::vector<NamedScalar>{}};
+                                    multipliers_ ? multipliers_->multipliers().state() : std::vector<NamedScalar>{}};
     write_checkpoint_file(path, encode_off_policy_checkpoint(config_, state, *learner_));
   }
   mpi_.sum(0.0);
@@ -114,11 +112,13 @@ FamilyEpoch OffPolicyFamily::run_epoch(int epoch, bool checkpoint_follows) {
         static_cast<long long>(epoch) * config_.steps_per_epoch + round * steps_per_round_all_ranks;
     collect_round(epoch, steps_before < config_.off_policy.start_steps, checkpoint_follows && round + 1 == rounds,
                   epoch_episodes_);
+    record_episodes();
     schedule_.steps_since_update += config_.off_policy.num_envs;
     if (schedule_.steps_since_update >= config_.off_policy.update_every) {
       const bool learning =
           steps_before + steps_per_round_all_ranks >= config_.off_policy.start_steps && buffer_.size() > 0;
       const auto update_start = Clock::now();
+      step_round_multipliers(learning);
       // Every rank takes the same number of steps (the schedule is the same on all), so the
       // gradient averages pair up.
       train(owed_gradient_steps(learning));
@@ -142,7 +142,9 @@ FamilyEpoch OffPolicyFamily::run_epoch(int epoch, bool checkpoint_follows) {
           .mean;
   result.line.mean_cost = constraints_.front().mean_episode_cost;
   if (!ignores_cost(config_.alg)) result.line.cost_limit = constraints_.front().limit;
-  if (multipliers_ && multipliers_->count() == 1) result.line.lagrange_multiplier = multipliers_->value(0);
+  if (multipliers_ && multipliers_->multipliers().count() == 1) {
+    result.line.lagrange_multiplier = multipliers_->multipliers().value(0);
+  }
   result.line.kl = std::nan("");
   result.paces_later_epochs = static_cast<long long>(epoch) * config_.steps_per_epoch >= config_.off_policy.start_steps;
   return result;
@@ -152,6 +154,7 @@ FamilyEpoch OffPolicyFamily::run_epoch(int epoch, bool checkpoint_follows) {
 // start), so a run resumed from a checkpoint starts where the uninterrupted run started too.
 void OffPolicyFamily::start_epoch(int epoch) {
   epoch_episodes_ = OffPolicyEpochEpisodes(constraint_count_);
+  recorded_episodes_ = 0;
   tally_ = OffPolicyUpdateTally{};
   tally_.cost_critic_losses = Eigen::VectorXd::Zero(critic_cost_count_);
   tally_.cost_qs = Eigen::VectorXd::Zero(critic_cost_count_);
@@ -159,6 +162,7 @@ void OffPolicyFamily::start_epoch(int epoch) {
   noise_rng_.seed(stream_seed(config_, SeedStream::action_noise, mpi_.rank(), static_cast<std::uint64_t>(epoch)));
   sample_rng_.seed(stream_seed(config_, SeedStream::minibatch_shuffle, mpi_.rank(), static_cast<std::uint64_t>(epoch)));
   if (epoch == checkpoint_mark().epochs) {
+    if (multipliers_) multipliers_->restart();
     collector_.restart([&](int j) {
       return stream_seed(config_, SeedStream::environment, mpi_.rank(),
                          static_cast<std::uint64_t>(epoch) * config_.off_policy.num_envs +
@@ -197,6 +201,26 @@ int OffPolicyFamily::owed_gradient_steps(bool learning) {
   return updates;
 }
 
+// The episodes completed since the last call into the multipliers' window.
+void OffPolicyFamily::record_episodes() {
+  if (!multipliers_) return;
+  multipliers_->record(epoch_episodes_.constraint_costs, recorded_episodes_);
+  recorded_episodes_ = epoch_episodes_.episodes.returns.size();
+}
+
+// multiplier_schedule update_round: one step before the round's gradient steps, which use it.
+void OffPolicyFamily::step_round_multipliers(bool learning) {
+  if (multipliers_ && multipliers_->before_gradient_round(learning, mpi_)) refresh_lambdas();
+}
+
+// The actor steps' lambdas from the multipliers.
+void OffPolicyFamily::refresh_lambdas() {
+  if (!multipliers_) return;
+  for (int i = 0; i < critic_cost_count_; ++i) {
+    lambdas_[static_cast<std::size_t>(i)] = multipliers_->multipliers().value(i);
+  }
+}
+
 void OffPolicyFamily::train(int updates) {
   for (int u = 0; u < updates; ++u) {
     buffer_.sample(config_.off_policy.batch_size, sample_rng_, slots_, batch_);
@@ -216,7 +240,8 @@ void OffPolicyFamily::train(int updates) {
   }
 }
 
-// 3. The multipliers: one step on this epoch's pooled mean episode costs against the limits.
+// 3. The multipliers (multiplier_schedule epoch): one step on this epoch's pooled mean episode costs
+// against the limits.
 std::vector<ConstraintEstimate> OffPolicyFamily::update_multipliers(const OffPolicyEpochEpisodes& episodes) {
   std::vector<ConstraintEstimate> constraints;
   for (int i = 0; i < constraint_count_; ++i) {
@@ -226,10 +251,7 @@ std::vector<ConstraintEstimate> OffPolicyFamily::update_multipliers(const OffPol
     constraints.push_back({pooled.mean, constraint_limit(config_, i)});
   }
   episode_count_ = static_cast<long long>(mpi_.sum(static_cast<double>(episodes.episodes.returns.size())));
-  if (multipliers_ && episode_count_ > 0) {
-    const std::vector<double> updated = multipliers_->update(constraints);
-    for (int i = 0; i < critic_cost_count_; ++i) lambdas_[static_cast<std::size_t>(i)] = updated[static_cast<std::size_t>(i)];
-  }
+  if (multipliers_ && multipliers_->after_epoch(constraints, episode_count_)) refresh_lambdas();
   return constraints;
 }
 
@@ -251,7 +273,7 @@ std::vector<NamedScalar> OffPolicyFamily::progress_row(const EpochAccounts& acco
   inputs.episode_count = episode_count_;
   inputs.updates = &tally_;
   inputs.alpha = log_layout_.alpha ? learner_->alpha() : 0.0;
-  if (multipliers_) inputs.multipliers = multipliers_->diagnostics();
+  if (multipliers_) inputs.multipliers = multipliers_->multipliers().diagnostics();
   inputs.constraints = constraints_;
   inputs.collect_seconds = collect_seconds_;
   inputs.update_seconds = update_seconds_;
@@ -261,13 +283,24 @@ std::vector<NamedScalar> OffPolicyFamily::progress_row(const EpochAccounts& acco
   return make_off_policy_log_row(log_layout_, inputs, mpi_);
 }
 
-// Deterministic evaluation (evaluation.h): floor(eval_episodes / R) episodes per rank of a = tanh(mu(s)).
+// Deterministic evaluation (evaluation.h): floor(eval_episodes / R) episodes per rank of a = tanh(mu(s)),
+// as OmniSafe and FSRL evaluate; then the same episodes (the same environment seeds) with the
+// exploring policy, whose training episodes the multipliers constrained (docs/algorithms.md#the-off-policy-loop).
 // The term names label evaluation.json's per-term costs.
 EvaluationSummary OffPolicyFamily::evaluate(int /*epochs_completed: the actor acts without noise*/) {
   OffPolicyActing acting(*learner_);
   envs::Env& env = collector_.env(0);
-  return evaluate_policy(env, acting, config_.eval_episodes, config_.seed, config_.max_ep_len, mpi_,
-                         collector_.cost_selector(), env.spec().cost_term_names, ActionMode::mean);
+  EvaluationSummary summary = evaluate_policy(env, acting, config_.eval_episodes, config_.seed, config_.max_ep_len,
+                                              mpi_, collector_.cost_selector(), env.spec().cost_term_names,
+                                              ActionMode::mean);
+  const EvaluationSummary exploring = evaluate_policy(env, acting, config_.eval_episodes, config_.seed,
+                                                      config_.max_ep_len, mpi_, collector_.cost_selector(), {},
+                                                      ActionMode::sampled);
+  if (mpi_.is_root()) {
+    summary.exploring = ExploringEvaluation{static_cast<long long>(exploring.episodes.size()), exploring.mean_return,
+                                            exploring.mean_cost, exploring.mean_length};
+  }
+  return summary;
 }
 
 }  // namespace bsg::algos

@@ -8,10 +8,14 @@
 //      steps (all ranks) have been taken, else the actor's exploring action; every update_every
 //      steps, update_every * updates_per_step gradient steps on sampled batches (the fraction
 //      carried over); an epoch that ends with a checkpoint cuts its episodes in its last round;
-//   3. one step of the multipliers on the epoch's pooled mean episode costs against the limits;
+//      the -lag multipliers step before every such round with multiplier_schedule update_round
+//      (off_policy_multipliers.h);
+//   3. with multiplier_schedule epoch, one step of the multipliers on the epoch's pooled mean
+//      episode costs against the limits;
 //   4. the networks checked finite; the run skeleton (trainer.h) logs the epoch
 //      (off_policy_epoch_log.h) and saves a checkpoint after save_freq, 2 save_freq, ... epochs.
-// After the last epoch: deterministic evaluation episodes (the actor's tanh(mu)).
+// After the last epoch: deterministic evaluation episodes (the actor's tanh(mu)), then the same
+// episodes with the exploring policy (evaluation.json's "exploring_policy").
 //
 // Resuming: the checkpoint (off_policy_checkpoint.h) holds the networks, optimisers, temperature,
 // multipliers and the update schedule's carry, and every rank's replay buffer is in its append-only
@@ -24,11 +28,11 @@
 #include <optional>
 #include <vector>
 
-#include "algos/lagrange/constraint_multipliers.h"
 #include "algos/off_policy/off_policy_learner.h"
 #include "algos/off_policy/replay_buffer.h"
 #include "algos/training/off_policy_collector.h"
 #include "algos/training/off_policy_epoch_log.h"
+#include "algos/training/off_policy_multipliers.h"
 #include "algos/training/replay_buffer_log.h"
 #include "algos/training/run_directory.h"
 #include "algos/training/training_family.h"
@@ -70,6 +74,9 @@ class OffPolicyFamily final : public TrainingFamily {
   void start_epoch(int epoch);
   void collect_round(int epoch, bool random_action, bool cut, OffPolicyEpochEpisodes& episodes);
   int owed_gradient_steps(bool learning);
+  void record_episodes();
+  void step_round_multipliers(bool learning);
+  void refresh_lambdas();
   void train(int updates);
   std::vector<ConstraintEstimate> update_multipliers(const OffPolicyEpochEpisodes& episodes);
   void check_networks_finite(int epoch);
@@ -81,7 +88,7 @@ class OffPolicyFamily final : public TrainingFamily {
   int critic_cost_count_;  // m for the -lag algorithms, 0 otherwise
   int local_steps_;
   std::unique_ptr<OffPolicyLearner> learner_;
-  std::optional<LagrangeMultipliers> multipliers_;
+  std::optional<OffPolicyMultipliers> multipliers_;
   std::vector<double> lambdas_;
   ReplayBuffer buffer_;
   ReplayBufferLog buffer_log_;
@@ -95,6 +102,7 @@ class OffPolicyFamily final : public TrainingFamily {
   std::vector<std::int64_t> slots_;
   // The epoch in progress, kept for its progress.csv row.
   OffPolicyEpochEpisodes epoch_episodes_;
+  std::size_t recorded_episodes_ = 0;  // of epoch_episodes_, handed to the multipliers' window
   OffPolicyUpdateTally tally_;
   std::vector<ConstraintEstimate> constraints_;
   long long episode_count_ = 0;

@@ -72,7 +72,7 @@ TEST(ConfigKeyGroups, EachGroupsRowsKeepTheirPlaceInTheTable) {
   const std::vector<std::pair<std::string_view, std::string_view>> seams = {
       {"value_time_input", "target_kl"},         {"kl_accept_factor", "lagrangian_multiplier_init"},
       {"pid_lambda_max", "cpo_r_sign"},          {"crpo_tolerance", "actor_lr"},
-      {"learned_std_init", "num_envs"},          {"alpha_lr", "dataset"},
+      {"learned_std_init", "num_envs"},          {"multiplier_window", "dataset"},
       {"coptidice_scalar_lr", "saute_gamma"},    {"simmer_initial_budget_fraction", "use_cost_value_function"}};
   for (const auto& [before, after] : seams) EXPECT_EQ(position(before) + 1, position(after)) << before;
   EXPECT_EQ(keys.front(), "env_id");

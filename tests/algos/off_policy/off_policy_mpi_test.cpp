@@ -117,6 +117,9 @@ TEST(OffPolicyMpi, ARunOnTwoRanksKeepsTheirParametersEqual) {
   config.off_policy.batch_size = 16;
   config.off_policy.buffer_size = 100;
   config.off_policy.auto_alpha = true;
+  // The multiplier steps in every round on the window pooled over both ranks (a collective).
+  config.off_policy.multiplier_schedule = MultiplierSchedule::update_round;
+  config.off_policy.multiplier_window = 2;
   std::vector<std::unique_ptr<envs::Env>> envs;
   envs.push_back(std::make_unique<testing::ScriptedEnv>(40, std::nullopt, 3));
   OffPolicyTrainer trainer(config, RunDirectory(text), mpi, {}, std::move(envs));

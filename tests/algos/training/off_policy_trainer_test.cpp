@@ -1,6 +1,7 @@
 // The off-policy loop (docs/algorithms.md#the-off-policy-loop): a run stopped and resumed from its
 // checkpoint (networks, optimisers, multipliers and the replay buffer) continues with the same
-// numbers as an uninterrupted one, on the scripted environment; the update schedule takes
+// numbers as an uninterrupted one, on the scripted environment, under both multiplier schedules; the
+// final evaluation adds the exploring policy's episodes; the update schedule takes
 // update_every * updates_per_step gradient steps per round after start_steps; and a short learning
 // run per family (SAC-Lag, TD3-Lag, DDPG-Lag) on SafetyBallCircle-v0 lifts the return clearly
 // above a random policy's.
@@ -15,8 +16,12 @@
 
 #include "../../test_support.h"
 #include "../scripted_env.h"
+#include "algos/core/constraint_costs.h"
+#include "algos/training/evaluation.h"
+#include "algos/training/load_policy.h"
 #include "algos/training/off_policy_trainer.h"
 #include "algos/training/progress_csv_fields.h"
+#include "algos/training/run_environment.h"
 #include "algos/training/run_evaluation.h"
 #include "common/config_error.h"
 #include "common/run_config_checks.h"
@@ -78,11 +83,16 @@ std::string without_times(const fs::path& path) {
   return text;
 }
 
+// Both multiplier schedules: with update_round the window of recent episodes starts empty after the
+// checkpoint in both runs.
 TEST(OffPolicyTrainer, ResumingContinuesWithTheSameNumbers) {
-  for (const bsg::Algorithm alg : {bsg::Algorithm::sac_lag, bsg::Algorithm::td3_lag, bsg::Algorithm::ddpg_lag}) {
-    SCOPED_TRACE(std::string(bsg::to_string(alg)));
+  for (const bsg::Algorithm alg : {bsg::Algorithm::sac_lag, bsg::Algorithm::td3_lag, bsg::Algorithm::ddpg_lag})
+  for (const bsg::MultiplierSchedule schedule : {bsg::MultiplierSchedule::epoch, bsg::MultiplierSchedule::update_round}) {
+    SCOPED_TRACE(std::string(bsg::to_string(alg)) + (schedule == bsg::MultiplierSchedule::epoch ? " epoch" : " update_round"));
     TemporaryDirectory dir;
-    const bsg::RunConfig config = scripted_config(alg);
+    bsg::RunConfig config = scripted_config(alg);
+    config.off_policy.multiplier_schedule = schedule;
+    config.off_policy.multiplier_window = 3;
     bsg::algos::OffPolicyTrainer whole(config, bsg::algos::RunDirectory(dir.path() / "whole"),
                                        bsg::MpiContext::single_process(), {}, scripted_envs(2));
     ASSERT_TRUE(whole.run().finished);
@@ -172,6 +182,21 @@ TEST(OffPolicyTrainer, EvaluatingTheRunDirectoryRepeatsTheFinalEvaluation) {
   ASSERT_EQ(outcome.evaluation->term_names, (std::vector<std::string>{"cost_outside_bounds"}));
   EXPECT_EQ(outcome.evaluation->mean_term_costs.at(0), outcome.evaluation->mean_cost);
   EXPECT_TRUE(bsg::testing::contains(json, "\"cost_terms\": {\"cost_outside_bounds\": "));
+  // Beside the deterministic actor's J and H, the same episodes acted with the exploring policy:
+  // those of the policy loaded from the checkpoint, sampling its actions.
+  EXPECT_TRUE(bsg::testing::contains(json, "\"actions\": \"deterministic actor\""));
+  ASSERT_TRUE(outcome.evaluation->exploring.has_value());
+  const std::unique_ptr<bsg::algos::LoadedPolicy> policy = bsg::algos::load_policy(run);
+  const std::unique_ptr<bsg::envs::Env> env = bsg::algos::make_run_env(config);
+  const bsg::algos::EvaluationSummary exploring =
+      bsg::algos::evaluate_policy(*env, *policy, 3, config.seed, config.max_ep_len, bsg::MpiContext::single_process(),
+                                  bsg::algos::StepCostSelector(config), {}, bsg::algos::ActionMode::sampled);
+  EXPECT_EQ(outcome.evaluation->exploring->episodes, 3);
+  EXPECT_EQ(outcome.evaluation->exploring->mean_return, exploring.mean_return);
+  EXPECT_EQ(outcome.evaluation->exploring->mean_cost, exploring.mean_cost);
+  EXPECT_NE(exploring.mean_return, again.summary.mean_return);  // the noise acted
+  EXPECT_TRUE(bsg::testing::contains(json, "\"exploring_policy\": {\"episodes\": 3, \"mean_return\": " +
+                                               bsg::algos::format_csv_number(exploring.mean_return)));
 }
 
 TEST(OffPolicyTrainer, TakesUpdatesPerStepGradientStepsPerRoundAfterStartSteps) {

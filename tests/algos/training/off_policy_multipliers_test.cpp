@@ -1,0 +1,103 @@
+// When an off-policy -lag run's multipliers step and on which cost (algos/training/
+// off_policy_multipliers.h), on hand-made sequences of episode costs against hand computations:
+// the SGD rule lambda <- max(0, lambda + lr (J - d)) (lr 0.1, d 25, lambda_0 0.5) and one Adam
+// step per round, which moves lambda by lambda_lr whatever the size of a violation.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "algos/training/off_policy_multipliers.h"
+#include "common/mpi_context.h"
+#include "common/run_config_resolve.h"
+
+namespace bsg::algos {
+namespace {
+
+RunConfig td3_lag_config(const std::vector<std::string>& settings) {
+  RunConfigRequest request;
+  request.configs_dir = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
+  request.set_arguments = {"env_id=SafetyBallCircle-v0", "alg=td3-lag", "cost_limit=25"};
+  request.set_arguments.insert(request.set_arguments.end(), settings.begin(), settings.end());
+  return resolve_run_config(request).config;
+}
+
+RunConfig sgd_config(const std::string& schedule) {
+  return td3_lag_config({"lambda_optimizer=SGD", "lambda_lr=0.1", "lagrangian_multiplier_init=0.5",
+                         "multiplier_window=2", "multiplier_schedule=" + schedule});
+}
+
+// Episode costs of one constraint, as the collector lists an epoch's completed episodes.
+struct Episodes {
+  std::vector<std::vector<double>> costs{{}};
+  std::size_t recorded = 0;
+  void complete(OffPolicyMultipliers& multipliers, const std::vector<double>& new_costs) {
+    costs[0].insert(costs[0].end(), new_costs.begin(), new_costs.end());
+    multipliers.record(costs, recorded);
+    recorded = costs[0].size();
+  }
+};
+
+TEST(OffPolicyMultipliers, UpdateRoundStepsBeforeEveryLearningRoundOnTheLastWindowEpisodes) {
+  const MpiContext mpi = MpiContext::single_process();
+  OffPolicyMultipliers multipliers(sgd_config("update_round"));
+  ASSERT_EQ(multipliers.schedule(), MultiplierSchedule::update_round);
+  const auto lambda = [&] { return multipliers.multipliers().value(0); };
+  Episodes episodes;
+  EXPECT_FALSE(multipliers.before_gradient_round(true, mpi));  // no episode yet: no step
+  EXPECT_DOUBLE_EQ(lambda(), 0.5);
+  episodes.complete(multipliers, {30.0});
+  EXPECT_TRUE(multipliers.before_gradient_round(true, mpi));  // window {30}: 0.5 + 0.1 * 5
+  EXPECT_NEAR(lambda(), 1.0, 1e-12);
+  EXPECT_FALSE(multipliers.before_gradient_round(false, mpi));  // no gradient steps: no step
+  EXPECT_NEAR(lambda(), 1.0, 1e-12);
+  EXPECT_TRUE(multipliers.before_gradient_round(true, mpi));  // the same window again: 1.0 + 0.5
+  EXPECT_NEAR(lambda(), 1.5, 1e-12);
+  episodes.complete(multipliers, {10.0, 14.0});  // 30 leaves the window of 2
+  EXPECT_TRUE(multipliers.before_gradient_round(true, mpi));  // mean 12: 1.5 + 0.1 * (12 - 25)
+  EXPECT_NEAR(lambda(), 0.2, 1e-12);
+  episodes.complete(multipliers, {40.0});  // window {14, 40}, mean 27: 0.2 + 0.1 * 2
+  EXPECT_TRUE(multipliers.before_gradient_round(true, mpi));
+  EXPECT_NEAR(lambda(), 0.4, 1e-12);
+  episodes.complete(multipliers, {0.0, 0.0});  // mean 0: 0.4 - 2.5 projected onto 0
+  EXPECT_TRUE(multipliers.before_gradient_round(true, mpi));
+  EXPECT_DOUBLE_EQ(lambda(), 0.0);
+  multipliers.restart();  // the environments restart: the window empties
+  EXPECT_FALSE(multipliers.before_gradient_round(true, mpi));
+  EXPECT_FALSE(multipliers.after_epoch(std::vector<ConstraintEstimate>{{35.0, 25.0}}, 3));  // not this schedule
+  EXPECT_DOUBLE_EQ(lambda(), 0.0);
+}
+
+TEST(OffPolicyMultipliers, EpochStepsOnceAfterTheEpochOnItsEpisodesAndNeverInARound) {
+  const MpiContext mpi = MpiContext::single_process();
+  OffPolicyMultipliers multipliers(sgd_config("epoch"));
+  Episodes episodes;
+  episodes.complete(multipliers, {30.0, 40.0});
+  EXPECT_FALSE(multipliers.before_gradient_round(true, mpi));
+  EXPECT_FALSE(multipliers.before_gradient_round(true, mpi));
+  EXPECT_DOUBLE_EQ(multipliers.multipliers().value(0), 0.5);
+  EXPECT_FALSE(multipliers.after_epoch(std::vector<ConstraintEstimate>{{35.0, 25.0}}, 0));  // no episode
+  EXPECT_TRUE(multipliers.after_epoch(std::vector<ConstraintEstimate>{{35.0, 25.0}}, 2));  // 0.5 + 0.1 * 10
+  EXPECT_NEAR(multipliers.multipliers().value(0), 1.5, 1e-12);
+}
+
+// Adam's first steps on a constant gradient g move by lr g / (|g| + eps) (bias-corrected moments
+// m = g, v = g^2): three rounds on one violation move lambda three times lambda_lr, where the
+// epoch schedule moves it once in the same epoch.
+TEST(OffPolicyMultipliers, AdamMovesLambdaByItsRateInEveryRound) {
+  const MpiContext mpi = MpiContext::single_process();
+  OffPolicyMultipliers multipliers(td3_lag_config({"lambda_optimizer=Adam", "lambda_lr=0.001",
+                                                   "lagrangian_multiplier_init=0.001", "multiplier_window=10",
+                                                   "multiplier_schedule=update_round"}));
+  Episodes episodes;
+  episodes.complete(multipliers, {80.0, 70.0});  // J - d = 50
+  const double step = 0.001 * 50.0 / (50.0 + 1e-8);
+  for (int round = 1; round <= 3; ++round) {
+    ASSERT_TRUE(multipliers.before_gradient_round(true, mpi));
+    EXPECT_NEAR(multipliers.multipliers().value(0), 0.001 + round * step, 1e-12) << "round " << round;
+  }
+}
+
+}  // namespace
+}  // namespace bsg::algos
