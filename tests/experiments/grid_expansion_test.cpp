@@ -10,6 +10,7 @@
 #include <set>
 #include <string>
 
+#include "common/algorithms.h"
 #include "common/config_error.h"
 
 namespace bsg::experiments {
@@ -180,6 +181,60 @@ TEST(GridExpansion, TheQuickGridIsTwoConfigurationsTimesTwoSeeds) {
     const RunConfig config = resolve_grid_run(run, kConfigs, "quick.yaml");
     EXPECT_EQ(config.env_id, "SafetyBallCircle-v0");
     EXPECT_LE(config.epochs, 10);
+  }
+}
+
+// The benchmark grids (configs/benchmarks/): each learner at its shipped defaults, so a run
+// sets nothing but the budget and the cost limit; the all-task grid leaves out no constrained
+// online learner of the algorithm table.
+std::set<std::string> benchmark_keys_of(const GridRun& run) {
+  std::set<std::string> keys;
+  for (const std::string& setting : run.set_arguments) keys.insert(setting.substr(0, setting.find('=')));
+  return keys;
+}
+
+TEST(GridExpansion, TheBallBenchmarkRunsEveryConstrainedBaselineAtThreeLimitsOnItsBudget) {
+  const std::vector<GridRun> runs = expand_grid(load_grid_file(kConfigs / "benchmarks" / "ball.yaml"));
+  ASSERT_EQ(runs.size(), 360u);  // 12 configurations x 3 limits x 2 environments x 5 seeds
+  std::set<std::string> algorithms;
+  for (const GridRun& run : runs) {
+    algorithms.insert(std::string(algorithm_info(run.alg).name));
+    if (run.seed != 0) continue;
+    const RunConfig config = resolve_grid_run(run, kConfigs, "ball.yaml");
+    const std::int64_t steps = config.epochs * config.steps_per_epoch;
+    EXPECT_EQ(steps, is_off_policy(run.alg) ? 300000 : 1500000) << run.relative_dir();
+    EXPECT_TRUE(config.cost_limit == 10 || config.cost_limit == 25 || config.cost_limit == 40) << run.relative_dir();
+    std::set<std::string> allowed{"env_id", "alg", "seed", "epochs", "steps_per_epoch", "cost_limit", "lambda_optimizer"};
+    for (const std::string& key : benchmark_keys_of(run)) EXPECT_TRUE(allowed.count(key)) << key;
+  }
+  const std::set<std::string> baselines{"lag-trpo", "cpo",    "pdo",     "pcpo",    "crpo",    "ppo-lag",
+                                        "focops",   "cup",    "sac-lag", "td3-lag", "ddpg-lag"};
+  EXPECT_EQ(algorithms, baselines);
+}
+
+TEST(GridExpansion, TheAllTaskBenchmarkHasEveryConstrainedOnlineLearnerOnTheSixteenTasksAtTheirBudgets) {
+  const std::vector<GridRun> runs = expand_grid(load_grid_file(kConfigs / "benchmarks" / "all_tasks.yaml"));
+  std::set<std::string> algorithms;
+  std::set<std::string> envs;
+  for (const GridRun& run : runs) {
+    algorithms.insert(std::string(algorithm_info(run.alg).name));
+    envs.insert(run.env_id);
+    std::set<std::string> allowed{"env_id", "alg", "seed", "lambda_optimizer"};
+    for (const std::string& key : benchmark_keys_of(run)) EXPECT_TRUE(allowed.count(key)) << key;
+  }
+  std::set<std::string> constrained_online;
+  for (const AlgorithmInfo& info : kAlgorithms) {
+    if (info.constrained && !is_offline(info.alg)) constrained_online.insert(std::string(info.name));
+  }
+  EXPECT_EQ(algorithms, constrained_online);
+  EXPECT_EQ(envs.size(), 16u);
+  EXPECT_EQ(runs.size(), 16u * 5u * (constrained_online.size() + 1));  // PPO-Lag twice: Adam and PID
+  const std::vector<GridRun> car = expand_grid(load_grid_file(kConfigs / "benchmarks" / "car_off_policy.yaml"));
+  ASSERT_EQ(car.size(), 90u);
+  for (const GridRun& run : car) {
+    const RunConfig config = resolve_grid_run(run, kConfigs, "car_off_policy.yaml");
+    EXPECT_TRUE(is_off_policy(run.alg));
+    EXPECT_EQ(config.epochs * config.steps_per_epoch, 1000000);
   }
 }
 
