@@ -32,21 +32,13 @@ constexpr int kNets = 2 * kBcqEnsemble;
 
 BcqLagOptions small_options(double cost_limit) {
   BcqLagOptions options;
-  options.hidden_sizes = {6};
-  options.mlp = MlpOptions{};  // tanh: smooth for the central differences
-  options.vae_hidden_size = 5;
-  options.sampled_actions = 3;
-  options.cost_limit = cost_limit;
-  options.episode_length = 20;
-  options.gamma = 0.9;
-  options.reward_scale = 0.1;
-  options.cost_scale = 2.0;
+  testing::set_small_vae_learner_options(options, cost_limit);
   options.phi = 0.3;
   options.lambda_mix = 0.75;
   return options;
 }
 
-ObservationScaling unit_scaling() { return {Eigen::VectorXd::Zero(kObs), Eigen::VectorXd::Ones(kObs)}; }
+ObservationScaling unit_scaling() { return testing::unit_scaling(kObs); }
 
 OfflineBatch random_batch(Rng& rng) { return testing::random_offline_batch(rng, kObs, kAct); }
 

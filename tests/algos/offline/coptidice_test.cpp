@@ -41,7 +41,7 @@ COptiDiceOptions small_options(FDivergence f) {
   return options;
 }
 
-ObservationScaling unit_scaling() { return {Eigen::VectorXd::Zero(kObs), Eigen::VectorXd::Ones(kObs)}; }
+ObservationScaling unit_scaling() { return testing::unit_scaling(kObs); }
 
 OfflineBatch random_batch(Rng& rng, int rows) {
   OfflineBatch b;

@@ -29,6 +29,26 @@ inline algos::OfflineBatch random_offline_batch(Rng& rng, int observation_size, 
   return b;
 }
 
+// The standardisation that leaves observations as they are.
+inline algos::ObservationScaling unit_scaling(int observation_size) {
+  return {Eigen::VectorXd::Zero(observation_size), Eigen::VectorXd::Ones(observation_size)};
+}
+
+// The small float64 networks of the VAE-based learners' tests (BCQ-Lag, CPQ): tanh, smooth for
+// the central differences; 3 sampled actions, 20-step episodes, gamma 0.9, scaled reward and cost.
+template <typename Options>
+void set_small_vae_learner_options(Options& options, double cost_limit) {
+  options.hidden_sizes = {6};
+  options.mlp = MlpOptions{};
+  options.vae_hidden_size = 5;
+  options.sampled_actions = 3;
+  options.cost_limit = cost_limit;
+  options.episode_length = 20;
+  options.gamma = 0.9;
+  options.reward_scale = 0.1;
+  options.cost_scale = 2.0;
+}
+
 // Q([s, a]) from the critic's single-sample pass.
 inline double q_of(const Mlp& critic, const Eigen::VectorXd& s, const Eigen::VectorXd& a) {
   Eigen::VectorXd input(s.size() + a.size());
