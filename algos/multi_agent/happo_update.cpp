@@ -19,7 +19,7 @@ PolicySurrogate corrected_surrogate(const AgentBatch& batch, const CorrectionFac
 
 double happo_clipped_loss(const GaussianPolicy& policy, const AgentBatch& batch, const CorrectionFactor& factor,
                           double clip, Eigen::VectorXd* gradient) {
-  check_agent_batches(std::span<const AgentBatch>(&batch, 1), std::span<const GaussianPolicy>(&policy, 1));
+  check_agent_batch(batch, policy, 0, batch.observations.rows());
   const PolicySurrogate surrogate = corrected_surrogate(batch, factor);
   const Eigen::MatrixXd anchor_means = policy_means(policy, batch.observations);  // KL_i plays no part
   SampleLossBatch losses(surrogate, anchor_means, policy.log_stds());
@@ -30,14 +30,14 @@ double happo_clipped_loss(const GaussianPolicy& policy, const AgentBatch& batch,
 
 PolicyUpdateResult happo_agent_update(Ppo& ppo, GaussianPolicy& policy, const AgentBatch& batch,
                                       const CorrectionFactor& factor, const MpiContext& mpi, Rng& minibatch_rng) {
-  check_agent_batches(std::span<const AgentBatch>(&batch, 1), std::span<const GaussianPolicy>(&policy, 1));
+  check_agent_batch(batch, policy, 0, batch.observations.rows());
   PolicySurrogate surrogate = corrected_surrogate(batch, factor);
   // PPO reads neither J_C nor L.
   const PolicyUpdateInputs inputs{policy, surrogate, 0.0, 0.0, mpi, {}, &minibatch_rng};
   return ppo.update(inputs);
 }
 
-std::vector<AgentRoundStatistics> happo_round(std::span<GaussianPolicy> policies, std::span<Ppo* const> ppos,
+std::vector<AgentRoundStatistics> happo_round(std::span<GaussianPolicy* const> policies, std::span<Ppo* const> ppos,
                                               std::span<const AgentBatch> batches, std::span<const int> order,
                                               const MpiContext& mpi, Rng& minibatch_rng) {
   if (ppos.size() != policies.size()) {
@@ -49,7 +49,7 @@ std::vector<AgentRoundStatistics> happo_round(std::span<GaussianPolicy> policies
   }
   return sequential_round(policies, batches, order, [&](int agent, const CorrectionFactor& factor) {
     const auto k = static_cast<std::size_t>(agent);
-    return happo_agent_update(*ppos[k], policies[k], batches[k], factor, mpi, minibatch_rng).diagnostics;
+    return happo_agent_update(*ppos[k], *policies[k], batches[k], factor, mpi, minibatch_rng).diagnostics;
   });
 }
 

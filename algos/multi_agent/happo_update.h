@@ -1,5 +1,5 @@
 // HAPPO, heterogeneous-agent PPO (Kuba et al. 2022, "Trust Region Policy Optimisation in
-// Multi-Agent Reinforcement Learning", eq. 11 and alg. 1; SafePO's safepo/multi_agent/happo.py):
+// Multi-Agent Reinforcement Learning"; SafePO's safepo/multi_agent/happo.py):
 // the agents take PPO steps one after another in a random order (sequential_order.h), agent i_m
 // on the loss
 //   l(theta) = -1/N sum_i M_i min(rho_i A_i, clip(rho_i, 1 - eps, 1 + eps) A_i)
@@ -40,8 +40,8 @@ double happo_clipped_loss(const GaussianPolicy& policy, const AgentBatch& batch,
 PolicyUpdateResult happo_agent_update(Ppo& ppo, GaussianPolicy& policy, const AgentBatch& batch,
                                       const CorrectionFactor& factor, const MpiContext& mpi, Rng& minibatch_rng);
 
-// One HAPPO round: happo_agent_update for each agent in `order`, ppos[k] updating policies[k].
-std::vector<AgentRoundStatistics> happo_round(std::span<GaussianPolicy> policies, std::span<Ppo* const> ppos,
+// One HAPPO round: happo_agent_update for each agent in `order`, ppos[k] updating *policies[k].
+std::vector<AgentRoundStatistics> happo_round(std::span<GaussianPolicy* const> policies, std::span<Ppo* const> ppos,
                                               std::span<const AgentBatch> batches, std::span<const int> order,
                                               const MpiContext& mpi, Rng& minibatch_rng);
 

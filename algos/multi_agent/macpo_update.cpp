@@ -22,7 +22,7 @@ double macpo_constraint_violation(double mean_episode_cost, double cost_limit, d
 
 MacpoAgentStep macpo_agent_step(GaussianPolicy& policy, const AgentBatch& batch, const CorrectionFactor& factor,
                                 double constraint_violation, const RunConfig& config, const MpiContext& mpi) {
-  check_agent_batches(std::span<const AgentBatch>(&batch, 1), std::span<const GaussianPolicy>(&policy, 1));
+  check_agent_batch(batch, policy, 0, batch.observations.rows());
   // L_R and L_C on M A and M A^C (M is a constant weight: no gradient through it).
   PolicySurrogate surrogate(batch.observations, batch.actions, batch.old_log_probs,
                             factor.corrected(batch.advantages), factor.corrected(batch.cost_advantages));
@@ -33,8 +33,8 @@ MacpoAgentStep macpo_agent_step(GaussianPolicy& policy, const AgentBatch& batch,
   return step;
 }
 
-std::vector<AgentRoundStatistics> macpo_round(std::span<GaussianPolicy> policies, std::span<const AgentBatch> batches,
-                                              std::span<const int> order,
+std::vector<AgentRoundStatistics> macpo_round(std::span<GaussianPolicy* const> policies,
+                                              std::span<const AgentBatch> batches, std::span<const int> order,
                                               std::span<const double> constraint_violations, const RunConfig& config,
                                               const MpiContext& mpi) {
   if (constraint_violations.size() != policies.size()) {
@@ -43,7 +43,7 @@ std::vector<AgentRoundStatistics> macpo_round(std::span<GaussianPolicy> policies
   }
   return sequential_round(policies, batches, order, [&](int agent, const CorrectionFactor& factor) {
     const auto k = static_cast<std::size_t>(agent);
-    return macpo_agent_step(policies[k], batches[k], factor, constraint_violations[k], config, mpi).diagnostics;
+    return macpo_agent_step(*policies[k], batches[k], factor, constraint_violations[k], config, mpi).diagnostics;
   });
 }
 

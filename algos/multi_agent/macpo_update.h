@@ -1,5 +1,5 @@
 // MACPO, multi-agent constrained policy optimisation (Gu et al. 2021, "Multi-Agent Constrained
-// Policy Optimisation", alg. 1; SafePO's safepo/multi_agent/macpo.py): HATRPO's sequential round
+// Policy Optimisation"; SafePO's safepo/multi_agent/macpo.py): HATRPO's sequential round
 // in a random order (sequential_order.h, sequential_round.h), each agent's step a CPO step
 // (algos/trust_region/cpo.h, single_constraint_cpo_update: its case analysis, recovery branch
 // and constrained line search, unchanged) on the agent's own batch with
@@ -53,8 +53,8 @@ MacpoAgentStep macpo_agent_step(GaussianPolicy& policy, const AgentBatch& batch,
                                 double constraint_violation, const RunConfig& config, const MpiContext& mpi);
 
 // One MACPO round: macpo_agent_step for each agent in `order`, agent k with constraint_violations[k].
-std::vector<AgentRoundStatistics> macpo_round(std::span<GaussianPolicy> policies, std::span<const AgentBatch> batches,
-                                              std::span<const int> order,
+std::vector<AgentRoundStatistics> macpo_round(std::span<GaussianPolicy* const> policies,
+                                              std::span<const AgentBatch> batches, std::span<const int> order,
                                               std::span<const double> constraint_violations, const RunConfig& config,
                                               const MpiContext& mpi);
 

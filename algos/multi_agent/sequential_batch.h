@@ -22,9 +22,13 @@ struct AgentBatch {
   Eigen::VectorXd cost_advantages;  // N: A^C_i (MACPO's; HAPPO reads none, zeros will do)
 };
 
-// Throws std::invalid_argument naming the agent and the field unless there is one batch per
-// policy, every batch has the same N > 0 rows in all five fields, and its widths match its
-// policy's d_o and d_a.
-void check_agent_batches(std::span<const AgentBatch> batches, std::span<const GaussianPolicy> policies);
+// Throws std::invalid_argument naming agent `agent` and the field unless all five fields of
+// `batch` have `rows` > 0 rows and its widths match the policy's d_o and d_a.
+void check_agent_batch(const AgentBatch& batch, const GaussianPolicy& policy, std::size_t agent, Eigen::Index rows);
+
+// The same for every agent with agent 0's N, after checking that there is one batch per policy
+// and no policy is null. (The policies are pointers: a family keeps each in its agent's
+// ActorCritic.)
+void check_agent_batches(std::span<const AgentBatch> batches, std::span<GaussianPolicy* const> policies);
 
 }  // namespace bsg::algos

@@ -1,5 +1,5 @@
-// The correction factor of a sequential update (HAPPO, Kuba et al. 2022, eq. 11; MACPO, Gu et
-// al. 2021, alg. 1): once agents i_1 .. i_{m-1} have been updated, sample i of agent i_m's
+// The correction factor of a sequential update (HAPPO, Kuba et al. 2022; MACPO, Gu et al.
+// 2021): once agents i_1 .. i_{m-1} have been updated, sample i of agent i_m's
 // surrogate is weighted by
 //   M_i = prod_{j < m} pi_new^{i_j}(a_i^{i_j} | o_i^{i_j}) / pi_old^{i_j}(a_i^{i_j} | o_i^{i_j})
 // kept here as log M_i = sum_j (log pi_new - log pi_old), so that a long product of ratios

@@ -1,5 +1,5 @@
-// The order of one sequential multi-agent update (HAPPO, Kuba et al. 2022, alg. 1; MACPO, Gu et
-// al. 2021, alg. 1): the agents are updated one after another in a uniformly random permutation,
+// The order of one sequential multi-agent update (HAPPO, Kuba et al. 2022; MACPO, Gu et al.
+// 2021): the agents are updated one after another in a uniformly random permutation,
 // drawn afresh for every update. SafePO draws it with torch.randperm(num_agents) in Runner.train
 // (safepo/multi_agent/happo.py and macpo.py); here it is a Fisher-Yates shuffle
 // (algos/core/shuffle.h) of bsg's own seed stream, so the orders differ from SafePO's.

@@ -25,17 +25,17 @@ Eigen::VectorXd log_probs_of(const GaussianPolicy& policy, const Eigen::MatrixXd
 
 }  // namespace
 
-std::vector<AgentRoundStatistics> sequential_round(std::span<GaussianPolicy> policies,
+std::vector<AgentRoundStatistics> sequential_round(std::span<GaussianPolicy* const> policies,
                                                    std::span<const AgentBatch> batches, std::span<const int> order,
                                                    const AgentUpdate& update_agent) {
-  check_agent_batches(batches, std::span<const GaussianPolicy>(policies.data(), policies.size()));
+  check_agent_batches(batches, policies);
   check_agent_order(order, static_cast<int>(policies.size()));
   if (!update_agent) throw std::invalid_argument("sequential_round: update_agent is empty");
   CorrectionFactor factor(batches.front().observations.rows());
   std::vector<AgentRoundStatistics> statistics;
   for (std::size_t position = 0; position < order.size(); ++position) {
     const int agent = order[position];
-    GaussianPolicy& policy = policies[static_cast<std::size_t>(agent)];
+    GaussianPolicy& policy = *policies[static_cast<std::size_t>(agent)];
     const AgentBatch& batch = batches[static_cast<std::size_t>(agent)];
     const Eigen::MatrixXd means_before = policy_means(policy, batch.observations);
     const Eigen::VectorXd log_probs_before = log_probs_of(policy, means_before, batch);

@@ -29,13 +29,13 @@ struct AgentRoundStatistics {
   std::vector<NamedScalar> diagnostics;  // what its update reported (its algorithm's columns)
 };
 
-// The agent's step: changes policies[agent] given M; returns its columns.
+// The agent's step: changes *policies[agent] given M; returns its columns.
 using AgentUpdate = std::function<std::vector<NamedScalar>(int agent, const CorrectionFactor& factor)>;
 
 // Runs one round. Throws std::invalid_argument naming the problem if the batches do not fit the
 // policies (check_agent_batches) or `order` is not a permutation of the agents; statistics in
 // the round's order.
-std::vector<AgentRoundStatistics> sequential_round(std::span<GaussianPolicy> policies,
+std::vector<AgentRoundStatistics> sequential_round(std::span<GaussianPolicy* const> policies,
                                                    std::span<const AgentBatch> batches, std::span<const int> order,
                                                    const AgentUpdate& update_agent);
 

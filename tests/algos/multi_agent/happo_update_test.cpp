@@ -114,7 +114,7 @@ TEST(HappoWithOneAgent, IsPpoBitForBit) {
   Rng rng(9);
   const std::vector<int> order = sequential_agent_order(1, 0, 0);
   const std::vector<AgentRoundStatistics> statistics =
-      happo_round(policies, ppos, batches, order, testing::single_process(), rng);
+      happo_round(testing::pointers_to(policies), ppos, batches, order, testing::single_process(), rng);
   ASSERT_EQ(statistics.size(), 1u);
   EXPECT_TRUE(testing::bit_identical(policies[0].mean_net().parameters(), reference.policy.mean_net().parameters()));
   EXPECT_EQ(statistics[0].diagnostics, expected.diagnostics);
@@ -127,10 +127,11 @@ TEST(HappoRound, RefusesAMissingOrMiscountedPpo) {
   const std::vector<AgentBatch> batches{agent.batch};
   const std::vector<int> order{0};
   Rng rng(1);
-  std::vector<Ppo*> none;
-  EXPECT_THROW(happo_round(policies, none, batches, order, testing::single_process(), rng), std::invalid_argument);
-  std::vector<Ppo*> null{nullptr};
-  EXPECT_THROW(happo_round(policies, null, batches, order, testing::single_process(), rng), std::invalid_argument);
+  const auto round_with = [&](const std::vector<Ppo*>& ppos) {
+    happo_round(testing::pointers_to(policies), ppos, batches, order, testing::single_process(), rng);
+  };
+  EXPECT_THROW(round_with({}), std::invalid_argument);
+  EXPECT_THROW(round_with({nullptr}), std::invalid_argument);
   AgentBatch short_batch = agent.batch;
   short_batch.old_log_probs = Eigen::VectorXd::Zero(2);
   EXPECT_THROW(happo_clipped_loss(agent.policy, short_batch, CorrectionFactor(6), 0.2), std::invalid_argument);

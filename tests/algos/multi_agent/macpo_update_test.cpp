@@ -59,14 +59,15 @@ struct TwoAgents {
   MacpoAgentStep run(double c) {
     MacpoAgentStep step;
     const std::vector<int> order{0, 1};
-    sequential_round(policies, batches, order, [&](int agent, const CorrectionFactor& factor) {
+    const AgentUpdate update = [&](int agent, const CorrectionFactor& factor) {
       if (agent == 0) {
         policies[0].mean_net().set_parameters(theta_0_new);
         return std::vector<NamedScalar>{};
       }
       step = macpo_agent_step(policies[1], batches[1], factor, c, macpo_config(), testing::single_process());
       return step.diagnostics;
-    });
+    };
+    sequential_round(testing::pointers_to(policies), batches, order, update);
     return step;
   }
 
@@ -182,7 +183,7 @@ TEST(MacpoWithOneAgent, IsCposStepBitForBit) {
     const std::vector<int> order{0};
     const std::vector<double> c{per_step_constraint_violation(mean_episode_cost, 100.0, config.cost_limit)};
     const std::vector<AgentRoundStatistics> statistics =
-        macpo_round(policies, batches, order, c, config, testing::single_process());
+        macpo_round(testing::pointers_to(policies), batches, order, c, config, testing::single_process());
     ASSERT_EQ(statistics.size(), 1u);
     EXPECT_TRUE(
         testing::bit_identical(policies[0].mean_net().parameters(), reference.policy.mean_net().parameters()));
@@ -195,7 +196,8 @@ TEST(MacpoRound, RefusesAMiscountOfConstraintValues) {
   TwoAgents agents;
   const std::vector<int> order{1, 0};
   const std::vector<double> one_c{0.1};
-  EXPECT_THROW(macpo_round(agents.policies, agents.batches, order, one_c, macpo_config(), testing::single_process()),
+  const std::vector<GaussianPolicy*> policies = testing::pointers_to(agents.policies);
+  EXPECT_THROW(macpo_round(policies, agents.batches, order, one_c, macpo_config(), testing::single_process()),
                std::invalid_argument);
 }
 

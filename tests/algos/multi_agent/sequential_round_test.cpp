@@ -53,13 +53,14 @@ TEST(SequentialRound, EachAgentSeesTheRatiosOfTheAgentsBeforeIt) {
   ThreeAgents agents;
   const std::vector<int> order{2, 0, 1};
   std::vector<Eigen::VectorXd> seen(3);
+  const AgentUpdate set_by_hand = [&](int agent, const CorrectionFactor& factor) {
+    seen[static_cast<std::size_t>(agent)] = factor.factor();
+    agents.policies[static_cast<std::size_t>(agent)].mean_net().set_parameters(
+        agents.theta_new[static_cast<std::size_t>(agent)]);
+    return std::vector<NamedScalar>{{"agent", static_cast<double>(agent)}};
+  };
   const std::vector<AgentRoundStatistics> statistics =
-      sequential_round(agents.policies, agents.batches, order, [&](int agent, const CorrectionFactor& factor) {
-        seen[static_cast<std::size_t>(agent)] = factor.factor();
-        agents.policies[static_cast<std::size_t>(agent)].mean_net().set_parameters(
-            agents.theta_new[static_cast<std::size_t>(agent)]);
-        return std::vector<NamedScalar>{{"agent", static_cast<double>(agent)}};
-      });
+      sequential_round(testing::pointers_to(agents.policies), agents.batches, order, set_by_hand);
 
   std::vector<Eigen::VectorXd> ratios;
   for (std::size_t k = 0; k < 3; ++k) {
@@ -132,29 +133,37 @@ TEST(SequentialRound, RefusesMismatchedBatchesWithOneLine) {
   };
   const AgentUpdate nothing = [](int, const CorrectionFactor&) { return std::vector<NamedScalar>{}; };
   const std::vector<int> order{0, 1, 2};
+  const auto round_of = [&](ThreeAgents& agents) {
+    return [&] { sequential_round(testing::pointers_to(agents.policies), agents.batches, order, nothing); };
+  };
   {
     ThreeAgents agents;
     agents.batches[1].advantages = Eigen::VectorXd::Zero(kSamples + 1);
-    const std::string message = message_of([&] { sequential_round(agents.policies, agents.batches, order, nothing); });
+    const std::string message = message_of(round_of(agents));
     EXPECT_NE(message.find("agent 1's advantages has 6 rows"), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos);
   }
   {
     ThreeAgents agents;
     agents.batches[2].actions = Eigen::MatrixXd::Zero(kSamples, 3);
-    const std::string message = message_of([&] { sequential_round(agents.policies, agents.batches, order, nothing); });
+    const std::string message = message_of(round_of(agents));
     EXPECT_NE(message.find("agent 2's batch holds 1-d observations and 3-d actions"), std::string::npos) << message;
   }
   {
     ThreeAgents agents;
     agents.batches.pop_back();
-    const std::string message = message_of([&] { sequential_round(agents.policies, agents.batches, order, nothing); });
+    const std::string message = message_of(round_of(agents));
     EXPECT_NE(message.find("2 agent batches for 3 policies"), std::string::npos) << message;
   }
   {
     ThreeAgents agents;
+    std::vector<GaussianPolicy*> with_null = testing::pointers_to(agents.policies);
+    with_null[1] = nullptr;
+    const std::string message = message_of([&] { sequential_round(with_null, agents.batches, order, nothing); });
+    EXPECT_NE(message.find("agent 1's policy is null"), std::string::npos) << message;
     const std::vector<int> bad_order{0, 1, 1};
-    EXPECT_THROW(sequential_round(agents.policies, agents.batches, bad_order, nothing), std::invalid_argument);
+    EXPECT_THROW(sequential_round(testing::pointers_to(agents.policies), agents.batches, bad_order, nothing),
+                 std::invalid_argument);
     EXPECT_THROW(CorrectionFactor(2).include_agent(vector_of({1.0}), vector_of({1.0, 2.0})), std::invalid_argument);
   }
 }

@@ -86,6 +86,13 @@ inline algos::AgentBatch linear_batch(const Eigen::MatrixXd& observations, int a
   return batch;
 }
 
+// Pointers to each policy, as the rounds take them.
+inline std::vector<algos::GaussianPolicy*> pointers_to(std::vector<algos::GaussianPolicy>& policies) {
+  std::vector<algos::GaussianPolicy*> pointers;
+  for (algos::GaussianPolicy& policy : policies) pointers.push_back(&policy);
+  return pointers;
+}
+
 inline Eigen::VectorXd vector_of(std::initializer_list<double> values) {
   Eigen::VectorXd v(static_cast<Eigen::Index>(values.size()));
   Eigen::Index i = 0;
