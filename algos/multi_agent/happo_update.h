@@ -10,8 +10,8 @@
 // advantages are M A. With one agent (M = 1) HAPPO is PPO.
 //
 // SafePO computes -sum(factor * min(surr1, surr2)).mean() with the factor detached: the same loss
-// and gradient. Its entropy bonus (entropy_coef, 0 in its configs for these tasks but MA-MuJoCo's
-// 0.01) is not part of bsg's PPO and not here.
+// and gradient. Its entropy bonus (entropy_coef: 0 in marl_cfg/happo/config.yaml, 0.01 in its
+// mamujoco block) is not part of bsg's PPO and not here.
 #pragma once
 
 #include <Eigen/Core>
