@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <map>
+#include <utility>
 #include <sstream>
 #include <stdexcept>
 
@@ -10,6 +12,9 @@
 
 namespace bsg::render {
 namespace {
+
+// A disc of many episodes stops growing here, so that it hides few of its neighbours.
+constexpr double kLargestRadius = 15.0;
 
 void put(Image& image, int x, int y, int r, int g, int b) {
   if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
@@ -101,14 +106,28 @@ Image scatter_plot(const std::vector<double>& xs, const std::vector<double>& ys,
       if ((y / 6) % 2 == 0) put(image, px(*options.vertical_line), y, 220, 30, 30);
     }
   }
-  // The points: filled discs of radius 3.
-  for (std::size_t i = 0; i < xs.size(); ++i) {
-    const int cx = px(xs[i]), cy = py(ys[i]);
-    for (int dy = -3; dy <= 3; ++dy) {
-      for (int dx = -3; dx <= 3; ++dx) {
-        if (dx * dx + dy * dy <= 9) put(image, cx + dx, cy + dy, 31, 119, 180);
+  // The points: filled discs of radius 3. Episodes landing on one pixel (a task whose returns
+  // and costs are whole numbers, such as Gather's) make one disc whose area grows with their
+  // count, so that a heavy point does not look like a single episode; its rim is drawn dark.
+  std::map<std::pair<int, int>, int> counts;
+  for (std::size_t i = 0; i < xs.size(); ++i) ++counts[{px(xs[i]), py(ys[i])}];
+  for (const auto& [centre, count] : counts) {
+    const double radius = std::min(kLargestRadius, 3.0 * std::sqrt(static_cast<double>(count)));
+    const int reach = static_cast<int>(std::ceil(radius));
+    for (int dy = -reach; dy <= reach; ++dy) {
+      for (int dx = -reach; dx <= reach; ++dx) {
+        const double distance = std::sqrt(static_cast<double>(dx * dx + dy * dy));
+        if (distance > radius) continue;
+        const bool rim = count > 1 && distance > radius - 1.0;
+        put(image, centre.first + dx, centre.second + dy, rim ? 8 : 31, rim ? 48 : 119, rim ? 107 : 180);
       }
     }
+  }
+  // Their counts, beside the discs (after all discs, so that no disc covers a count).
+  for (const auto& [centre, count] : counts) {
+    if (count < 2) continue;
+    const int reach = static_cast<int>(std::ceil(std::min(kLargestRadius, 3.0 * std::sqrt(static_cast<double>(count)))));
+    draw_text(image, centre.first + reach + 3, centre.second - reach - 4, std::to_string(count), 1, 8, 48, 107);
   }
   draw_text(image, left + plot_w / 2 - text_width(options.x_label, scale) / 2, options.height - 35, options.x_label,
             scale, 0, 0, 0);

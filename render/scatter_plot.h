@@ -1,8 +1,10 @@
 // A scatter plot as an RGB image (for `bsg dataset info --plot`: DSRL's
 // picture of a dataset, each episode's cost return against its reward
 // return). Axes with about five round ticks each, labelled in the caption
-// font (render/caption.h), points as small dots, and an optional dashed
-// vertical line (the cost limit).
+// font (render/caption.h), points as small dots (points falling on one pixel
+// as one disc, its area proportional to their count up to a radius of 15
+// pixels, the count written beside it), and an optional dashed vertical line
+// (the cost limit).
 #pragma once
 
 #include <optional>

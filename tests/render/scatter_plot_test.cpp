@@ -1,5 +1,6 @@
 // The scatter plot of `bsg dataset info --plot` (render/scatter_plot.h): round
-// ticks by hand, and a point drawn where the axes put it.
+// ticks by hand, a point drawn where the axes put it, and coinciding episodes
+// drawn as one disc of their count's area.
 #include "render/scatter_plot.h"
 
 #include <gtest/gtest.h>
@@ -40,6 +41,19 @@ TEST(ScatterPlot, PointsLandWhereTheAxesSay) {
   EXPECT_FALSE(is_point_blue(image, 300, 150));
   EXPECT_THROW(scatter_plot({0.0}, {}, options), std::invalid_argument);
   EXPECT_THROW(scatter_plot({0.0}, {std::nan("")}, options), std::invalid_argument);
+}
+
+TEST(ScatterPlot, EpisodesOnOnePixelMakeADiscWhoseAreaCountsThem) {
+  ScatterPlotOptions options;
+  // The axes of the test above: (0, 30) at pixel (122, 56), (25, -10) at (678, 448).
+  // Four episodes at (0, 30): radius 3 sqrt(4) = 6; one at (25, -10): radius 3.
+  const Image image = scatter_plot({0.0, 0.0, 0.0, 0.0, 25.0}, {30.0, 30.0, 30.0, 30.0, -10.0}, options);
+  EXPECT_TRUE(is_point_blue(image, 122 + 4, 56));   // inside the rim of the four
+  EXPECT_FALSE(is_point_blue(image, 122 + 7, 56));  // beyond radius 6
+  const std::uint8_t* rim = image.pixel(122 + 6, 56);  // its dark rim
+  EXPECT_LT(rim[2], 180);
+  EXPECT_TRUE(is_point_blue(image, 678 + 3, 448));  // a single episode: radius 3, no rim
+  EXPECT_FALSE(is_point_blue(image, 678 + 4, 448));
 }
 
 }  // namespace
