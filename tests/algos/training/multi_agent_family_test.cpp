@@ -139,7 +139,7 @@ TEST(MultiAgentFamily, EnvAndAlgOfDifferentFamiliesAreRefusedInOneLine) {
   EXPECT_NE(single.find("single-agent environment"), std::string::npos) << single;
   const std::string multi = message({"env_id=SafetyBallCircle2-v0", "alg=ppo-lag"});
   EXPECT_NE(multi.find("is a multi-agent environment"), std::string::npos) << multi;
-  const std::string constraints = message({"env_id=SafetyBallCircle2-v0", "alg=mappo-lag", "constraints=[{limit: 3}]"});
+  const std::string constraints = message({"env_id=SafetyBallCircle2-v0", "alg=mappo-lag", "constraints=[{terms: all, limit: 3}]"});
   EXPECT_NE(constraints.find("not supported by alg 'mappo-lag'"), std::string::npos) << constraints;
   for (const std::string& text : {single, multi, constraints}) EXPECT_EQ(text.find('\n'), std::string::npos) << text;
 }
