@@ -41,7 +41,7 @@ std::vector<ConfigKeyRow> leading_rows() {
          "environment id, e.g. SafetyBallCircle-v0 (report Table 3)"),
     choice("alg", enum_access<&R::alg>(), kAlgorithmNames, L::run, all,
            "algorithm: trpo, lag-trpo (TRPO-L), cpo, pdo, pcpo, the first-order ppo, ppo-lag, focops, cup, or the "
-           "off-policy sac, td3, ddpg, sac-lag, td3-lag, ddpg-lag, or the multi-agent mappo, mappo-lag (docs/multi_agent.md)"),
+           "off-policy sac, td3, ddpg, sac-lag, td3-lag, ddpg-lag"),
     integer("seed", field<&R::seed>(), L::run, N::closed(0, 4294967295.0), all,
             "base seed; per-rank and per-environment seeds are derived from it (seeding.h)"),
     text("log_dir", field<&R::log_dir>(), L::run,
