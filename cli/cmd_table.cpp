@@ -6,6 +6,8 @@
 // their configurations; their files then go to --output, which is required.
 // --compare report also prints each cell beside the report's Table 1
 // (configs/report_table1.csv) and writes table1_compare.md and .csv.
+// A sweep with offline runs also gets their normalised scores in DSRL's format
+// (experiments/offline_scores.h: offline_table.md and .csv).
 // --ci adds the results with their uncertainty across seeds (experiments/
 // result_intervals.h, training_intervals.h, cost_limit_frontier.h) as CSV
 // files beside table1.csv; --frontier requires a cost-limit frontier.
@@ -21,6 +23,7 @@
 #include "common/atomic_file.h"
 #include "configs_search.h"
 #include "experiments/cost_limit_frontier.h"
+#include "experiments/offline_scores.h"
 #include "experiments/report_comparison.h"
 #include "experiments/result_intervals.h"
 #include "experiments/result_intervals_render.h"
@@ -66,7 +69,7 @@ void write_intervals(const TableOptions& options, const std::vector<experiments:
 
 int run_table(const TableOptions& options) {
   const experiments::SelectionScore score = experiments::parse_selection_score(options.score);
-  if (options.intervals || options.frontier) experiments::check_bootstrap_options(options.bootstrap);
+  experiments::check_bootstrap_options(options.bootstrap);
   if (options.sweep_dirs.size() > 1 && options.output_dir.empty()) {
     throw std::runtime_error("bsg table: a table of " + std::to_string(options.sweep_dirs.size()) +
                              " sweeps needs --output DIR (it belongs to none of them)");
@@ -89,6 +92,12 @@ int run_table(const TableOptions& options) {
   std::cout << experiments::table1_markdown(table);
   std::cerr << "bsg table: wrote table1.md, table1.csv, table1.tex and configurations.csv to "
             << out.string() << "\n";
+  const experiments::OfflineScores offline = experiments::build_offline_scores(results, options.bootstrap);
+  if (!offline.rows.empty()) {
+    experiments::write_offline_score_files(offline, out);
+    std::cout << "\n" << experiments::offline_scores_markdown(offline);
+    std::cerr << "bsg table: wrote offline_table.md and offline_table.csv to " << out.string() << "\n";
+  }
   if (options.intervals || options.frontier) write_intervals(options, results, table, out);
   if (options.compare == "report") {
     const std::filesystem::path configs = find_configs(options.configs_dir, {}, "").dir;

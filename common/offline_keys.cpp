@@ -26,8 +26,8 @@ std::vector<ConfigKeyRow> offline_rows() {
   return {
     // --- offline (docs/datasets.md#offline-runs) ---
     text("dataset", field<&R::offline, &K::dataset>(), L::run,
-         "offline: the HDF5 dataset (DSRL's layout, e.g. from bsg collect) the policy learns from; its env_id "
-         "must be the run's", kOffline),
+         "offline: the HDF5 dataset (DSRL's layout, e.g. from bsg collect) the policy learns from, or a directory "
+         "holding <env_id>.hdf5 itself or one level down (as bsg dataset make writes); its env_id must be the run's", kOffline),
     integer("updates_per_epoch", field<&R::offline, &K::updates_per_epoch>(), L::algorithm, N::closed(1, kIntMax), kOffline,
             "offline: gradient steps per epoch, each on batch_size rows drawn uniformly with replacement"),
     integer("eval_every", field<&R::offline, &K::eval_every>(), L::algorithm, N::closed(1, kIntMax), kOffline,

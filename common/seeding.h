@@ -34,6 +34,7 @@ enum class SeedStream : std::uint64_t {
   environment = 4,
   evaluation_environment = 5,
   evaluation_action_noise = 6,  // the sampled evaluation's eps (sampled_evaluation)
+  agent_order = 7,  // the order of a sequential multi-agent update (HAPPO, MACPO), the same on every rank
 };
 
 // Seed of stream `stream` on MPI rank `rank`, element `index` (e.g. the

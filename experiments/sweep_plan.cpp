@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "algos/training/run_directory.h"
+#include "common/algorithms.h"
 #include "common/atomic_file.h"
 #include "common/file_reading.h"
 #include "common/config_error.h"
@@ -134,6 +135,8 @@ std::string dry_run_listing(const SweepPlan& plan) {
   long long total = 0;
   long long logged = 0;
   long long evaluation = 0;
+  long long offline_updates = 0;
+  long long offline_updates_left = 0;
   std::size_t counts[3] = {0, 0, 0};
   std::set<std::string> configurations;
   for (const PlannedRun& run : plan.runs) {
@@ -143,11 +146,21 @@ std::string dry_run_listing(const SweepPlan& plan) {
     const char* state = run.state == RunState::finished    ? "finished"
                         : run.state == RunState::resumable ? "resume"
                                                            : "new";
+    // An offline run steps no environment while it learns: its cost is its gradient updates.
+    const bool offline = is_offline(run.config.alg);
+    const long long updates = static_cast<long long>(run.config.epochs) * run.config.offline.updates_per_epoch;
     std::snprintf(line, sizeof line, "%-9s %5d/%-5d %15s  ", state, epochs_done, run.config.epochs,
-                  format_count(run.training_steps()).c_str());
+                  offline ? (format_count(updates) + " upd").c_str() : format_count(run.training_steps()).c_str());
     text += line + run.dir.string() + "\n";
-    total += run.training_steps();
-    logged += run.steps_logged();
+    if (offline) {
+      offline_updates += updates;
+      if (run.state != RunState::finished) {
+        offline_updates_left += updates - static_cast<long long>(epochs_done) * run.config.offline.updates_per_epoch;
+      }
+    } else {
+      total += run.training_steps();
+      logged += run.steps_logged();
+    }
     if (run.state != RunState::finished) evaluation += run.evaluation_steps();
     ++counts[static_cast<int>(run.state)];
     configurations.insert(run.run.relative_dir().parent_path().string());
@@ -158,6 +171,10 @@ std::string dry_run_listing(const SweepPlan& plan) {
           std::to_string(counts[static_cast<int>(RunState::fresh)]) + " new\n";
   text += "cost: " + format_count(total) + " env steps of training in all, " + format_count(total - logged) +
           " still to run, plus at most " + format_count(evaluation) + " evaluation steps\n";
+  if (offline_updates > 0) {
+    text += "offline runs (upd): " + format_count(offline_updates) + " gradient updates in all, " +
+            format_count(offline_updates_left) + " still to run, no env step while learning\n";
+  }
   return text;
 }
 

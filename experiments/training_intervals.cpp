@@ -7,6 +7,7 @@
 #include <optional>
 #include <set>
 
+#include "common/algorithms.h"
 #include "experiments/progress_columns.h"
 #include "experiments/statistics/seed_summary.h"
 
@@ -141,7 +142,8 @@ TrainingIntervals build_training_intervals(const std::vector<ConfigurationResult
       const std::optional<std::vector<double>> cumulative = last_values(logs, channel.cumulative_column);
       const std::optional<std::vector<double>> rate = last_values(logs, channel.rate_column);
       if (!cumulative || !rate) {
-        out.notes.push_back(base.config_dir + ": progress.csv without " + channel.cumulative_column +
+        // An offline run steps no environment while it learns: it has no training cost to miss.
+        if (!is_offline(config.alg)) out.notes.push_back(base.config_dir + ": progress.csv without " + channel.cumulative_column +
                             " (a run from before it); no cumulative cost");
       } else {
         add_rows(out.safety, base, channel.prefix + "cumulative_cost", *cumulative, options);

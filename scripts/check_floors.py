@@ -45,9 +45,11 @@ FLOORS = {
     # Offline data (DSRL's datasets) and the offline algorithms (behaviour cloning): a family room
     # beside the others, below the training room that runs it.
     "algos/offline": ["algos/lagrange", "algos/core", "envs", "envs/description", "common"],
-    "algos/multi_agent": ["algos/lagrange", "algos/core", "envs", "envs/description", "common"],
-    "algos/training": ["algos/multi_agent", "algos/offline", "algos/off_policy", "algos/first_order", "algos/trust_region", "algos/lagrange",
-                       "algos/core", "envs", "envs/description", "common"],
+    # The multi-agent learners' per-agent updates (HAPPO, MACPO): each agent's step is CPO's or PPO's.
+    "algos/multi_agent": ["algos/trust_region", "algos/first_order", "algos/lagrange", "algos/core", "envs",
+                          "envs/description", "common"],
+    "algos/training": ["algos/multi_agent", "algos/offline", "algos/off_policy", "algos/first_order",
+                       "algos/trust_region", "algos/lagrange", "algos/core", "envs", "envs/description", "common"],
     # Beside algos: reads a world and a task's markings and draws them.
     "render": ["envs", "envs/assembly", "envs/tasks", "envs/physics", "envs/description", "common"],
     # The numerics of results with their uncertainty (bootstrap, IQM, profiles):

@@ -1,11 +1,11 @@
 #include "algos/training/run_start.h"
 
 #include <algorithm>
-#include <filesystem>
 #include <new>
 #include <stdexcept>
 #include <string>
 
+#include "algos/offline/dataset_location.h"
 #include "algos/training/make_trainer.h"
 #include "algos/training/run_environment.h"
 #include "common/config_error.h"
@@ -45,7 +45,8 @@ RunConfig resolve_training_config(RunConfigRequest request) {
   check_env_matches_family(config);
   resolve_env_block(config);
   if (is_offline(config.alg) && !config.offline.dataset.empty()) {
-    config.offline.dataset = std::filesystem::absolute(config.offline.dataset).lexically_normal().string();
+    // config.yaml records the file itself, so a resumed run reads what the run began with.
+    config.offline.dataset = locate_dataset(config.offline.dataset, config.env_id).string();
   }
   return config;
 }

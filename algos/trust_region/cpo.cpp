@@ -238,47 +238,61 @@ PolicyUpdateResult Cpo::update_several(const PolicyUpdateInputs& inputs,
   return result;
 }
 
+SingleConstraintCpoUpdate single_constraint_cpo_update(const PolicyUpdateInputs& inputs, double constraint_violation,
+                                                       const RunConfig& config) {
+  const double c = constraint_violation;
+  SingleConstraintCpoUpdate update;
+  update.start = begin_policy_update(inputs);               // l_R(theta_old), L_C(theta_old)
+  update.gradients = averaged_policy_gradients(inputs);     // g, b
+
+  FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
+                             fisher_vector_product_options(config));
+  CpoStepOptions step_options;
+  step_options.target_kl = config.trust_region.target_kl;
+  step_options.r_sign = config.trust_region.cpo_r_sign;
+  step_options.clamp_a = config.trust_region.cpo_clamp_a;
+  step_options.conjugate_gradient = conjugate_gradient_options(config);
+  update.step = cpo_step(as_linear_operator(fisher), update.gradients.reward, update.gradients.cost, c, step_options);
+
+  // Line search B; the reward test only where the current policy is feasible (cases 2, 3, 4).
+  ConstrainedLineSearchInputs search_inputs;
+  search_inputs.reward_loss_old = -update.start.before.reward_surrogate;
+  search_inputs.cost_surrogate_old = update.start.before.cost_surrogate;
+  search_inputs.constraint_violation = c;
+  search_inputs.require_reward_improvement = starts_feasible(update.step.optim_case);
+  update.search = constrained_line_search(update.step.full_step, search_inputs,
+                                          constrained_evaluator(inputs, update.start.theta_old), inputs.mpi,
+                                          line_search_options(config));
+  apply_line_search_result(inputs.policy, update.start.theta_old, update.search);
+  return update;
+}
+
+std::vector<NamedScalar> single_constraint_cpo_diagnostics(const PolicyUpdateInputs& inputs,
+                                                           const SingleConstraintCpoUpdate& update) {
+  const CpoStep& step = update.step;
+  std::vector<NamedScalar> diagnostics = common_diagnostics(inputs, update.start.before, 1.0, 0.0);
+  append_trpo_diagnostics(diagnostics, update.search, step.trpo_step_size, update.gradients.reward.norm(), step.q,
+                          step.reward_direction.norm());
+  append_cpo_diagnostics(diagnostics, {.cost_gradient_norm = update.gradients.cost.norm(),
+                                       .A = step.A,
+                                       .B = step.B,
+                                       .q = step.q,
+                                       .r = step.r,
+                                       .s = step.s,
+                                       .lambda_star = step.lambda_star,
+                                       .nu_star = step.nu_star,
+                                       .optim_case = static_cast<double>(step.optim_case)});
+  return diagnostics;
+}
+
 PolicyUpdateResult Cpo::update(const PolicyUpdateInputs& inputs) {
   const std::vector<ConstraintEstimate> constraints = constraint_estimates(inputs, config());
   if (constraints.size() > 1) return update_several(inputs, constraints);
   const double c = per_step_constraint_violation(constraints.front().mean_episode_cost, inputs.mean_episode_length,
                                                  constraints.front().limit);  // c = (J_C - d) / (L + 1e-8)
-  const PolicyUpdateStart start = begin_policy_update(inputs);          // l_R(theta_old), L_C(theta_old)
-  const PolicyGradients gradients = averaged_policy_gradients(inputs);  // g, b
-
-  FisherVectorProduct fisher(inputs.policy, inputs.surrogate.observations(), inputs.mpi,
-                             fisher_vector_product_options(config()));
-  CpoStepOptions step_options;
-  step_options.target_kl = config().trust_region.target_kl;
-  step_options.r_sign = config().trust_region.cpo_r_sign;
-  step_options.clamp_a = config().trust_region.cpo_clamp_a;
-  step_options.conjugate_gradient = conjugate_gradient_options(config());
-  const CpoStep step = cpo_step(as_linear_operator(fisher), gradients.reward, gradients.cost, c, step_options);
-
-  // Line search B; the reward test only where the current policy is feasible (cases 2, 3, 4).
-  ConstrainedLineSearchInputs search_inputs;
-  search_inputs.reward_loss_old = -start.before.reward_surrogate;
-  search_inputs.cost_surrogate_old = start.before.cost_surrogate;
-  search_inputs.constraint_violation = c;
-  search_inputs.require_reward_improvement = starts_feasible(step.optim_case);
-  const LineSearchResult search =
-      constrained_line_search(step.full_step, search_inputs, constrained_evaluator(inputs, start.theta_old),
-                              inputs.mpi, line_search_options(config()));
-  apply_line_search_result(inputs.policy, start.theta_old, search);
-
+  const SingleConstraintCpoUpdate update = single_constraint_cpo_update(inputs, c, config());
   PolicyUpdateResult result;
-  result.diagnostics = common_diagnostics(inputs, start.before, 1.0, 0.0);
-  append_trpo_diagnostics(result.diagnostics, search, step.trpo_step_size, gradients.reward.norm(),
-                          step.q, step.reward_direction.norm());
-  append_cpo_diagnostics(result.diagnostics, {.cost_gradient_norm = gradients.cost.norm(),
-                                               .A = step.A,
-                                               .B = step.B,
-                                               .q = step.q,
-                                               .r = step.r,
-                                               .s = step.s,
-                                               .lambda_star = step.lambda_star,
-                                               .nu_star = step.nu_star,
-                                               .optim_case = static_cast<double>(step.optim_case)});
+  result.diagnostics = single_constraint_cpo_diagnostics(inputs, update);
   return result;
 }
 

@@ -114,6 +114,22 @@ std::vector<NamedScalar> several_constraints_diagnostics(const PolicyUpdateInput
                                                          const std::vector<NamedScalar>& extra,
                                                          const Eigen::VectorXd& nu);
 
+// Steps 1-8 with one constraint for a given c: Cpo::update with c = (J_C - d) / (L + 1e-8), and
+// MACPO's agent step (algos/multi_agent/macpo_agent_step.h) with the agent's corrected surrogate
+// and its own c. On return the policy holds theta_old + the accepted step (theta_old bit for bit
+// if none was accepted).
+struct SingleConstraintCpoUpdate {
+  PolicyUpdateStart start;    // theta_old, l_R(theta_old), L_C(theta_old)
+  PolicyGradients gradients;  // g, b
+  CpoStep step;
+  LineSearchResult search;
+};
+SingleConstraintCpoUpdate single_constraint_cpo_update(const PolicyUpdateInputs& inputs, double constraint_violation,
+                                                       const RunConfig& config);
+// Its columns: the common, TRPO and CPO ones (Cpo::diagnostic_names() with one constraint).
+std::vector<NamedScalar> single_constraint_cpo_diagnostics(const PolicyUpdateInputs& inputs,
+                                                           const SingleConstraintCpoUpdate& update);
+
 class Cpo final : public OnPolicyAlgorithm {
  public:
   explicit Cpo(const RunConfig& config);

@@ -257,6 +257,20 @@ TEST(Sweep, TheReportGridCostsWhatTable3AndTheAppendixSay) {
   EXPECT_NE(result.output.find("25 600 000 env steps of training in all"), std::string::npos) << result.output;
 }
 
+TEST(Sweep, AnOfflineGridCostsGradientUpdatesAndNoEnvStep) {
+  const auto result = run_bsg("sweep " + (kSource / "configs" / "benchmarks" / "offline_small.yaml").string() +
+                              " --dry-run --out /tmp/bsg_never_created");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  // 5 learners x 6 datasets x 3 seeds, each 40 epochs x 200 updates.
+  EXPECT_NE(result.output.find("90 runs of 30 configurations"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("8 000 upd  /tmp/bsg_never_created/SafetyCarRun-v0/cpq/default/seed=2"),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("cost: 0 env steps of training in all"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("720 000 gradient updates in all, 720 000 still to run"), std::string::npos)
+      << result.output;
+}
+
 TEST(Sweep, AnUnknownKeyInTheGridIsNamedWithItsLine) {
   TemporaryDirectory temp;
   const fs::path grid = temp.path() / "bad.yaml";

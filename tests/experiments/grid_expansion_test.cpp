@@ -240,5 +240,28 @@ TEST(GridExpansion, TheAllTaskBenchmarkHasEveryConstrainedOnlineLearnerOnTheSixt
   }
 }
 
+TEST(GridExpansion, TheOfflineBenchmarksRunEveryOfflineLearnerOnTheBallAndCarDatasets) {
+  std::set<std::string> offline_learners;
+  for (const AlgorithmInfo& info : kAlgorithms) {
+    if (is_offline(info.alg)) offline_learners.insert(std::string(info.name));
+  }
+  for (const char* file : {"offline.yaml", "offline_small.yaml"}) {
+    const std::vector<GridRun> runs = expand_grid(load_grid_file(kConfigs / "benchmarks" / file));
+    std::set<std::string> algorithms;
+    std::set<std::string> families;
+    for (const GridRun& run : runs) {
+      algorithms.insert(std::string(algorithm_info(run.alg).name));
+      const RunConfig config = resolve_grid_run(run, kConfigs, file);
+      EXPECT_FALSE(config.offline.dataset.empty()) << run.relative_dir();
+      families.insert(run.env_id.substr(6, run.env_id.find('-') - 6));  // "Safety" + agent and task
+    }
+    EXPECT_EQ(algorithms, offline_learners) << file;
+    // At least Circle, Run, one Reach and one Gather on the Ball, and Circle and Run on the Car.
+    for (const char* family : {"BallCircle", "BallRun", "BallReach", "BallGather", "CarCircle", "CarRun"}) {
+      EXPECT_EQ(families.count(family), 1u) << file << " " << family;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace bsg::experiments
