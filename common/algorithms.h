@@ -22,14 +22,16 @@ enum class Algorithm {
   trpo, lag_trpo, cpo, pdo, pcpo, ppo, ppo_lag, focops, cup, sac, td3, ddpg, sac_lag, td3_lag, ddpg_lag, crpo,
   bc_all, bc_safe, p3o, ipo, rcpo, cpq,
   ppo_saute, trpo_saute, ppo_early_terminated, trpo_early_terminated,
-  ppo_simmer, trpo_simmer, bcq_lag, coptidice
+  ppo_simmer, trpo_simmer, bcq_lag, coptidice,
+  mappo, mappo_lag
 };
 
 // Which update the policy takes: the natural-gradient step with a line search
 // (algos/trust_region), minibatch Adam passes (algos/first_order), or gradient
 // steps on batches from a replay buffer with critics of Q (algos/off_policy), or gradient steps on
-// batches of a fixed dataset that never touch an environment (algos/offline).
-enum class AlgorithmFamily { trust_region, first_order, off_policy, offline };
+// batches of a fixed dataset that never touch an environment (algos/offline), or PPO's clipped
+// step for each of several agents acting together in a multi-agent environment (algos/multi_agent).
+enum class AlgorithmFamily { trust_region, first_order, off_policy, offline, multi_agent };
 
 // Everything outside the algorithm's own files needs to know of it: the run checks, the
 // key table's families, Table 1's labels and PID columns, and the plots (`bsg table`
@@ -97,6 +99,11 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
     // Stationary distribution correction with a cost bound (Lee et al. 2022, OSRL's coptidice.py): its
     // multiplier is its own dual variable (coptidice_scalar_lr), not the Lagrangian keys'.
     {Algorithm::coptidice, "coptidice", "COptiDICE", "",        AlgorithmFamily::offline,      true,  false, false, "olivedrab"},
+    // Multi-agent PPO with centralised critics (Yu et al. 2022, "The Surprising Effectiveness of PPO in
+    // Cooperative Multi-Agent Games") and its Lagrangian form (Gu et al. 2021, "Multi-Agent Constrained
+    // Policy Optimisation"; SafePO's multi_agent/mappo.py and mappolag.py), on the multi-agent ids only.
+    {Algorithm::mappo,    "mappo",    "MAPPO",    "",           AlgorithmFamily::multi_agent,  false, false, true,  "darkgreen"},
+    {Algorithm::mappo_lag, "mappo-lag", "MAPPO-L", "MAPPO-L-PID", AlgorithmFamily::multi_agent, true,  true,  true,  "darkred"},
 });
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }
@@ -132,6 +139,9 @@ constexpr bool is_off_policy(Algorithm alg) {
 
 // Whether the algorithm learns from a fixed dataset (algos/offline) without acting in an environment.
 constexpr bool is_offline(Algorithm alg) { return algorithm_info(alg).family == AlgorithmFamily::offline; }
+
+// Whether the algorithm trains several agents on a multi-agent environment (algos/multi_agent).
+constexpr bool is_multi_agent(Algorithm alg) { return algorithm_info(alg).family == AlgorithmFamily::multi_agent; }
 
 // Whether the algorithm keeps Lagrange multipliers (and so can use the PID rule).
 constexpr bool has_lagrange_multiplier(Algorithm alg) { return algorithm_info(alg).lagrange_multiplier; }

@@ -98,6 +98,7 @@ inline constexpr AlgorithmSet kTrustRegion = algorithms_in(AlgorithmFamily::trus
 inline constexpr AlgorithmSet kFirstOrder = algorithms_in(AlgorithmFamily::first_order);
 inline constexpr AlgorithmSet kOffPolicy = algorithms_in(AlgorithmFamily::off_policy);
 inline constexpr AlgorithmSet kOffline = algorithms_in(AlgorithmFamily::offline);
+inline constexpr AlgorithmSet kMultiAgent = algorithms_in(AlgorithmFamily::multi_agent);
 inline constexpr AlgorithmSet kOnPolicy = kTrustRegion | kFirstOrder;
 
 // Row builders, one per value type.
@@ -152,5 +153,6 @@ std::vector<ConfigKeyRow> first_order_rows();           // first_order_keys.cpp
 std::vector<ConfigKeyRow> off_policy_rows();            // off_policy_keys.cpp
 std::vector<ConfigKeyRow> offline_rows();               // offline_keys.cpp
 std::vector<ConfigKeyRow> budget_rows();                // budget_keys.cpp
+std::vector<ConfigKeyRow> multi_agent_rows();           // multi_agent_keys.cpp
 
 }  // namespace bsg::key_rows

@@ -12,6 +12,7 @@
 //   off_policy    OffPolicyKeys    common/off_policy_keys.h/.cpp   (sac .. ddpg-lag)
 //   offline       OfflineKeys      common/offline_keys.h/.cpp      (bc-all, bc-safe)
 //   budget        BudgetKeys       common/budget_keys.h/.cpp       (ppo-saute, trpo-saute, ppo-simmer, trpo-simmer)
+//   multi_agent   MultiAgentKeys   common/multi_agent_keys.h/.cpp  (mappo, mappo-lag)
 // In YAML every key is flat (`cg_iters: 10`, not nested under its group).
 //
 // Parameters: every key, its type, where its default comes from, its valid
@@ -35,6 +36,7 @@
 #include "common/budget_keys.h"
 #include "common/constraint_config.h"
 #include "common/first_order_keys.h"
+#include "common/multi_agent_keys.h"
 #include "common/multiplier_keys.h"
 #include "common/off_policy_keys.h"
 #include "common/offline_keys.h"
@@ -112,6 +114,7 @@ struct RunConfig {
   OffPolicyKeys off_policy;        // off-policy learners
   OfflineKeys offline;             // offline learners (the dataset, steps per epoch)
   BudgetKeys budget;               // the budget methods (Saute's discount and unsafe reward, Simmer's controller)
+  MultiAgentKeys multi_agent;      // the multi-agent learners
 
   // --- value networks (docs/algorithms.md#value-fits) ---
   bool use_cost_value_function = false;

@@ -74,7 +74,8 @@ namespace {
 bool uses_on_policy_batches(Algorithm alg) {
   switch (algorithm_info(alg).family) {
     case AlgorithmFamily::trust_region:
-    case AlgorithmFamily::first_order: return true;
+    case AlgorithmFamily::first_order:
+    case AlgorithmFamily::multi_agent: return true;
     case AlgorithmFamily::off_policy:
     case AlgorithmFamily::offline: return false;
   }
@@ -110,11 +111,25 @@ void check_saute_budgets(const RunConfig& config, const ConfigOrigins& origins) 
   }
 }
 
+// The multi-agent learners judge the agents' own cost against cost_limit and build the registered
+// environment as it is (docs/multi_agent.md#learners).
+void check_multi_agent_relations(const RunConfig& config, const ConfigOrigins& origins) {
+  const std::string alg(to_string(config.alg));
+  if (!config.constraints.empty()) {
+    throw ConfigError(origin_of(origins, "constraints") + ": key 'constraints' is not supported by alg '" + alg +
+                      "' (a multi-agent learner constrains each agent's episode cost against cost_limit)");
+  }
+  if (!config.env.empty()) {
+    throw ConfigError(origin_of(origins, "env") + ": key 'env' is not supported by alg '" + alg +
+                      "' (a multi-agent run trains on the registered description of its env_id)");
+  }
+}
+
 // The on-policy algorithms that constrain their cost, as "a, b or c" (the table's order).
 std::string constrained_on_policy_algorithms() {
   std::vector<std::string_view> names;
   for (const AlgorithmInfo& info : kAlgorithms) {
-    if (info.constrained && uses_on_policy_batches(info.alg)) names.push_back(info.name);
+    if (info.constrained && uses_on_policy_batches(info.alg) && !is_multi_agent(info.alg)) names.push_back(info.name);
   }
   std::string text;
   for (std::size_t i = 0; i < names.size(); ++i) {
@@ -135,6 +150,7 @@ void check_run_config_relations(const RunConfig& config, const ConfigOrigins& or
                       ", or give one constraint to judge the policy by");
   }
   if (is_offline(config.alg)) check_offline_relations(config, origins);
+  if (is_multi_agent(config.alg)) check_multi_agent_relations(config, origins);
   if (keeps_saute_budgets(config.alg)) check_saute_budgets(config, origins);
   // Only an on-policy epoch must complete an episode: the off-policy loop's episodes run on across
   // epochs (check_run_config_for_ranks bounds them), the offline family steps no environment.
@@ -221,7 +237,8 @@ TrainingMemoryEstimate estimate_training_memory(const RunConfig& config, int obs
   double buffer_values = 0.0;
   switch (algorithm_info(config.alg).family) {
     case AlgorithmFamily::trust_region:
-    case AlgorithmFamily::first_order: buffer_values = batch * (2.0 * observation_dim + 2.0 * action_dim + 12.0); break;
+    case AlgorithmFamily::first_order:
+    case AlgorithmFamily::multi_agent: buffer_values = batch * (2.0 * observation_dim + 2.0 * action_dim + 12.0); break;
     case AlgorithmFamily::off_policy:
       buffer_values = static_cast<double>(config.off_policy.buffer_size) * (2.0 * observation_dim + action_dim + 4.0);
       break;
@@ -258,6 +275,7 @@ TrainingBuffer training_buffer(const RunConfig& config, int num_ranks) {
   switch (algorithm_info(config.alg).family) {
     case AlgorithmFamily::trust_region:
     case AlgorithmFamily::first_order:
+    case AlgorithmFamily::multi_agent:
       return {"steps_per_epoch = " + std::to_string(config.steps_per_epoch),
               "the rollout buffer (" + std::to_string(config.steps_per_epoch / ranks) + " steps per rank)",
               std::to_string(config.steps_per_epoch / ranks) + " steps per rank",
@@ -355,6 +373,7 @@ void check_run_config_for_ranks(const RunConfig& config, int num_ranks) {
   switch (algorithm_info(config.alg).family) {
     case AlgorithmFamily::trust_region:
     case AlgorithmFamily::first_order:
+    case AlgorithmFamily::multi_agent:
       check_steps_divide(config, ranks, num_ranks);
       check_on_policy_ranks(config, ranks, config.steps_per_epoch / num_ranks);
       return;

@@ -83,9 +83,9 @@ std::vector<ConfigKeyRow> leading_rows() {
     real("gamma", field<&R::gamma>(), L::algorithm, N::open_closed(0, 1),
          all & ~(algorithm_bit(Algorithm::bc_all) | algorithm_bit(Algorithm::bc_safe)),
          "discount factor for rewards and costs"),
-    real("lam", field<&R::lam>(), L::algorithm, N::closed(0, 1), kOnPolicy,
+    real("lam", field<&R::lam>(), L::algorithm, N::closed(0, 1), kOnPolicy | kMultiAgent,
          "GAE lambda for reward advantages"),
-    real("lam_c", field<&R::lam_c>(), L::algorithm, N::closed(0, 1), kOnPolicy,
+    real("lam_c", field<&R::lam_c>(), L::algorithm, N::closed(0, 1), kOnPolicy | kMultiAgent,
          "GAE lambda for cost advantages"),
     boolean("use_exploration_noise_anneal", field<&R::use_exploration_noise_anneal>(), L::algorithm, kOnPolicy,
             "anneal the exploration std: sigma_k = 0.499 (1 - k/E) + 0.01 (else fixed 0.5)"),
@@ -95,7 +95,7 @@ std::vector<ConfigKeyRow> leading_rows() {
     real("exploration_std_floor", field<&R::exploration_std_floor>(), L::algorithm, N::at_least(0), kOnPolicy,
          "sigma_k = max(annealed sigma_k, floor): the noise never falls below the floor (keeps room for a KL "
          "step to move the mean action late in training); 0 = no floor (original)"),
-    boolean("use_standardized_obs", field<&R::use_standardized_obs>(), L::algorithm, kOnPolicy,
+    boolean("use_standardized_obs", field<&R::use_standardized_obs>(), L::algorithm, kOnPolicy | kMultiAgent,
             "normalise observations by the running mean/std"),
     boolean("use_reward_scaling", field<&R::use_reward_scaling>(), L::algorithm, kOnPolicy,
             "divide rewards by the running std of discounted returns, clip to +-10"),
@@ -104,9 +104,9 @@ std::vector<ConfigKeyRow> leading_rows() {
     boolean("center_advantages", field<&R::center_advantages>(), L::algorithm, kOnPolicy,
             "Q6: subtract the batch mean of the reward and cost advantages, keeping their scale "
             "(original: not centred; implied by use_standardized_advantages)"),
-    real("obs_clip", field<&R::obs_clip>(), L::algorithm, N::at_least(0), kOnPolicy,
+    real("obs_clip", field<&R::obs_clip>(), L::algorithm, N::at_least(0), kOnPolicy | kMultiAgent,
          "Q3: clip normalised observations to +-obs_clip; 0 = no clipping (original)"),
-    boolean("exact_parallel_variance", field<&R::exact_parallel_variance>(), L::algorithm, kOnPolicy,
+    boolean("exact_parallel_variance", field<&R::exact_parallel_variance>(), L::algorithm, kOnPolicy | kMultiAgent,
             "Q4: Chan's exact parallel variance instead of the original's update"),
     boolean("consistent_return_statistic", field<&R::consistent_return_statistic>(), L::algorithm, kOnPolicy,
             "Q5: the return statistic's bootstrap value in raw units, V (s_ret + 1e-5), as the rewards "
@@ -116,7 +116,7 @@ std::vector<ConfigKeyRow> leading_rows() {
             "V's predictions in raw units are kept (PopArt)"),
     integer("reward_scale_warmup_epochs", field<&R::reward_scale_warmup_epochs>(), L::algorithm, N::closed(0, kIntMax), kOnPolicy,
             "update the return statistic only in the first n epochs, then keep it; 0 = every epoch (original)"),
-    boolean("timeout_bootstrap", field<&R::timeout_bootstrap>(), L::algorithm, kOnPolicy,
+    boolean("timeout_bootstrap", field<&R::timeout_bootstrap>(), L::algorithm, kOnPolicy | kMultiAgent,
             "bootstrap with V (V_C) of the next observation at a time-out (original); false: as a terminal"),
     boolean("value_time_input", field<&R::value_time_input>(), L::algorithm, kOnPolicy,
             "Q20: V and V_C also see the fraction of the time limit left, (max_ep_len - t)/max_ep_len at "
@@ -133,16 +133,16 @@ std::vector<ConfigKeyRow> trailing_rows() {
     // --- value networks (docs/algorithms.md#value-fits) ---
     boolean("use_cost_value_function", field<&R::use_cost_value_function>(), L::algorithm, kOnPolicy,
             "train the cost value net V_C"),
-    real("vf_lr", field<&R::vf_lr>(), L::algorithm, N::above(0), kOnPolicy,
+    real("vf_lr", field<&R::vf_lr>(), L::algorithm, N::above(0), kOnPolicy | kMultiAgent,
          "Adam learning rate of the value nets"),
-    integer("train_v_iterations", field<&R::train_v_iterations>(), L::algorithm, N::closed(1, 10000), kOnPolicy,
+    integer("train_v_iterations", field<&R::train_v_iterations>(), L::algorithm, N::closed(1, 10000), kOnPolicy | kMultiAgent,
             "Q15: passes over the local batch per epoch when fitting the value nets"),
-    integer("num_mini_batches", field<&R::num_mini_batches>(), L::algorithm, N::closed(1, 100000), kOnPolicy,
+    integer("num_mini_batches", field<&R::num_mini_batches>(), L::algorithm, N::closed(1, 100000), kOnPolicy | kMultiAgent,
             "Q15: minibatches per pass; minibatch size floor(N / num_mini_batches) per rank"),
     // --- bookkeeping (docs/algorithms.md#the-epoch-loop, docs/reproducing.md#evaluation) ---
     integer("save_freq", field<&R::save_freq>(), L::algorithm, N::closed(1, kIntMax), all,
             "save a checkpoint every save_freq epochs and after the last"),
-    integer("check_freq", field<&R::check_freq>(), L::algorithm, N::closed(1, kIntMax), kOnPolicy,
+    integer("check_freq", field<&R::check_freq>(), L::algorithm, N::closed(1, kIntMax), kOnPolicy | kMultiAgent,
             "check that parameters agree across ranks every check_freq epochs"),
     integer("eval_episodes", field<&R::eval_episodes>(), L::algorithm, N::closed(0, kIntMax), all,
             "evaluation episodes after training, split over ranks"),
@@ -159,7 +159,7 @@ const std::vector<ConfigKeyRow>& schema_rows() {
     std::vector<ConfigKeyRow> all;
     for (std::vector<ConfigKeyRow> part : {leading_rows(), trust_region_tool_rows(), multiplier_rows(),
                                            trust_region_variant_rows(), first_order_rows(), off_policy_rows(),
-                                           offline_rows(), budget_rows(), trailing_rows()}) {
+                                           offline_rows(), budget_rows(), multi_agent_rows(), trailing_rows()}) {
       all.insert(all.end(), part.begin(), part.end());
     }
     return all;
@@ -275,7 +275,7 @@ std::string ConfigKey::used_by_text() const {
   if (used_by == kAllAlgorithms) return "all";
   std::string joined;
   for (std::size_t i = 0; i < kAlgorithmNames.size(); ++i) {
-    if ((used_by & (1u << i)) == 0) continue;
+    if ((used_by & (AlgorithmSet{1} << i)) == 0) continue;
     if (!joined.empty()) joined += ", ";
     joined += kAlgorithmNames[i];
   }

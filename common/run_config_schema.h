@@ -4,6 +4,7 @@
 // off_policy_keys.cpp); and the typed, range-checked assignment of a YAML value to a key.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
@@ -25,9 +26,11 @@ enum class ConfigLayer { run, algorithm, environment };
 std::string_view to_string(ConfigLayer layer);
 
 // Bit set of the algorithms a key applies to.
-using AlgorithmSet = unsigned;
-constexpr AlgorithmSet algorithm_bit(Algorithm alg) { return 1u << static_cast<unsigned>(alg); }
-inline constexpr AlgorithmSet kAllAlgorithms = (1u << kAlgorithmNames.size()) - 1u;
+// 64 bits: the table has outgrown 32 algorithms.
+using AlgorithmSet = std::uint64_t;
+constexpr AlgorithmSet algorithm_bit(Algorithm alg) { return AlgorithmSet{1} << static_cast<unsigned>(alg); }
+static_assert(kAlgorithmNames.size() < 64, "AlgorithmSet holds one bit per algorithm");
+inline constexpr AlgorithmSet kAllAlgorithms = (AlgorithmSet{1} << kAlgorithmNames.size()) - 1u;
 
 struct ConfigKey {
   std::string_view key;

@@ -1,9 +1,9 @@
 #include "experiments/grid_expansion.h"
 
+#include "algos/training/run_start.h"
 #include "common/config_error.h"
 #include "common/run_config_resolve.h"
 #include "common/run_config_schema.h"
-#include "envs/env.h"
 
 namespace bsg::experiments {
 
@@ -73,7 +73,7 @@ RunConfig resolve_grid_run(const GridRun& run, const std::filesystem::path& conf
     RunConfigRequest request;
     request.configs_dir = configs_dir;
     request.set_arguments = run.set_arguments;
-    request.valid_env_ids = envs::registered_ids();
+    request.valid_env_ids = algos::training_env_ids();
     return resolve_run_config(request).config;
   } catch (const ConfigError& e) {
     throw ConfigError(grid_source_name + ": run " + run.relative_dir().string() + ": " + e.what());

@@ -69,9 +69,12 @@ EvaluationSummary evaluate_policy(envs::Env& env, ActingPolicy& policy, int tota
                                static_cast<std::uint64_t>(mpi.rank())));
   const std::vector<EvaluationEpisode> local = run_evaluation_episodes(
       env, policy, local_episodes, env_seed, max_ep_len, costs, term_names.size(), mode, action_noise);
+  return gather_evaluation(local, mpi, static_cast<std::size_t>(costs.count()), term_names);
+}
 
+EvaluationSummary gather_evaluation(const std::vector<EvaluationEpisode>& local, const MpiContext& mpi, std::size_t m,
+                                    const std::vector<std::string>& term_names) {
   // Per episode: J, H, length, then H_1..H_m, then the k term sums.
-  const std::size_t m = static_cast<std::size_t>(costs.count());
   const std::size_t k = term_names.size();
   const std::size_t stride = 3 + m + k;
   std::vector<double> flat;

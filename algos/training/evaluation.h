@@ -71,4 +71,10 @@ EvaluationSummary evaluate_policy(envs::Env& env, ActingPolicy& policy, int tota
                                   const std::vector<std::string>& term_names = {},
                                   ActionMode mode = ActionMode::mean);
 
+// Rank 0's summary of every rank's `local` episodes, each with m constraint costs and
+// term_names.size() term sums (evaluate_policy's second half; the multi-agent family's evaluation).
+// Collective.
+EvaluationSummary gather_evaluation(const std::vector<EvaluationEpisode>& local, const MpiContext& mpi, std::size_t m,
+                                    const std::vector<std::string>& term_names);
+
 }  // namespace bsg::algos

@@ -16,6 +16,7 @@
 #include "algos/training/make_algorithm.h"
 #include "algos/training/off_policy_checkpoint.h"
 #include "algos/training/offline_family.h"
+#include "algos/training/run_start.h"
 #include "algos/training/run_environment.h"
 #include "algos/training/training_checkpoint.h"
 #include "common/run_config_yaml.h"
@@ -141,13 +142,19 @@ class LoadedOffline final : public LoadedPolicy {
 
 std::unique_ptr<LoadedPolicy> load_policy(const RunDirectory& directory) {
   check_is_run_directory(directory);
-  const RunConfig config = load_resolved_run_config(directory.config(), envs::registered_ids());
+  const RunConfig config = load_resolved_run_config(directory.config(), training_env_ids());
+  if (is_multi_agent(config.alg)) {
+    throw std::invalid_argument(directory.root.string() + ": a multi-agent run (alg " + std::string(to_string(config.alg)) +
+                                "); bsg eval, bsg collect and bsg.load_policy load single-agent policies only "
+                                "(its evaluation.json is written at the end of training)");
+  }
   const PolicySizes sizes = sizes_of(config);
   switch (algorithm_info(config.alg).family) {
     case AlgorithmFamily::trust_region:
     case AlgorithmFamily::first_order: return std::make_unique<LoadedOnPolicy>(directory, config, sizes);
     case AlgorithmFamily::off_policy: return std::make_unique<LoadedOffPolicy>(directory, config, sizes);
     case AlgorithmFamily::offline: return std::make_unique<LoadedOffline>(directory, config, sizes);
+    case AlgorithmFamily::multi_agent: break;  // refused above
   }
   throw std::invalid_argument("load_policy: unknown family of " + std::string(to_string(config.alg)));
 }

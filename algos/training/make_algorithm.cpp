@@ -29,6 +29,9 @@ std::unique_ptr<OnPolicyAlgorithm> make_algorithm(const RunConfig& config) {
     case AlgorithmFamily::offline:
       throw std::invalid_argument("make_algorithm: " + std::string(to_string(config.alg)) +
                                   " is an offline algorithm; it trains with OfflineTrainer, not the on-policy loop");
+    case AlgorithmFamily::multi_agent:
+      throw std::invalid_argument("make_algorithm: " + std::string(to_string(config.alg)) +
+                                  " is a multi-agent learner; it trains with MultiAgentTrainer, not the on-policy loop");
   }
   throw std::invalid_argument("make_algorithm: unknown family of " + std::string(to_string(config.alg)));
 }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "algos/training/off_policy_trainer.h"
+#include "algos/training/multi_agent_trainer.h"
 #include "algos/training/offline_trainer.h"
 #include "algos/training/on_policy_trainer.h"
 
@@ -16,6 +17,7 @@ std::unique_ptr<Trainer> make_trainer(const RunConfig& config, const RunDirector
     case AlgorithmFamily::first_order: return std::make_unique<OnPolicyTrainer>(config, directory, mpi, options);
     case AlgorithmFamily::off_policy: return std::make_unique<OffPolicyTrainer>(config, directory, mpi, options);
     case AlgorithmFamily::offline: return std::make_unique<OfflineTrainer>(config, directory, mpi, options);
+    case AlgorithmFamily::multi_agent: return std::make_unique<MultiAgentTrainer>(config, directory, mpi, options);
   }
   throw std::invalid_argument("make_trainer: unknown family of " + std::string(to_string(config.alg)));
 }

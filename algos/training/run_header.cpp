@@ -11,9 +11,11 @@ namespace {
 
 // The section and the marker of the layouts that have one (not on_policy's).
 std::string_view section_of(RunHeaderLayout layout) {
+  if (layout == RunHeaderLayout::multi_agent) return "multi-agent run";
   return layout == RunHeaderLayout::offline ? "offline run" : "off-policy run";
 }
 std::string_view marker_of(RunHeaderLayout layout) {
+  if (layout == RunHeaderLayout::multi_agent) return "multi-agent";
   return layout == RunHeaderLayout::offline ? "offline" : "off-policy";
 }
 

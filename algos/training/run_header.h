@@ -7,6 +7,7 @@
 //   RunHeaderLayout::off_policy  section "off-policy run": the marker "off-policy", config, ranks,
 //                                epochs, seconds, progress log
 //   RunHeaderLayout::offline     as off_policy, with section "offline run" and the marker "offline"
+//   RunHeaderLayout::multi_agent as off_policy, with section "multi-agent run" and the marker "multi-agent"
 // What follows the header is each format's own.
 #pragma once
 
@@ -32,7 +33,7 @@ struct TrainingProgress {
 // Bounds a loaded checkpoint's fields must lie in.
 inline constexpr int kMaxCheckpointRanks = 1 << 20;
 
-enum class RunHeaderLayout { on_policy, off_policy, offline };
+enum class RunHeaderLayout { on_policy, off_policy, offline, multi_agent };
 
 void write_run_header(BinaryWriter& writer, RunHeaderLayout layout, const RunConfig& config,
                       const TrainingProgress& progress);

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "algos/training/run_directory.h"
 #include "algos/training/trainer.h"
@@ -15,7 +17,14 @@
 
 namespace bsg::algos {
 
-// resolve_run_config with the registered environment ids, the env: block checked, and an
+// Every id a run may train on: the single-agent registry's and the multi-agent registry's, sorted.
+std::vector<std::string> training_env_ids();
+
+// Throws ConfigError in one line if a multi-agent learner is given a single-agent env_id or a
+// single-agent learner a multi-agent one.
+void check_env_matches_family(const RunConfig& config);
+
+// resolve_run_config with the registered environment ids (both registries), the env: block checked, and an
 // offline dataset named absolutely (config.yaml names it so, so that a resume and `bsg eval`
 // work from any folder). Throws ConfigError naming the key and where its value came from.
 RunConfig resolve_training_config(RunConfigRequest request);

@@ -1,5 +1,5 @@
 // The family groups of RunConfig (common/trust_region_keys.h, multiplier_keys.h,
-// first_order_keys.h, off_policy_keys.h): a flat key of the table reaches its
+// first_order_keys.h, off_policy_keys.h, ..., multi_agent_keys.h): a flat key of the table reaches its
 // group's member, and only that member, when set and when written back; each
 // group's keys keep their place in the one table.
 #include <gtest/gtest.h>
@@ -51,6 +51,7 @@ TEST(ConfigKeyGroups, AFlatKeyReachesItsGroupsMemberOnly) {
                      [](RunConfig& c) { c.offline.coptidice_f_divergence = FDivergence::kl; });
   expect_key_reaches("unsafe_reward", "-0.2", [](RunConfig& c) { c.budget.unsafe_reward = -0.2; });
   expect_key_reaches("simmer_polyak", "0.5", [](RunConfig& c) { c.budget.simmer_polyak = 0.5; });
+  expect_key_reaches("share_policy", "true", [](RunConfig& c) { c.multi_agent.share_policy = true; });
   // RunConfig's own keys are reached as before.
   expect_key_reaches("gamma", "0.9", [](RunConfig& c) { c.gamma = 0.9; });
   expect_key_reaches("hidden_sizes", "[8, 8]", [](RunConfig& c) { c.hidden_sizes = {8, 8}; });
@@ -67,13 +68,14 @@ TEST(ConfigKeyGroups, EachGroupsRowsKeepTheirPlaceInTheTable) {
     return -1L;
   };
   // The runs of rows, each key followed by the next: RunConfig's leading rows, the trust-region
-  // tools, the multipliers, the trust-region variants, the first-order, off-policy, offline and
-  // budget rows, and RunConfig's trailing rows.
+  // tools, the multipliers, the trust-region variants, the first-order, off-policy, offline,
+  // budget and multi-agent rows, and RunConfig's trailing rows.
   const std::vector<std::pair<std::string_view, std::string_view>> seams = {
       {"value_time_input", "target_kl"},         {"kl_accept_factor", "lagrangian_multiplier_init"},
       {"pid_lambda_max", "cpo_r_sign"},          {"crpo_tolerance", "actor_lr"},
       {"learned_std_init", "num_envs"},          {"multiplier_window", "dataset"},
-      {"coptidice_scalar_lr", "saute_gamma"},    {"simmer_initial_budget_fraction", "use_cost_value_function"}};
+      {"coptidice_scalar_lr", "saute_gamma"},    {"simmer_initial_budget_fraction", "share_policy"},
+      {"share_policy", "use_cost_value_function"}};
   for (const auto& [before, after] : seams) EXPECT_EQ(position(before) + 1, position(after)) << before;
   EXPECT_EQ(keys.front(), "env_id");
   EXPECT_EQ(keys.back(), "sampled_evaluation");

@@ -17,6 +17,7 @@
 #include "common/run_config.h"
 #include "common/run_config_resolve.h"
 #include "common/run_config_schema.h"
+#include "envs/multi_agent_env.h"
 #include "shipped_request.h"
 
 namespace bsg {
@@ -40,6 +41,15 @@ const std::vector<std::string> kOfflineAlgorithms = [] {
   std::vector<std::string> names;
   for (const AlgorithmInfo& info : kAlgorithms) {
     if (info.family == AlgorithmFamily::offline) names.emplace_back(info.name);
+  }
+  return names;
+}();
+
+// The multi-agent learners, which resolve on the multi-agent ids only (docs/multi_agent.md#learners).
+const std::vector<std::string> kMultiAgentAlgorithms = [] {
+  std::vector<std::string> names;
+  for (const AlgorithmInfo& info : kAlgorithms) {
+    if (info.family == AlgorithmFamily::multi_agent) names.emplace_back(info.name);
   }
   return names;
 }();
@@ -78,10 +88,36 @@ RunConfig resolve_shipped(const std::string& alg, const std::string& env_id) {
   return resolve_run_config(request).config;
 }
 
-TEST(ShippedConfigs, ThereIsOneEnvironmentFilePerReportEnvironment) {
-  std::vector<std::string> expected;
+TEST(ShippedConfigs, ThereIsOneEnvironmentFilePerReportEnvironmentAndMultiAgentId) {
+  std::vector<std::string> expected = envs::multi_agent_ids();
   for (const auto& [env_id, row] : kTable3) expected.push_back(env_id);
+  std::sort(expected.begin(), expected.end());
   EXPECT_EQ(list_config_env_ids(kShippedConfigs), expected);  // both sorted
+}
+
+// Each multi-agent id's file: the robot's d and episode length (its spec), SafePO's batch.
+TEST(ShippedConfigs, MultiAgentLearnersResolveOnEveryMultiAgentIdAndListTheirKeys) {
+  for (const std::string& env_id : envs::multi_agent_ids()) {
+    const envs::MultiAgentSpec spec = envs::make_multi_agent(env_id)->spec();
+    for (const std::string& alg : kMultiAgentAlgorithms) {
+      SCOPED_TRACE(env_id + " / " + alg);
+      const RunConfig c = resolve_shipped(alg, env_id);
+      EXPECT_EQ(c.cost_limit, spec.cost_limit);
+      EXPECT_EQ(c.max_ep_len, spec.max_episode_steps);
+      EXPECT_EQ(c.steps_per_epoch, 10000);
+    }
+  }
+  for (const std::string& alg : kMultiAgentAlgorithms) {
+    SCOPED_TRACE(alg);
+    const Algorithm id = resolve_shipped(alg, "SafetyBallCircle2-v0").alg;
+    std::set<std::string> listed;
+    for (const ConfigEntry& entry : read_config_file(algorithm_config_path(kShippedConfigs, id))) listed.insert(entry.key);
+    std::set<std::string> expected;
+    for (const ConfigKey& key : run_config_schema()) {
+      if (key.default_source == ConfigLayer::algorithm && key.applies_to(id)) expected.insert(std::string(key.key));
+    }
+    EXPECT_EQ(listed, expected);
+  }
 }
 
 TEST(ShippedConfigs, AllSixteenEnvironmentsResolveWithEveryAlgorithm) {
