@@ -96,6 +96,7 @@ int dry_run(const MakeArguments& args, const experiments::DatasetRecipe& recipe,
 algos::CollectionRequest collection_request(const experiments::RecipeDatasetFile& file) {
   algos::CollectionRequest request;
   request.out = file.file.string();
+  request.checkpoint_names_relative_to = file.file.parent_path().string();
   request.env_id = file.env_id;
   request.seed = file.seed;
   request.actions = file.actions == "mean" ? algos::EvaluationActions::mean : algos::EvaluationActions::sampled;

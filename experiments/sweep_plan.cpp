@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "algos/training/dataset_location.h"
 #include "algos/training/run_directory.h"
 #include "common/algorithms.h"
 #include "common/atomic_file.h"
@@ -46,6 +47,21 @@ void check_filter(const std::vector<std::string>& filter, const std::vector<Item
                         list + ")");
     }
   }
+}
+
+// The configuration as bsg train records it in config.yaml: an offline run's
+// dataset becomes the absolute file it learns from (a directory gives its
+// <env_id>.hdf5), so that a finished or interrupted run of the same grid
+// compares equal. A location that names no file yet is left as it is (the
+// comparison then names it).
+RunConfig as_recorded(RunConfig config) {
+  if (is_offline(config.alg) && !config.offline.dataset.empty()) {
+    try {
+      config.offline.dataset = algos::locate_dataset(config.offline.dataset, config.env_id).string();
+    } catch (const std::invalid_argument&) {
+    }
+  }
+  return config;
 }
 
 bool selected(const std::vector<std::string>& filter, const std::string& value) {
@@ -106,7 +122,7 @@ SweepPlan make_sweep_plan(const SweepPlanRequest& request) {
     std::error_code error;
     if (std::filesystem::is_regular_file(directory.config(), error)) {
       const RunConfig existing = load_resolved_run_config(directory.config());
-      const std::string difference = first_difference(existing, planned.config);
+      const std::string difference = first_difference(existing, as_recorded(planned.config));
       if (!difference.empty()) {
         throw std::runtime_error(
             directory.config().string() + " holds a run of another configuration than the grid " +

@@ -14,7 +14,7 @@ namespace {
 // A run's acting policy (load_policy.h) with its own random stream, restarted every episode.
 class LoadedCheckpointPolicy final : public CheckpointPolicy {
  public:
-  LoadedCheckpointPolicy(const std::filesystem::path& root, EvaluationActions actions)
+  LoadedCheckpointPolicy(const std::filesystem::path& root, EvaluationActions actions, const std::string& name)
       : root_(root),
         policy_(load_policy(RunDirectory(root))),
         description_(run_env_description(policy_->config())),
@@ -24,7 +24,7 @@ class LoadedCheckpointPolicy final : public CheckpointPolicy {
       throw std::invalid_argument("checkpoint " + root.string() + ": a " + std::string(to_string(config.alg)) +
                                   " policy acts on its Saute budgets, which a dataset's observations do not hold");
     }
-    description_text_ = "checkpoint " + root.string() + " (" + std::string(to_string(config.alg)) + ", " +
+    description_text_ = "checkpoint " + (name.empty() ? root.string() : name) + " (" + std::string(to_string(config.alg)) + ", " +
                         config.env_id + ", epoch " + std::to_string(policy_->epochs_completed()) + " of " +
                         std::to_string(config.epochs) + ", seed " + std::to_string(config.seed) + ", " +
                         std::string(policy_->action_words(mode_)) + ")";
@@ -58,8 +58,8 @@ class LoadedCheckpointPolicy final : public CheckpointPolicy {
 }  // namespace
 
 std::unique_ptr<CheckpointPolicy> load_checkpoint_policy(const std::filesystem::path& run_directory,
-                                                         EvaluationActions actions) {
-  return std::make_unique<LoadedCheckpointPolicy>(run_directory, actions);
+                                                         EvaluationActions actions, const std::string& name) {
+  return std::make_unique<LoadedCheckpointPolicy>(run_directory, actions, name);
 }
 
 }  // namespace bsg::algos

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include "algos/offline/collection_policy.h"
 #include "algos/training/evaluation_actions.h"
@@ -26,7 +27,9 @@ class CheckpointPolicy : public CollectionPolicy {
 };
 
 // Throws naming the directory or file at fault (not a run directory, corrupt checkpoint).
+// `name`, when not empty, is how description() names the run directory (e.g.
+// relative to a dataset's folder); errors always name the path itself.
 std::unique_ptr<CheckpointPolicy> load_checkpoint_policy(const std::filesystem::path& run_directory,
-                                                         EvaluationActions actions);
+                                                         EvaluationActions actions, const std::string& name = "");
 
 }  // namespace bsg::algos

@@ -89,7 +89,15 @@ LoadedCheckpoints load_checkpoints(const CollectionRequest& request) {
   loaded.policies.resize(request.policies.size());
   for (std::size_t i = 0; i < request.policies.size(); ++i) {
     if (request.policies[i].source != "random") {
-      loaded.policies[i] = load_checkpoint_policy(request.policies[i].source, request.actions);
+      const std::string& source = request.policies[i].source;
+      const std::string name =
+          request.checkpoint_names_relative_to.empty()
+              ? std::string()
+              : std::filesystem::absolute(source)
+                    .lexically_normal()
+                    .lexically_relative(std::filesystem::absolute(request.checkpoint_names_relative_to).lexically_normal())
+                    .string();
+      loaded.policies[i] = load_checkpoint_policy(source, request.actions, name);
     }
   }
   for (const auto& c : loaded.policies) {

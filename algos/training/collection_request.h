@@ -43,6 +43,10 @@ struct CollectionRequest {
   std::optional<double> cost_limit;  // stored for the normalised cost; default: the constraint's limit
   PhysicsModel physics = PhysicsModel::kFaithful;
   bool force = false;                // replace an existing file
+  // Empty: the file's `policies` attribute names each checkpoint as given;
+  // else relative to this directory (bsg dataset make: its --out), so that a
+  // dataset rebuilt in another place has the same bytes.
+  std::string checkpoint_names_relative_to;
 };
 
 struct CollectionSummary {

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "algos/offline/dataset_location.h"
+#include "algos/training/dataset_location.h"
 #include "algos/training/make_trainer.h"
 #include "algos/training/run_environment.h"
 #include "common/config_error.h"

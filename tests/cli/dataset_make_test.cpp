@@ -54,6 +54,10 @@ TEST(DatasetMake, TinyRecipeAndItsResume) {
   EXPECT_NE(policies.find("lag-trpo/cost_limit=5/seed=0"), std::string::npos) << policies;
   EXPECT_NE(policies.find("lag-trpo/cost_limit=40/seed=0"), std::string::npos) << policies;
   EXPECT_NE(policies.find("random: share 1.000000, 1 episodes"), std::string::npos) << policies;
+  // Named from the dataset's folder, not from where the folder happens to be.
+  EXPECT_NE(policies.find("checkpoint sweep/SafetyBallRun-fork/lag-trpo/cost_limit=5/seed=0 ("), std::string::npos)
+      << policies;
+  EXPECT_EQ(policies.find(dir.path().string()), std::string::npos) << policies;
   const std::string uninterrupted = read_text_file(file);
 
   // Again: the file is kept.
@@ -69,6 +73,17 @@ TEST(DatasetMake, TinyRecipeAndItsResume) {
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   EXPECT_TRUE(read_text_file(file) == uninterrupted);
   EXPECT_FALSE(fs::exists(file.string() + ".tmp.999999.abcdef"));
+
+  // The folder moved elsewhere and its file made again from the same checkpoints: the same bytes,
+  // so that a checksum list holds wherever the datasets are rebuilt.
+  const fs::path moved = dir.path() / "elsewhere" / "out";
+  fs::create_directories(moved.parent_path());
+  fs::rename(dir.path() / "out", moved);
+  fs::remove(moved / "SafetyBallRun-fork.hdf5");
+  const auto remade = run_bsg("dataset make " + (dir.path() / "tiny.yaml").string() + " --out " + moved.string() +
+                              kConfigsOption);
+  ASSERT_EQ(remade.exit_code, 0) << remade.output;
+  EXPECT_TRUE(read_text_file(moved / "SafetyBallRun-fork.hdf5") == uninterrupted);
 }
 
 TEST(DatasetMake, UnknownKeyIsOneLineAndWritesNothing) {

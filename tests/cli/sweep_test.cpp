@@ -355,6 +355,32 @@ TEST(Sweep, RunsWithoutEvaluationEpisodesFinishAndTheTableCountsThemMissing) {
   EXPECT_NE(read_text_file(out / "table1.md").find("missing"), std::string::npos) << read_text_file(out / "table1.md");
 }
 
+TEST(Sweep, AnOfflineGridNamingADatasetDirectoryRunsAndIsFoundFinishedAgain) {
+  // config.yaml records the file the run learned from; the grid names the directory that holds it
+  // one level down. The sweep run again must see the same configuration, finished.
+  TemporaryDirectory temp;
+  const fs::path data = temp.path() / "datasets";
+  const std::string file = (data / "recipe" / "SafetyBallCircle-v0.hdf5").string();
+  fs::create_directories(data / "recipe");
+  const auto collect = run_bsg("collect --out " + file + " --env SafetyBallCircle-v0 --policy random --episodes 2 --seed 0");
+  ASSERT_EQ(collect.exit_code, 0) << collect.output;
+  const fs::path grid = temp.path() / "offline.yaml";
+  std::ofstream(grid) << "envs: [SafetyBallCircle-v0]\nseeds: [0]\n"
+                         "fixed: {dataset: " << data.string() << ", epochs: 1, updates_per_epoch: 2, eval_every: 1, "
+                         "eval_episodes: 1, hidden_sizes: [8], batch_size: 16}\nalgorithms: {bc-all: }\n";
+  const fs::path out = temp.path() / "out";
+  const std::string sweep = "sweep " + grid.string() + " --configs " + (kSource / "configs").string() +
+                            " --out " + out.string();
+  const auto first = run_bsg(sweep);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const fs::path run_dir = out / "SafetyBallCircle-v0" / "bc-all" / "default" / "seed=0";
+  const std::string config = read_text_file(bsg::algos::RunDirectory(run_dir).config());
+  EXPECT_NE(config.find("dataset: " + file), std::string::npos) << config;
+  const auto again = run_bsg(sweep);
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("1 already finished"), std::string::npos) << again.output;
+}
+
 TEST(Sweep, ARunDirectoryOfAnotherConfigurationIsNotTouched) {
   const OneRunSweep sweep;
   bsg::RunConfig config =

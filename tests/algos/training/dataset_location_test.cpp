@@ -1,6 +1,6 @@
 // locate_dataset: a file is taken as it is, a directory gives <env_id>.hdf5 from
 // itself or one level down, and anything else is one line naming the problem.
-#include "algos/offline/dataset_location.h"
+#include "algos/training/dataset_location.h"
 
 #include <gtest/gtest.h>
 

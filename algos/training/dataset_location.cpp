@@ -1,4 +1,4 @@
-#include "algos/offline/dataset_location.h"
+#include "algos/training/dataset_location.h"
 
 #include <algorithm>
 #include <stdexcept>
