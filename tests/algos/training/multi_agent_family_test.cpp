@@ -31,8 +31,10 @@ RunConfig ma_config(const std::string& alg, std::vector<std::string> more = {}) 
   RunConfigRequest request;
   request.configs_dir = fs::path(BSG_SOURCE_DIR) / "configs";
   request.set_arguments = {"env_id=SafetyBallCircle2-v0", "alg=" + alg, "epochs=3", "steps_per_epoch=200",
-                           "max_ep_len=100", "hidden_sizes=[8]", "eval_episodes=2", "save_freq=1",
-                           "policy_minibatch_size=100", "update_iters=2", "train_v_iterations=2"};
+                           "max_ep_len=100", "hidden_sizes=[8]", "eval_episodes=2", "save_freq=1", "train_v_iterations=2"};
+  if (alg != "macpo") {  // MACPO's actors take CPO's step, without PPO's keys
+    request.set_arguments.insert(request.set_arguments.end(), {"policy_minibatch_size=100", "update_iters=2"});
+  }
   request.set_arguments.insert(request.set_arguments.end(), more.begin(), more.end());
   return resolve_training_config(request);
 }
