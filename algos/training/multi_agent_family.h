@@ -1,5 +1,5 @@
-// The multi-agent family (docs/multi_agent.md#learners): MAPPO and MAPPO-L (alg mappo, mappo-lag) on
-// the multi-agent environments (envs/multi_agent_env.h). Per epoch k, on every rank:
+// The multi-agent family (docs/multi_agent.md#learners): MAPPO, MAPPO-L, HAPPO and MACPO (alg mappo,
+// mappo-lag, happo, macpo) on the multi-agent environments (envs/multi_agent_env.h). Per epoch k, on every rank:
 //   1. collect N = B / R team steps (multi_agent_rollout.h): each agent's action from its slot's
 //      actor, V(s) and V_C(s) from its slot's centralised critics, GAE per agent in its own buffer;
 //   2. pool the team's episodes over ranks: an episode's return and cost are the agents' mean
