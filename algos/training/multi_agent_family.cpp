@@ -254,13 +254,15 @@ void MultiAgentFamily::update_agents_in_turn(int epoch, EpochRecord& record) {
     record.round = happo_round(policies, ppos, batches, order, mpi_, shuffle_rng_);
   } else {
     // SafePO's c: every agent's buffer holds the team's mean episode cost (macpo.py, return_aver_cost).
-    record.constraint_violations.assign(static_cast<std::size_t>(n),
-                                        macpo_constraint_violation(record.team_cost.mean, config_.cost_limit, config_.gamma));
+    const double c = macpo_constraint_violation(record.team_cost.mean, config_.cost_limit, config_.gamma);
+    record.constraint_violations.assign(static_cast<std::size_t>(n), c);
     record.round = macpo_round(policies, batches, order, record.constraint_violations, config_, mpi_);
   }
   std::sort(record.round.begin(), record.round.end(),
             [](const AgentRoundStatistics& a, const AgentRoundStatistics& b) { return a.agent < b.agent; });
-  for (const AgentRoundStatistics& agent : record.round) record.updates.push_back(PolicyUpdateResult{agent.diagnostics, {}});
+  for (const AgentRoundStatistics& agent : record.round) {
+    record.updates.push_back(PolicyUpdateResult{agent.diagnostics, {}});
+  }
 }
 
 // Step 4: V (and V_C) of the slot on the stacked critic inputs.
@@ -351,7 +353,9 @@ FamilyEpoch MultiAgentFamily::run_epoch(int epoch, bool /*checkpoint_follows: th
   result.line.mean_return = last_.team_return.mean;
   result.line.mean_cost = last_.team_cost.mean;
   if (!ignores_cost(config_.alg)) result.line.cost_limit = config_.cost_limit;
-  if (algorithm_info(config_.alg).lagrange_multiplier) result.line.lagrange_multiplier = last_.updates.front().lagrange_multiplier;
+  if (algorithm_info(config_.alg).lagrange_multiplier) {
+    result.line.lagrange_multiplier = last_.updates.front().lagrange_multiplier;
+  }
   result.line.kl = slot_mean(last_.updates, CommonDiagnostic::kl, mpi_);
   return result;
 }
@@ -405,7 +409,9 @@ std::vector<NamedScalar> MultiAgentFamily::log_entries(const EpochAccounts* acco
       add(prefix + "factor_mean", agent ? agent->factor.mean : 0.0);
       add(prefix + "factor_min", agent ? agent->factor.min : 0.0);
       add(prefix + "factor_max", agent ? agent->factor.max : 0.0);
-      if (config_.alg == Algorithm::macpo) add(prefix + "constraint_violation", agent ? last_.constraint_violations[static_cast<std::size_t>(i)] : 0.0);
+      if (config_.alg == Algorithm::macpo) {
+        add(prefix + "constraint_violation", agent ? last_.constraint_violations[static_cast<std::size_t>(i)] : 0.0);
+      }
     }
   }
   add("time_collect_s", last_.collect_seconds);
