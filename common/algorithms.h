@@ -23,7 +23,7 @@ enum class Algorithm {
   bc_all, bc_safe, p3o, ipo, rcpo, cpq,
   ppo_saute, trpo_saute, ppo_early_terminated, trpo_early_terminated,
   ppo_simmer, trpo_simmer, bcq_lag, coptidice,
-  mappo, mappo_lag
+  mappo, mappo_lag, happo, macpo
 };
 
 // Which update the policy takes: the natural-gradient step with a line search
@@ -104,6 +104,11 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
     // Policy Optimisation"; SafePO's multi_agent/mappo.py and mappolag.py), on the multi-agent ids only.
     {Algorithm::mappo,    "mappo",    "MAPPO",    "",           AlgorithmFamily::multi_agent,  false, false, true,  "darkgreen"},
     {Algorithm::mappo_lag, "mappo-lag", "MAPPO-L", "MAPPO-L-PID", AlgorithmFamily::multi_agent, true,  true,  true,  "darkred"},
+    // The sequential multi-agent updates, one agent after another in a random order, each seeing the
+    // correction of those before it (Kuba et al. 2022, HAPPO; Gu et al. 2021, MACPO's CPO steps; SafePO's
+    // multi_agent/happo.py and macpo.py; docs/multi_agent.md#sequential-agent-updates-happo-macpo).
+    {Algorithm::happo,    "happo",    "HAPPO",    "",           AlgorithmFamily::multi_agent,  false, false, true,  "seagreen"},
+    {Algorithm::macpo,    "macpo",    "MACPO",    "",           AlgorithmFamily::multi_agent,  true,  false, false, "indianred"},
 });
 
 constexpr const AlgorithmInfo& algorithm_info(Algorithm alg) { return kAlgorithms[static_cast<std::size_t>(alg)]; }
@@ -142,6 +147,9 @@ constexpr bool is_offline(Algorithm alg) { return algorithm_info(alg).family == 
 
 // Whether the algorithm trains several agents on a multi-agent environment (algos/multi_agent).
 constexpr bool is_multi_agent(Algorithm alg) { return algorithm_info(alg).family == AlgorithmFamily::multi_agent; }
+
+// Whether the multi-agent learner updates its agents one after another (HAPPO, MACPO) rather than all at once.
+constexpr bool is_sequential_multi_agent(Algorithm alg) { return alg == Algorithm::happo || alg == Algorithm::macpo; }
 
 // Whether the algorithm keeps Lagrange multipliers (and so can use the PID rule).
 constexpr bool has_lagrange_multiplier(Algorithm alg) { return algorithm_info(alg).lagrange_multiplier; }

@@ -100,6 +100,8 @@ inline constexpr AlgorithmSet kOffPolicy = algorithms_in(AlgorithmFamily::off_po
 inline constexpr AlgorithmSet kOffline = algorithms_in(AlgorithmFamily::offline);
 inline constexpr AlgorithmSet kMultiAgent = algorithms_in(AlgorithmFamily::multi_agent);
 inline constexpr AlgorithmSet kOnPolicy = kTrustRegion | kFirstOrder;
+// The multi-agent learners whose actors take PPO's Adam steps (MACPO's take CPO's step).
+inline constexpr AlgorithmSet kMultiAgentFirstOrder = kMultiAgent & ~algorithm_bit(Algorithm::macpo);
 
 // Row builders, one per value type.
 inline ConfigKeyRow boolean(std::string_view key, Field<bool> member, ConfigLayer layer, AlgorithmSet used_by,

@@ -21,15 +21,15 @@ std::vector<ConfigKeyRow> first_order_rows() {
   using K = FirstOrderKeys;
   return {
     // --- first-order updates (docs/algorithms.md#first-order-updates) ---
-    real("actor_lr", field<&R::first_order, &K::actor_lr>(), L::algorithm, N::above(0), kFirstOrder | kOffPolicy | kOffline | kMultiAgent,
+    real("actor_lr", field<&R::first_order, &K::actor_lr>(), L::algorithm, N::above(0), kFirstOrder | kOffPolicy | kOffline | kMultiAgentFirstOrder,
          "Adam step size on the policy (first-order and off-policy updates)"),
-    integer("update_iters", field<&R::first_order, &K::update_iters>(), L::algorithm, N::closed(1, 10000), kFirstOrder | kMultiAgent,
+    integer("update_iters", field<&R::first_order, &K::update_iters>(), L::algorithm, N::closed(1, 10000), kFirstOrder | kMultiAgentFirstOrder,
             "passes over the batch per policy update (fewer after a KL early stop)"),
-    integer("policy_minibatch_size", field<&R::first_order, &K::policy_minibatch_size>(), L::algorithm, N::closed(1, kIntMax), kFirstOrder | kMultiAgent,
+    integer("policy_minibatch_size", field<&R::first_order, &K::policy_minibatch_size>(), L::algorithm, N::closed(1, kIntMax), kFirstOrder | kMultiAgentFirstOrder,
             "samples per policy minibatch, summed over ranks: floor(B / size) minibatches per pass"),
     boolean("kl_early_stop", field<&R::first_order, &K::kl_early_stop>(), L::algorithm, kFirstOrder,
             "end the passes after one whose mean KL to the update's start exceeds target_kl"),
-    real("max_grad_norm", field<&R::first_order, &K::max_grad_norm>(), L::algorithm, N::at_least(0), kFirstOrder | kOffPolicy | kMultiAgent,
+    real("max_grad_norm", field<&R::first_order, &K::max_grad_norm>(), L::algorithm, N::at_least(0), kFirstOrder | kOffPolicy | kMultiAgentFirstOrder,
          "rescale the rank-averaged gradient of each step (first-order: the policy's; off-policy: the twin "
          "reward critics' together, each cost critic's, the actor's) to at most this norm; 0 = never"),
     real("clip", field<&R::first_order, &K::clip>(), L::algorithm, N::open(0, 1), kClipped,

@@ -12,7 +12,7 @@
 //   off_policy    OffPolicyKeys    common/off_policy_keys.h/.cpp   (sac .. ddpg-lag)
 //   offline       OfflineKeys      common/offline_keys.h/.cpp      (bc-all, bc-safe)
 //   budget        BudgetKeys       common/budget_keys.h/.cpp       (ppo-saute, trpo-saute, ppo-simmer, trpo-simmer)
-//   multi_agent   MultiAgentKeys   common/multi_agent_keys.h/.cpp  (mappo, mappo-lag)
+//   multi_agent   MultiAgentKeys   common/multi_agent_keys.h/.cpp  (mappo, mappo-lag, happo, macpo)
 // In YAML every key is flat (`cg_iters: 10`, not nested under its group).
 //
 // Parameters: every key, its type, where its default comes from, its valid

@@ -21,6 +21,8 @@ namespace key_rows {
 namespace {
 // The line search's keys: RCPO takes the natural-gradient step without one (OmniSafe's NaturalPG).
 constexpr AlgorithmSet kLineSearching = kTrustRegion & ~algorithm_bit(Algorithm::rcpo);
+// MACPO's agents take CPO's step (algos/multi_agent/macpo_update.h) with its tools and switches.
+constexpr AlgorithmSet kMacpo = algorithm_bit(Algorithm::macpo);
 }  // namespace
 
 // clang-format off
@@ -31,20 +33,20 @@ std::vector<ConfigKeyRow> trust_region_tool_rows() {
   using K = TrustRegionKeys;
   return {
     // --- trust region (docs/algorithms.md#trust-region-tools) ---
-    real("target_kl", field<&R::trust_region, &K::target_kl>(), L::algorithm, N::above(0), kOnPolicy,
+    real("target_kl", field<&R::trust_region, &K::target_kl>(), L::algorithm, N::above(0), kOnPolicy | kMacpo,
          "delta: trust-region size (mean KL per action dimension, Q8); first-order algorithms: the "
          "early-stop KL (per sample summed over action dimensions, averaged over samples)"),
-    real("cg_damping", field<&R::trust_region, &K::cg_damping>(), L::algorithm, N::at_least(0), kTrustRegion,
+    real("cg_damping", field<&R::trust_region, &K::cg_damping>(), L::algorithm, N::at_least(0), kTrustRegion | kMacpo,
          "damping added to the Fisher-vector product"),
-    integer("cg_iters", field<&R::trust_region, &K::cg_iters>(), L::algorithm, N::closed(1, 1000), kTrustRegion,
+    integer("cg_iters", field<&R::trust_region, &K::cg_iters>(), L::algorithm, N::closed(1, 1000), kTrustRegion | kMacpo,
             "conjugate-gradient iterations"),
-    integer("fvp_subsample", field<&R::trust_region, &K::fvp_subsample>(), L::algorithm, N::closed(1, 1000), kTrustRegion,
+    integer("fvp_subsample", field<&R::trust_region, &K::fvp_subsample>(), L::algorithm, N::closed(1, 1000), kTrustRegion | kMacpo,
             "the Fisher-vector product uses every k-th observation of the batch"),
-    integer("backtrack_budget", field<&R::trust_region, &K::backtrack_budget>(), L::algorithm, N::closed(1, 1000), kLineSearching,
+    integer("backtrack_budget", field<&R::trust_region, &K::backtrack_budget>(), L::algorithm, N::closed(1, 1000), kLineSearching | kMacpo,
             "Q11: line-search steps (original: 15, CPO 20; report: CPO and PCPO 25)"),
-    real("backtrack_decay", field<&R::trust_region, &K::backtrack_decay>(), L::algorithm, N::open(0, 1), kLineSearching,
+    real("backtrack_decay", field<&R::trust_region, &K::backtrack_decay>(), L::algorithm, N::open(0, 1), kLineSearching | kMacpo,
          "line-search step shrink factor"),
-    real("kl_accept_factor", field<&R::trust_region, &K::kl_accept_factor>(), L::algorithm, N::above(0), kLineSearching,
+    real("kl_accept_factor", field<&R::trust_region, &K::kl_accept_factor>(), L::algorithm, N::above(0), kLineSearching | kMacpo,
          "Q13: the line search accepts a step with KL <= kl_accept_factor * target_kl"),
   };
 }
@@ -57,9 +59,9 @@ std::vector<ConfigKeyRow> trust_region_variant_rows() {
   return {
     // --- algorithm switches (docs/algorithms.md#pdo, #cpo, #pcpo) ---
     choice("cpo_r_sign", enum_access<&R::trust_region, &K::cpo_r_sign>(), kCpoRSignNames, L::algorithm,
-           algorithm_bit(Algorithm::cpo),
+           algorithm_bit(Algorithm::cpo) | kMacpo,
            "Q10: sign of r in CPO's dual: original (as the code) or corrected"),
-    boolean("cpo_clamp_a", field<&R::trust_region, &K::cpo_clamp_a>(), L::algorithm, algorithm_bit(Algorithm::cpo),
+    boolean("cpo_clamp_a", field<&R::trust_region, &K::cpo_clamp_a>(), L::algorithm, algorithm_bit(Algorithm::cpo) | kMacpo,
             "clamp CPO's A = q - r^2/s at 0 when rounding makes it negative (else an error)"),
     choice("pcpo_projection", enum_access<&R::trust_region, &K::pcpo_projection>(), kPcpoProjectionNames,
            L::algorithm, algorithm_bit(Algorithm::pcpo),

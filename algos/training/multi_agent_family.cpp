@@ -1,5 +1,6 @@
 #include "algos/training/multi_agent_family.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -8,6 +9,10 @@
 #include "algos/core/advantage_normalization.h"
 #include "algos/core/policy_surrogate.h"
 #include "algos/first_order/make_first_order_algorithm.h"
+#include "algos/first_order/ppo.h"
+#include "algos/multi_agent/happo_update.h"
+#include "algos/multi_agent/macpo_update.h"
+#include "algos/multi_agent/sequential_order.h"
 #include "algos/training/epoch_log.h"
 #include "algos/training/evaluation.h"
 #include "algos/training/progress_csv_fields.h"
@@ -31,6 +36,10 @@ std::uint64_t stream_seed(const RunConfig& config, SeedStream stream, int rank, 
 const RunConfig& checked_config(const RunConfig& config, const MpiContext& mpi) {
   if (!is_multi_agent(config.alg)) {
     throw std::invalid_argument("MultiAgentFamily: " + std::string(to_string(config.alg)) + " is not a multi-agent learner");
+  }
+  if (is_sequential_multi_agent(config.alg) && config.multi_agent.share_policy) {
+    throw std::invalid_argument("MultiAgentFamily: " + std::string(to_string(config.alg)) +
+                                " updates each agent's own policy in turn; share_policy must be false");
   }
   check_run_config_for_ranks(config, mpi.size());
   return config;
@@ -117,6 +126,8 @@ MultiAgentFamily::MultiAgentFamily(const RunConfig& config, const MpiContext& mp
       rollout_(env_->spec(),
                MultiAgentRolloutOptions{config_.steps_per_epoch / mpi.size(), config_.max_ep_len, config_.timeout_bootstrap},
                BufferOptions{config_.gamma, config_.lam, config_.lam_c, 1, false}) {
+  // MACPO's CPO steps keep no state between epochs; every other learner's slot keeps its PPO's Adam.
+  if (config_.alg == Algorithm::macpo) return;
   for (int s = 0; s < networks_->slot_count(); ++s) algorithms_.push_back(make_first_order_algorithm(slot_update_config(config_)));
 }
 
@@ -214,8 +225,49 @@ void MultiAgentFamily::update_slot(int s, const ConstraintEstimate& constraint, 
   const std::vector<ConstraintEstimate> constraints{constraint};
   record.updates.push_back(algorithms_[static_cast<std::size_t>(s)]->update(PolicyUpdateInputs{
       slot.policy, surrogate, constraint.mean_episode_cost, mean_length, mpi_, constraints, &shuffle_rng_}));
+}
 
-  // Step 4: V (and V_C) of the slot on the stacked critic inputs.
+// Step 3 of HAPPO and MACPO: one sequential round over the agents, each on its own batch.
+void MultiAgentFamily::update_agents_in_turn(int epoch, EpochRecord& record) {
+  const int n = networks_->agent_count();
+  std::vector<AgentBatch> batches;
+  std::vector<GaussianPolicy*> policies;
+  for (int i = 0; i < n; ++i) {
+    const Buffer& buffer = rollout_.buffer(i);
+    AgentBatch batch;
+    networks_->policy_inputs(i, buffer.observations(), batch.observations);
+    batch.actions = buffer.actions();
+    batch.old_log_probs = buffer.log_probs();
+    batch.advantages = buffer.advantages();
+    Eigen::MatrixXd cost_advantages = buffer.constraint_cost_advantages();
+    standardize_advantages(batch.advantages, cost_advantages, mpi_);  // per agent, as SafePO's buffers
+    batch.cost_advantages = cost_advantages.cols() > 0 ? Eigen::VectorXd(cost_advantages.col(0))
+                                                       : Eigen::VectorXd::Zero(batch.advantages.size());
+    batches.push_back(std::move(batch));
+    policies.push_back(&networks_->slot_of_agent(i).policy);
+  }
+  const std::vector<int> order =
+      sequential_agent_order(n, static_cast<std::uint64_t>(config_.seed), static_cast<std::uint64_t>(epoch));
+  if (config_.alg == Algorithm::happo) {
+    std::vector<Ppo*> ppos;
+    for (const auto& algorithm : algorithms_) ppos.push_back(dynamic_cast<Ppo*>(algorithm.get()));
+    record.round = happo_round(policies, ppos, batches, order, mpi_, shuffle_rng_);
+  } else {
+    // SafePO's c: every agent's buffer holds the team's mean episode cost (macpo.py, return_aver_cost).
+    const double c = macpo_constraint_violation(record.team_cost.mean, config_.cost_limit, config_.gamma);
+    record.constraint_violations.assign(static_cast<std::size_t>(n), c);
+    record.round = macpo_round(policies, batches, order, record.constraint_violations, config_, mpi_);
+  }
+  std::sort(record.round.begin(), record.round.end(),
+            [](const AgentRoundStatistics& a, const AgentRoundStatistics& b) { return a.agent < b.agent; });
+  for (const AgentRoundStatistics& agent : record.round) {
+    record.updates.push_back(PolicyUpdateResult{agent.diagnostics, {}});
+  }
+}
+
+// Step 4: V (and V_C) of the slot on the stacked critic inputs.
+void MultiAgentFamily::fit_critics(int s, EpochRecord& record) {
+  AgentSlot& slot = networks_->slot(s);
   const Eigen::MatrixXd critic_inputs = stacked(slot.agents, [&](int agent) {
     Eigen::MatrixXd rows;
     networks_->critic_inputs(agent, rollout_.states(), rows);
@@ -266,7 +318,15 @@ FamilyEpoch MultiAgentFamily::run_epoch(int epoch, bool /*checkpoint_follows: th
 
   pool_episodes(record);
   const ConstraintEstimate constraint{record.team_cost.mean, config_.cost_limit};
-  for (int s = 0; s < networks_->slot_count(); ++s) update_slot(s, constraint, record.team_length.mean, record);
+  if (is_sequential_multi_agent(config_.alg)) {
+    update_agents_in_turn(epoch, record);
+    for (int s = 0; s < networks_->slot_count(); ++s) fit_critics(s, record);
+  } else {
+    for (int s = 0; s < networks_->slot_count(); ++s) {
+      update_slot(s, constraint, record.team_length.mean, record);
+      fit_critics(s, record);
+    }
+  }
   for (const PolicyUpdateResult& update : record.updates) {
     if (const auto loss = update.common(CommonDiagnostic::loss)) check_finite(epoch, "policy loss", *loss);
   }
@@ -292,8 +352,8 @@ FamilyEpoch MultiAgentFamily::run_epoch(int epoch, bool /*checkpoint_follows: th
   result.timings.update_seconds = last_.update_seconds;
   result.line.mean_return = last_.team_return.mean;
   result.line.mean_cost = last_.team_cost.mean;
-  if (!ignores_cost(config_.alg)) {
-    result.line.cost_limit = config_.cost_limit;
+  if (!ignores_cost(config_.alg)) result.line.cost_limit = config_.cost_limit;
+  if (algorithm_info(config_.alg).lagrange_multiplier) {
     result.line.lagrange_multiplier = last_.updates.front().lagrange_multiplier;
   }
   result.line.kl = slot_mean(last_.updates, CommonDiagnostic::kl, mpi_);
@@ -333,9 +393,26 @@ std::vector<NamedScalar> MultiAgentFamily::log_entries(const EpochAccounts* acco
   add("kl", values ? slot_mean(last_.updates, CommonDiagnostic::kl, mpi_) : 0.0);
   add("policy_ratio", values ? slot_mean(last_.updates, CommonDiagnostic::policy_ratio, mpi_) : 0.0);
   add("value_loss", fit_mean(0));
-  if (constrained) {
-    add("cost_value_loss", fit_mean(1));
+  if (constrained) add("cost_value_loss", fit_mean(1));
+  if (algorithm_info(config_.alg).lagrange_multiplier) {
     add("lagrange_multiplier", values ? last_.updates.front().lagrange_multiplier.value_or(std::nan("")) : 0.0);
+  }
+  // The sequential round's per-agent statistics: position in the order (0 first), KL and step norm
+  // averaged over ranks, the correction factor M the agent's step saw on this rank's rows.
+  if (is_sequential_multi_agent(config_.alg)) {
+    for (int i = 0; i < networks_->agent_count(); ++i) {
+      const std::string prefix = "agent_" + std::to_string(i) + "_";
+      const AgentRoundStatistics* agent = values ? &last_.round[static_cast<std::size_t>(i)] : nullptr;
+      add(prefix + "position", agent ? agent->position : 0.0);
+      add(prefix + "kl", agent ? mpi_.average(agent->kl) : 0.0);
+      add(prefix + "step_norm", agent ? mpi_.average(agent->step_norm) : 0.0);
+      add(prefix + "factor_mean", agent ? agent->factor.mean : 0.0);
+      add(prefix + "factor_min", agent ? agent->factor.min : 0.0);
+      add(prefix + "factor_max", agent ? agent->factor.max : 0.0);
+      if (config_.alg == Algorithm::macpo) {
+        add(prefix + "constraint_violation", agent ? last_.constraint_violations[static_cast<std::size_t>(i)] : 0.0);
+      }
+    }
   }
   add("time_collect_s", last_.collect_seconds);
   add("time_update_s", last_.update_seconds);

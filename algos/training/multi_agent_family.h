@@ -1,5 +1,5 @@
-// The multi-agent family (docs/multi_agent.md#learners): MAPPO and MAPPO-L (alg mappo, mappo-lag) on
-// the multi-agent environments (envs/multi_agent_env.h). Per epoch k, on every rank:
+// The multi-agent family (docs/multi_agent.md#learners): MAPPO, MAPPO-L, HAPPO and MACPO (alg mappo,
+// mappo-lag, happo, macpo) on the multi-agent environments (envs/multi_agent_env.h). Per epoch k, on every rank:
 //   1. collect N = B / R team steps (multi_agent_rollout.h): each agent's action from its slot's
 //      actor, V(s) and V_C(s) from its slot's centralised critics, GAE per agent in its own buffer;
 //   2. pool the team's episodes over ranks: an episode's return and cost are the agents' mean
@@ -11,6 +11,11 @@
 //      (algos/first_order/ppo.h) with the slot's own Adam; MAPPO-L's slot first steps its multiplier
 //      on J_C - d and then takes A_hat = (A - lambda A^C) / (1 + lambda) (PPO-Lag's update, see
 //      below for SafePO's differences);
+//      HAPPO and MACPO (is_sequential_multi_agent: one slot per agent) replace step 3 with one
+//      sequential round (algos/multi_agent/sequential_round.h): each agent's AgentBatch from its own
+//      buffer, its advantages standardised over its rows, the order sequential_agent_order(n, seed,
+//      k); HAPPO's agent steps with its own Ppo (its Adam state in the checkpoint), MACPO's takes
+//      CPO's step with c_i = macpo_constraint_violation(J_C of agent i, cost_limit, gamma);
 //   4. fit every slot's V and V_C on the stacked critic inputs (value_function.h schedule);
 //   5. update the observation and state normalisers, check parameters (and the ranks' agreement).
 //
@@ -34,6 +39,7 @@
 #include "algos/core/epoch_statistics.h"
 #include "algos/core/value_function.h"
 #include "algos/multi_agent/multi_agent_networks.h"
+#include "algos/multi_agent/sequential_round.h"
 #include "algos/training/multi_agent_rollout.h"
 #include "algos/training/training_family.h"
 #include "common/mpi_context.h"
@@ -80,7 +86,9 @@ class MultiAgentFamily final : public TrainingFamily {
   struct EpochRecord {
     PooledStatistics team_return, team_cost, team_length;
     std::vector<double> agent_returns, agent_costs;  // each agent's mean episode sums, pooled
-    std::vector<PolicyUpdateResult> updates;         // per slot
+    std::vector<PolicyUpdateResult> updates;         // per slot (HAPPO, MACPO: per agent)
+    std::vector<AgentRoundStatistics> round;         // HAPPO, MACPO: per agent, in agent order
+    std::vector<double> constraint_violations;       // MACPO: c per agent
     std::vector<std::vector<ValueFitStats>> fits;    // per slot: V, then V_C
     double collect_seconds = 0.0;
     double update_seconds = 0.0;
@@ -88,6 +96,8 @@ class MultiAgentFamily final : public TrainingFamily {
 
   void pool_episodes(EpochRecord& record) const;
   void update_slot(int slot, const ConstraintEstimate& constraint, double mean_length, EpochRecord& record);
+  void update_agents_in_turn(int epoch, EpochRecord& record);
+  void fit_critics(int slot, EpochRecord& record);
   void update_normalizers();
   void check_parameters_finite(int epoch) const;
   std::vector<NamedScalar> log_entries(const EpochAccounts* accounts) const;

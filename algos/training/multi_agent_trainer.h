@@ -1,5 +1,5 @@
 // A run of the multi-agent family (multi_agent_family.h) in the run skeleton (trainer.h): what
-// make_trainer builds for mappo and mappo-lag.
+// make_trainer builds for mappo, mappo-lag, happo and macpo.
 #pragma once
 
 #include <memory>

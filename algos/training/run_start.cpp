@@ -35,7 +35,10 @@ void check_env_matches_family(const RunConfig& config) {
   }
   if (!is_multi_agent(config.alg) && multi_agent_env) {
     throw ConfigError("env_id '" + config.env_id + "' is a multi-agent environment, but alg '" + alg +
-                      "' trains one agent; use alg mappo or mappo-lag");
+                      "' trains one agent; use alg mappo, mappo-lag, happo or macpo");
+  }
+  if (is_sequential_multi_agent(config.alg) && config.multi_agent.share_policy) {
+    throw ConfigError("alg '" + alg + "' updates each agent's own policy in turn; share_policy must be false");
   }
 }
 

@@ -21,7 +21,7 @@ namespace bsg::algos {
 std::vector<std::string> training_env_ids();
 
 // Throws ConfigError in one line if a multi-agent learner is given a single-agent env_id or a
-// single-agent learner a multi-agent one.
+// single-agent learner a multi-agent one, or a sequential one (happo, macpo) share_policy.
 void check_env_matches_family(const RunConfig& config);
 
 // resolve_run_config with the registered environment ids (both registries), the env: block checked, and an

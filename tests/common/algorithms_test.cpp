@@ -32,7 +32,8 @@ TEST(Algorithms, FamiliesAgreeWithTheShippedAlgorithmFiles) {
     SCOPED_TRACE(std::string(info.name));
     const YAML::Node file = YAML::LoadFile((kAlgorithmFiles / (std::string(info.name) + ".yaml")).string());
     EXPECT_EQ(info.family == AlgorithmFamily::first_order || info.family == AlgorithmFamily::off_policy ||
-                  info.family == AlgorithmFamily::offline || info.family == AlgorithmFamily::multi_agent,
+                  info.family == AlgorithmFamily::offline ||
+                  (info.family == AlgorithmFamily::multi_agent && info.alg != Algorithm::macpo),  // MACPO: CPO's step
               static_cast<bool>(file["actor_lr"]));
     EXPECT_EQ(info.family == AlgorithmFamily::offline, static_cast<bool>(file["updates_per_epoch"]));
     // Critics: the off-policy learners, CPQ, BCQ-Lag and COptiDICE (its nu and chi networks).
@@ -48,10 +49,11 @@ TEST(Algorithms, OnlyTheUnconstrainedIgnoreTheCostAndOnlyMultipliersHaveAPidLabe
   for (const AlgorithmInfo& info : kAlgorithms) {
     SCOPED_TRACE(std::string(info.name));
     // TRPO and PPO are the report's unconstrained baselines; SAC, TD3 and DDPG the off-policy ones;
-    // BC-All the offline one (BC-Safe is constrained by its choice of episodes); MAPPO the multi-agent one.
+    // BC-All the offline one (BC-Safe is constrained by its choice of episodes); MAPPO and HAPPO the
+    // multi-agent ones.
     EXPECT_EQ(ignores_cost(info.alg), info.name == "trpo" || info.name == "ppo" || info.name == "sac" ||
                                           info.name == "td3" || info.name == "ddpg" || info.name == "bc-all" ||
-                                          info.name == "mappo");
+                                          info.name == "mappo" || info.name == "happo");
     EXPECT_EQ(info.pid_label.empty(), !info.lagrange_multiplier);
   }
   std::set<std::string_view> labels;

@@ -1,10 +1,12 @@
 // The multi-agent family (algos/training/multi_agent_family.h, algos/multi_agent/): the agent id's
 // one-hot layout against hand-written inputs, MAPPO-L's multiplier on a hand-made cost sequence,
 // a run stopped after one epoch and resumed writing the uninterrupted run's files, the shared
-// policy's run, and the bad pairings of env_id and alg refused in one line.
+// policy's run, HAPPO's and MACPO's runs resumed likewise, and the bad pairings of env_id and alg
+// (and happo with share_policy) refused in one line.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -29,8 +31,10 @@ RunConfig ma_config(const std::string& alg, std::vector<std::string> more = {}) 
   RunConfigRequest request;
   request.configs_dir = fs::path(BSG_SOURCE_DIR) / "configs";
   request.set_arguments = {"env_id=SafetyBallCircle2-v0", "alg=" + alg, "epochs=3", "steps_per_epoch=200",
-                           "max_ep_len=100", "hidden_sizes=[8]", "eval_episodes=2", "save_freq=1",
-                           "policy_minibatch_size=100", "update_iters=2", "train_v_iterations=2"};
+                           "max_ep_len=100", "hidden_sizes=[8]", "eval_episodes=2", "save_freq=1", "train_v_iterations=2"};
+  if (alg != "macpo") {  // MACPO's actors take CPO's step, without PPO's keys
+    request.set_arguments.insert(request.set_arguments.end(), {"policy_minibatch_size=100", "update_iters=2"});
+  }
   request.set_arguments.insert(request.set_arguments.end(), more.begin(), more.end());
   return resolve_training_config(request);
 }
@@ -115,6 +119,52 @@ TEST(MultiAgentFamily, AResumedRunWritesTheUninterruptedRunsFiles) {
   EXPECT_NE(std::find(header.begin(), header.end(), "lagrange_multiplier"), header.end());
 }
 
+// HAPPO and MACPO: the per-agent PPO Adam (HAPPO) and the epoch's order survive a checkpoint; the
+// per-agent columns of the round are written.
+void expect_resumed_run_equals_whole(const std::string& alg, const std::string& only_column) {
+  const bsg::testing::TemporaryDirectory dir("multi_agent_" + alg);
+  const RunConfig config = ma_config(alg);
+  MultiAgentTrainer whole(config, RunDirectory(dir.path() / "whole"), MpiContext::single_process(), {});
+  ASSERT_TRUE(whole.run().finished);
+  TrainerOptions stop;
+  stop.stop_after_epochs = 1;
+  {
+    MultiAgentTrainer first(config, RunDirectory(dir.path() / "split"), MpiContext::single_process(), stop);
+    EXPECT_EQ(first.run().epochs_completed, 1);
+  }
+  TrainerOptions resume;
+  resume.resume = true;
+  MultiAgentTrainer second(config, RunDirectory(dir.path() / "split"), MpiContext::single_process(), resume);
+  ASSERT_TRUE(second.run().finished);
+  EXPECT_EQ(without_times(dir.path() / "split" / "progress.csv"), without_times(dir.path() / "whole" / "progress.csv"));
+  const auto rows = bsg::testing::read_csv_rows(dir.path() / "whole" / "progress.csv");
+  const auto& header = rows.front();
+  for (const std::string& column : {std::string("agent_1_position"), std::string("agent_0_factor_max"), only_column}) {
+    EXPECT_NE(std::find(header.begin(), header.end(), column), header.end()) << column;
+  }
+  EXPECT_EQ(std::find(header.begin(), header.end(), "lagrange_multiplier"), header.end());
+  // Two agents: the positions of every epoch are 0 and 1 in some order, the first agent's factor is 1.
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    const double p0 = std::stod(rows[r][column("agent_0_position")]);
+    const double p1 = std::stod(rows[r][column("agent_1_position")]);
+    EXPECT_EQ(p0 + p1, 1.0);
+    const std::string first = p0 == 0.0 ? "agent_0_" : "agent_1_";
+    EXPECT_EQ(std::stod(rows[r][column(first + "factor_min")]), 1.0);
+    EXPECT_EQ(std::stod(rows[r][column(first + "factor_max")]), 1.0);
+  }
+}
+
+TEST(MultiAgentFamily, AResumedHappoRunWritesTheUninterruptedRunsFiles) {
+  expect_resumed_run_equals_whole("happo", "agent_0_step_norm");
+}
+
+TEST(MultiAgentFamily, AResumedMacpoRunWritesTheUninterruptedRunsFiles) {
+  expect_resumed_run_equals_whole("macpo", "agent_1_constraint_violation");
+}
+
 TEST(MultiAgentFamily, ASharedPolicyRunTrains) {
   const bsg::testing::TemporaryDirectory dir("multi_agent_shared");
   MultiAgentTrainer trainer(ma_config("mappo", {"share_policy=true", "epochs=1"}), RunDirectory(dir.path() / "run"),
@@ -141,7 +191,9 @@ TEST(MultiAgentFamily, EnvAndAlgOfDifferentFamiliesAreRefusedInOneLine) {
   EXPECT_NE(multi.find("is a multi-agent environment"), std::string::npos) << multi;
   const std::string constraints = message({"env_id=SafetyBallCircle2-v0", "alg=mappo-lag", "constraints=[{terms: all, limit: 3}]"});
   EXPECT_NE(constraints.find("not supported by alg 'mappo-lag'"), std::string::npos) << constraints;
-  for (const std::string& text : {single, multi, constraints}) EXPECT_EQ(text.find('\n'), std::string::npos) << text;
+  const std::string shared = message({"env_id=SafetyBallCircle2-v0", "alg=happo", "share_policy=true"});
+  EXPECT_NE(shared.find("share_policy must be false"), std::string::npos) << shared;
+  for (const std::string& text : {single, multi, constraints, shared}) EXPECT_EQ(text.find('\n'), std::string::npos) << text;
 }
 
 }  // namespace multi_agent_family_test
