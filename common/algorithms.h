@@ -107,7 +107,7 @@ inline constexpr auto kAlgorithms = std::to_array<AlgorithmInfo>({
     // The sequential multi-agent updates, one agent after another in a random order, each seeing the
     // correction of those before it (Kuba et al. 2022, HAPPO; Gu et al. 2021, MACPO's CPO steps; SafePO's
     // multi_agent/happo.py and macpo.py; docs/multi_agent.md#sequential-agent-updates-happo-macpo).
-    {Algorithm::happo,    "happo",    "HAPPO",    "",           AlgorithmFamily::multi_agent,  false, false, true,  "seagreen"},
+    {Algorithm::happo,    "happo",    "HAPPO",    "",           AlgorithmFamily::multi_agent,  false, false, true,  "lightseagreen"},
     {Algorithm::macpo,    "macpo",    "MACPO",    "",           AlgorithmFamily::multi_agent,  true,  false, false, "indianred"},
 });
 

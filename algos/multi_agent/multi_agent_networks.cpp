@@ -3,8 +3,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "algos/core/adam_state.h"
+#include "algos/core/network_checkpoint.h"
 #include "algos/multi_agent/agent_id_input.h"
+#include "common/adam.h"
 
 namespace bsg::algos {
 namespace {
@@ -34,28 +35,6 @@ const MultiAgentSizes& checked(const MultiAgentSizes& sizes, bool share) {
     }
   }
   return sizes;
-}
-
-void save_value(const ValueFunction& value, BinaryWriter& writer) {
-  writer.write_vector(value.net().parameters());
-  save_adam_state(value.optimizer(), writer);
-}
-
-void load_value(ValueFunction& value, BinaryReader& reader, const std::string& name) {
-  value.net().set_parameters(reader.read_vector(name + " parameters", value.net().num_parameters()));
-  load_adam_state(value.optimizer(), reader, name);
-}
-
-void save_normalizer(const RunningMeanStd& normalizer, BinaryWriter& writer) {
-  writer.write_vector(normalizer.mean());
-  writer.write_vector(normalizer.std());
-  writer.write_f64(normalizer.count());
-}
-
-void load_normalizer(RunningMeanStd& normalizer, BinaryReader& reader, const std::string& name) {
-  const Eigen::VectorXd mean = reader.read_vector(name + " mean", normalizer.dimension());
-  const Eigen::VectorXd std = reader.read_vector(name + " std", normalizer.dimension());
-  normalizer.set_state(mean, std, reader.read_f64(name + " count"));
 }
 
 }  // namespace
@@ -163,8 +142,8 @@ void MultiAgentNetworks::save(BinaryWriter& writer) const {
     writer.write_section("policy slot " + std::to_string(s));
     writer.write_vector(slot.policy.mean_net().parameters());
     writer.write_vector(slot.policy.log_stds());
-    save_value(slot.value, writer);
-    if (slot.cost_value) save_value(*slot.cost_value, writer);
+    save_value_function(slot.value, writer);
+    if (slot.cost_value) save_value_function(*slot.cost_value, writer);
     save_normalizer(slot.observation_normalizer, writer);
   }
   writer.write_section("state normaliser");
@@ -178,8 +157,8 @@ void MultiAgentNetworks::load(BinaryReader& reader) {
     reader.expect_section(name);
     slot.policy.mean_net().set_parameters(reader.read_vector(name + " parameters", slot.policy.mean_net().num_parameters()));
     slot.policy.set_log_stds(reader.read_vector(name + " log sigma", slot.policy.action_size()));
-    load_value(slot.value, reader, name + " value-net");
-    if (slot.cost_value) load_value(*slot.cost_value, reader, name + " cost value-net");
+    load_value_function(slot.value, reader, name + " value-net");
+    if (slot.cost_value) load_value_function(*slot.cost_value, reader, name + " cost value-net");
     load_normalizer(slot.observation_normalizer, reader, name + " observation normaliser");
   }
   reader.expect_section("state normaliser");
