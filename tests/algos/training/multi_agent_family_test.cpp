@@ -96,22 +96,29 @@ TEST(MultiAgentFamily, MappoLagMultiplierFollowsTheSgdRuleOnTheTeamCost) {
   EXPECT_EQ(slot_update_config(ma_config("mappo")).alg, Algorithm::ppo);
 }
 
-TEST(MultiAgentFamily, AResumedRunWritesTheUninterruptedRunsFiles) {
-  const bsg::testing::TemporaryDirectory dir("multi_agent");
-  const RunConfig config = ma_config("mappo-lag");
-  MultiAgentTrainer whole(config, RunDirectory(dir.path() / "whole"), MpiContext::single_process(), {});
+// Trains `config` whole into dir/whole, and stopped after one epoch then resumed into dir/split;
+// their progress.csv must agree but for the timing columns.
+void train_whole_and_resumed(const RunConfig& config, const std::filesystem::path& root) {
+  MultiAgentTrainer whole(config, RunDirectory(root / "whole"), MpiContext::single_process(), {});
   ASSERT_TRUE(whole.run().finished);
   TrainerOptions stop;
   stop.stop_after_epochs = 1;
   {
-    MultiAgentTrainer first(config, RunDirectory(dir.path() / "split"), MpiContext::single_process(), stop);
+    MultiAgentTrainer first(config, RunDirectory(root / "split"), MpiContext::single_process(), stop);
     EXPECT_EQ(first.run().epochs_completed, 1);
   }
   TrainerOptions resume;
   resume.resume = true;
-  MultiAgentTrainer second(config, RunDirectory(dir.path() / "split"), MpiContext::single_process(), resume);
+  MultiAgentTrainer second(config, RunDirectory(root / "split"), MpiContext::single_process(), resume);
   ASSERT_TRUE(second.run().finished);
-  EXPECT_EQ(without_times(dir.path() / "split" / "progress.csv"), without_times(dir.path() / "whole" / "progress.csv"));
+  EXPECT_EQ(without_times(root / "split" / "progress.csv"), without_times(root / "whole" / "progress.csv"));
+}
+
+TEST(MultiAgentFamily, AResumedRunWritesTheUninterruptedRunsFiles) {
+  const bsg::testing::TemporaryDirectory dir("multi_agent");
+  const RunConfig config = ma_config("mappo-lag");
+  train_whole_and_resumed(config, dir.path());
+  if (::testing::Test::HasFatalFailure()) return;
   EXPECT_EQ(bsg::testing::read_text_file(dir.path() / "split" / "evaluation.json"),
             bsg::testing::read_text_file(dir.path() / "whole" / "evaluation.json"));
   const auto header = bsg::testing::read_csv_rows(dir.path() / "whole" / "progress.csv").front();
@@ -124,19 +131,8 @@ TEST(MultiAgentFamily, AResumedRunWritesTheUninterruptedRunsFiles) {
 void expect_resumed_run_equals_whole(const std::string& alg, const std::string& only_column) {
   const bsg::testing::TemporaryDirectory dir("multi_agent_" + alg);
   const RunConfig config = ma_config(alg);
-  MultiAgentTrainer whole(config, RunDirectory(dir.path() / "whole"), MpiContext::single_process(), {});
-  ASSERT_TRUE(whole.run().finished);
-  TrainerOptions stop;
-  stop.stop_after_epochs = 1;
-  {
-    MultiAgentTrainer first(config, RunDirectory(dir.path() / "split"), MpiContext::single_process(), stop);
-    EXPECT_EQ(first.run().epochs_completed, 1);
-  }
-  TrainerOptions resume;
-  resume.resume = true;
-  MultiAgentTrainer second(config, RunDirectory(dir.path() / "split"), MpiContext::single_process(), resume);
-  ASSERT_TRUE(second.run().finished);
-  EXPECT_EQ(without_times(dir.path() / "split" / "progress.csv"), without_times(dir.path() / "whole" / "progress.csv"));
+  train_whole_and_resumed(config, dir.path());
+  if (::testing::Test::HasFatalFailure()) return;
   const auto rows = bsg::testing::read_csv_rows(dir.path() / "whole" / "progress.csv");
   const auto& header = rows.front();
   for (const std::string& column : {std::string("agent_1_position"), std::string("agent_0_factor_max"), only_column}) {
