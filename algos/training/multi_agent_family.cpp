@@ -10,8 +10,7 @@
 #include "algos/core/policy_surrogate.h"
 #include "algos/first_order/make_first_order_algorithm.h"
 #include "algos/first_order/ppo.h"
-#include "algos/multi_agent/happo_update.h"
-#include "algos/multi_agent/macpo_update.h"
+#include "algos/multi_agent/sequential_policy_step.h"
 #include "algos/multi_agent/sequential_order.h"
 #include "algos/training/epoch_log.h"
 #include "algos/training/evaluation.h"
@@ -227,7 +226,7 @@ void MultiAgentFamily::update_slot(int s, const ConstraintEstimate& constraint, 
       slot.policy, surrogate, constraint.mean_episode_cost, mean_length, mpi_, constraints, &shuffle_rng_}));
 }
 
-// Step 3 of HAPPO and MACPO: one sequential round over the agents, each on its own batch.
+// Step 3 of HAPPO and MACPO: one sequential round over the agents, each on its own buffer's rows.
 void MultiAgentFamily::update_agents_in_turn(int epoch, EpochRecord& record) {
   const int n = networks_->agent_count();
   std::vector<AgentBatch> batches;
@@ -239,27 +238,19 @@ void MultiAgentFamily::update_agents_in_turn(int epoch, EpochRecord& record) {
     batch.actions = buffer.actions();
     batch.old_log_probs = buffer.log_probs();
     batch.advantages = buffer.advantages();
-    Eigen::MatrixXd cost_advantages = buffer.constraint_cost_advantages();
-    standardize_advantages(batch.advantages, cost_advantages, mpi_);  // per agent, as SafePO's buffers
-    batch.cost_advantages = cost_advantages.cols() > 0 ? Eigen::VectorXd(cost_advantages.col(0))
-                                                       : Eigen::VectorXd::Zero(batch.advantages.size());
+    const Eigen::MatrixXd cost_advantages = buffer.constraint_cost_advantages();
+    if (cost_advantages.cols() > 0) batch.cost_advantages = cost_advantages.col(0);
     batches.push_back(std::move(batch));
     policies.push_back(&networks_->slot_of_agent(i).policy);
   }
   const std::vector<int> order =
       sequential_agent_order(n, static_cast<std::uint64_t>(config_.seed), static_cast<std::uint64_t>(epoch));
-  if (config_.alg == Algorithm::happo) {
-    std::vector<Ppo*> ppos;
-    for (const auto& algorithm : algorithms_) ppos.push_back(dynamic_cast<Ppo*>(algorithm.get()));
-    record.round = happo_round(policies, ppos, batches, order, mpi_, shuffle_rng_);
-  } else {
-    // SafePO's c: every agent's buffer holds the team's mean episode cost (macpo.py, return_aver_cost).
-    const double c = macpo_constraint_violation(record.team_cost.mean, config_.cost_limit, config_.gamma);
-    record.constraint_violations.assign(static_cast<std::size_t>(n), c);
-    record.round = macpo_round(policies, batches, order, record.constraint_violations, config_, mpi_);
-  }
-  std::sort(record.round.begin(), record.round.end(),
-            [](const AgentRoundStatistics& a, const AgentRoundStatistics& b) { return a.agent < b.agent; });
+  std::vector<Ppo*> ppos;  // HAPPO's; MACPO keeps none
+  for (const auto& algorithm : algorithms_) ppos.push_back(dynamic_cast<Ppo*>(algorithm.get()));
+  SequentialPolicyStep step = sequential_policy_step(config_, std::move(batches), policies, ppos,
+                                                     record.team_cost.mean, order, mpi_, shuffle_rng_);
+  record.round = std::move(step.round);
+  record.constraint_violations = std::move(step.constraint_violations);
   for (const AgentRoundStatistics& agent : record.round) {
     record.updates.push_back(PolicyUpdateResult{agent.diagnostics, {}});
   }
