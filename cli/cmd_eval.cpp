@@ -3,6 +3,8 @@
 // sampled_evaluation or --actions says); prints J (mean return) and H (mean cost),
 // with --json also every episode's figures. --video FILE.mp4 and
 // --trajectories FILE.png record the episodes (cli/recording.h; one process only).
+// A multi-agent run (docs/multi_agent.md#learners): its family's final evaluation, J and H the
+// agents' mean and each agent's own below them; --actions sampled and the recording are refused.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -37,14 +39,16 @@ int evaluate(const EvalArguments& args) {
     if (args.recording.any() && mpi.size() > 1) {
       throw std::invalid_argument("--video and --trajectories record one process's episodes; run bsg eval without mpirun");
     }
-    std::optional<Recording> recording;
-    if (args.recording.any()) recording.emplace(args.recording);
+    const algos::RunDirectory directory(args.run_dir);
     std::optional<algos::EvaluationActions> actions;
     if (args.actions) actions = *args.actions == "sampled" ? algos::EvaluationActions::sampled : algos::EvaluationActions::mean;
-    const algos::RunEvaluation result = algos::evaluate_run_directory(
-        algos::RunDirectory(args.run_dir), args.episodes, mpi,
-        [&](std::unique_ptr<envs::Env> env) { return recording ? recording->wrap(std::move(env)) : std::move(env); },
-        actions);
+    // Before the recording opens its files.
+    algos::check_multi_agent_evaluation(directory, actions == algos::EvaluationActions::sampled, args.recording.any());
+    std::optional<Recording> recording;
+    if (args.recording.any()) recording.emplace(args.recording);
+    algos::EnvDecorator record;  // none unless asked for (a multi-agent run takes none)
+    if (recording) record = [&](std::unique_ptr<envs::Env> env) { return recording->wrap(std::move(env)); };
+    const algos::RunEvaluation result = algos::evaluate_run_directory(directory, args.episodes, mpi, record, actions);
     if (recording) recording->finish(args.json ? std::cerr : std::cout);
     if (!mpi.is_root()) return 0;
     if (args.json) {
@@ -54,12 +58,18 @@ int evaluate(const EvalArguments& args) {
         std::cout << "note: the checkpoint covers " << result.epochs_completed << " of " << result.epochs
                   << " epochs (the run is not finished)\n";
       }
-      std::cout << "episodes " << result.summary.episodes.size() << "\n"
-                << "J (mean return) " << algos::format_csv_number(result.summary.mean_return) << "\n"
-                << "H (mean cost) " << algos::format_csv_number(result.summary.mean_cost) << "\n"
-                << "mean length " << algos::format_csv_number(result.summary.mean_length) << "\n"
-                << "actions " << (result.summary.action_std > 0.0
-                                      ? "sampled, sigma " + algos::format_csv_number(result.summary.action_std)
+      const algos::EvaluationSummary& summary = result.summary;
+      std::cout << "episodes " << summary.episodes.size() << "\n"
+                << "J (mean return) " << algos::format_csv_number(summary.mean_return) << "\n"
+                << "H (mean cost) " << algos::format_csv_number(summary.mean_cost) << "\n";
+      // A multi-agent run: J and H are the agents' mean; each agent's own follows.
+      for (std::size_t a = 0; a < summary.mean_agent_returns.size(); ++a) {
+        std::cout << "agent_" << a << " J (mean return) " << algos::format_csv_number(summary.mean_agent_returns[a])
+                  << " H (mean cost) " << algos::format_csv_number(summary.mean_agent_costs[a]) << "\n";
+      }
+      std::cout << "mean length " << algos::format_csv_number(summary.mean_length) << "\n"
+                << "actions " << (summary.action_std > 0.0
+                                      ? "sampled, sigma " + algos::format_csv_number(summary.action_std)
                                       : std::string("mean (deterministic)"))
                 << std::endl;
     }

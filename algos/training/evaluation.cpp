@@ -73,10 +73,10 @@ EvaluationSummary evaluate_policy(envs::Env& env, ActingPolicy& policy, int tota
 }
 
 EvaluationSummary gather_evaluation(const std::vector<EvaluationEpisode>& local, const MpiContext& mpi, std::size_t m,
-                                    const std::vector<std::string>& term_names) {
-  // Per episode: J, H, length, then H_1..H_m, then the k term sums.
+                                    const std::vector<std::string>& term_names, std::size_t agents) {
+  // Per episode: J, H, length, then H_1..H_m, then the k term sums, then the agents' returns and costs.
   const std::size_t k = term_names.size();
-  const std::size_t stride = 3 + m + k;
+  const std::size_t stride = 3 + m + k + 2 * agents;
   std::vector<double> flat;
   flat.reserve(local.size() * stride);
   for (const EvaluationEpisode& e : local) {
@@ -85,16 +85,19 @@ EvaluationSummary gather_evaluation(const std::vector<EvaluationEpisode>& local,
     flat.push_back(static_cast<double>(e.episode_length));
     flat.insert(flat.end(), e.constraint_costs.begin(), e.constraint_costs.end());
     flat.insert(flat.end(), e.term_costs.begin(), e.term_costs.end());
+    flat.insert(flat.end(), e.agent_returns.begin(), e.agent_returns.end());
+    flat.insert(flat.end(), e.agent_costs.begin(), e.agent_costs.end());
   }
   const std::vector<double> gathered = mpi.gather_to_root(flat);
   EvaluationSummary summary;
   if (!mpi.is_root()) return summary;
+  const auto slice = [&gathered](std::size_t begin, std::size_t count) {
+    return std::vector<double>(gathered.begin() + static_cast<std::ptrdiff_t>(begin),
+                               gathered.begin() + static_cast<std::ptrdiff_t>(begin + count));
+  };
   for (std::size_t i = 0; i + stride - 1 < gathered.size(); i += stride) {
-    summary.episodes.push_back({gathered[i], gathered[i + 1], static_cast<int>(gathered[i + 2]),
-                                std::vector<double>(gathered.begin() + static_cast<std::ptrdiff_t>(i + 3),
-                                                    gathered.begin() + static_cast<std::ptrdiff_t>(i + 3 + m)),
-                                std::vector<double>(gathered.begin() + static_cast<std::ptrdiff_t>(i + 3 + m),
-                                                    gathered.begin() + static_cast<std::ptrdiff_t>(i + stride))});
+    summary.episodes.push_back({gathered[i], gathered[i + 1], static_cast<int>(gathered[i + 2]), slice(i + 3, m),
+                                slice(i + 3 + m, k), slice(i + 3 + m + k, agents), slice(i + 3 + m + k + agents, agents)});
   }
   summary.term_names = term_names;
   summary.mean_term_costs.assign(k, summary.episodes.empty() ? std::nan("") : 0.0);
@@ -103,6 +106,19 @@ EvaluationSummary gather_evaluation(const std::vector<EvaluationEpisode>& local,
   }
   for (double& h : summary.mean_term_costs) {
     if (!summary.episodes.empty()) h /= static_cast<double>(summary.episodes.size());
+  }
+  // Each agent's mean return and cost (NaN without episodes).
+  summary.mean_agent_returns.assign(agents, summary.episodes.empty() ? std::nan("") : 0.0);
+  summary.mean_agent_costs.assign(agents, summary.episodes.empty() ? std::nan("") : 0.0);
+  for (const EvaluationEpisode& e : summary.episodes) {
+    for (std::size_t a = 0; a < agents; ++a) {
+      summary.mean_agent_returns[a] += e.agent_returns[a];
+      summary.mean_agent_costs[a] += e.agent_costs[a];
+    }
+  }
+  for (std::size_t a = 0; a < agents && !summary.episodes.empty(); ++a) {
+    summary.mean_agent_returns[a] /= static_cast<double>(summary.episodes.size());
+    summary.mean_agent_costs[a] /= static_cast<double>(summary.episodes.size());
   }
   summary.mean_constraint_costs.assign(m, 0.0);
   if (summary.episodes.empty()) {

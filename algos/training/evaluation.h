@@ -31,6 +31,8 @@ struct EvaluationEpisode {
   int episode_length = 0;
   std::vector<double> constraint_costs{};  // H_i per constraint (docs/algorithms.md#several-constraints)
   std::vector<double> term_costs{};        // each named cost term's episode sum (when asked for)
+  std::vector<double> agent_returns{};     // a multi-agent episode: each agent's own return and cost
+  std::vector<double> agent_costs{};       // (J and H above are the agents' mean)
 };
 
 // The same episodes acted with the policy that explores while collecting (an off-policy run's
@@ -52,6 +54,8 @@ struct EvaluationSummary {
   std::vector<double> mean_term_costs{};        // each term's mean episode sum
   double action_std = 0.0;                      // sigma of sampled Gaussian actions; 0 = mean actions
   std::optional<ExploringEvaluation> exploring{};  // off-policy final evaluations only
+  std::vector<double> mean_agent_returns{};        // multi-agent runs: each agent's mean return and cost
+  std::vector<double> mean_agent_costs{};
 };
 
 // The episodes of this rank.
@@ -71,10 +75,10 @@ EvaluationSummary evaluate_policy(envs::Env& env, ActingPolicy& policy, int tota
                                   const std::vector<std::string>& term_names = {},
                                   ActionMode mode = ActionMode::mean);
 
-// Rank 0's summary of every rank's `local` episodes, each with m constraint costs and
-// term_names.size() term sums (evaluate_policy's second half; the multi-agent family's evaluation).
-// Collective.
+// Rank 0's summary of every rank's `local` episodes, each with m constraint costs,
+// term_names.size() term sums and `agents` agents' returns and costs (evaluate_policy's second half;
+// the multi-agent family's evaluation). Collective.
 EvaluationSummary gather_evaluation(const std::vector<EvaluationEpisode>& local, const MpiContext& mpi, std::size_t m,
-                                    const std::vector<std::string>& term_names);
+                                    const std::vector<std::string>& term_names, std::size_t agents = 0);
 
 }  // namespace bsg::algos

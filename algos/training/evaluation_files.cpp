@@ -1,6 +1,7 @@
 #include "algos/training/evaluation_files.h"
 
 #include <cmath>
+#include <string>
 
 #include "algos/training/progress_csv.h"
 #include "common/atomic_file.h"
@@ -67,6 +68,16 @@ std::string evaluation_json(const EvaluationSummary& summary, bool per_episode, 
             ", \"mean_return\": " + json_number(exploring.mean_return) +
             ", \"mean_cost\": " + json_number(exploring.mean_cost) +
             ", \"mean_length\": " + json_number(exploring.mean_length) + "}";
+  }
+  // A multi-agent run's agents, each with its own mean return and cost (J and H are their mean).
+  if (!summary.mean_agent_returns.empty()) {
+    text += ",\n  \"agents\": [";
+    for (std::size_t a = 0; a < summary.mean_agent_returns.size(); ++a) {
+      text += std::string(a ? ",\n    " : "\n    ") + "{\"agent\": " + json_string("agent_" + std::to_string(a)) +
+              ", \"mean_return\": " + json_number(summary.mean_agent_returns[a]) +
+              ", \"mean_cost\": " + json_number(summary.mean_agent_costs[a]) + "}";
+    }
+    text += "\n  ]";
   }
   if (safety != nullptr) {
     text += ",\n  \"cumulative_cost\": " + json_number(safety->training_cost.cumulative_cost);

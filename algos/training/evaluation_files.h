@@ -5,6 +5,8 @@
 // off-policy run's training "actions": "deterministic actor", naming what J and H acted with, and
 // "exploring_policy": {"episodes", "mean_return", "mean_cost", "mean_length"}, the same episodes
 // acted with the exploring policy)
+// and for a multi-agent run "agents": [{"agent": "agent_0", "mean_return", "mean_cost"}, ...] (each
+// agent's own; J and H are the agents' mean),
 // and, after training (docs/algorithms.md#safety-during-training), the training cost and every
 // constraint (docs/algorithms.md#several-constraints; without `constraints:` the one on the
 // environment's cost against cost_limit):

@@ -145,8 +145,8 @@ std::unique_ptr<LoadedPolicy> load_policy(const RunDirectory& directory) {
   const RunConfig config = load_resolved_run_config(directory.config(), training_env_ids());
   if (is_multi_agent(config.alg)) {
     throw std::invalid_argument(directory.root.string() + ": a multi-agent run (alg " + std::string(to_string(config.alg)) +
-                                "); bsg eval, bsg collect and bsg.load_policy load single-agent policies only "
-                                "(its evaluation.json is written at the end of training)");
+                                "); bsg collect and bsg.load_policy load single-agent policies only "
+                                "(bsg eval evaluates it)");
   }
   const PolicySizes sizes = sizes_of(config);
   switch (algorithm_info(config.alg).family) {

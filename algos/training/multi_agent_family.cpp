@@ -419,10 +419,17 @@ std::vector<NamedScalar> MultiAgentFamily::progress_row(const EpochAccounts& acc
 
 std::vector<std::string> MultiAgentFamily::progress_columns() const { return names_of(log_entries(nullptr)); }
 
-// The agents' mean actions on floor(eval_episodes / R) episodes per rank, seeded as every family's
-// evaluation; an episode's return and cost are the agents' mean, as in training.
 EvaluationSummary MultiAgentFamily::evaluate(int /*epochs_completed*/) {
-  const int local_episodes = config_.eval_episodes / mpi_.size();
+  return evaluate_mean_actions(config_.eval_episodes, config_.seed);
+}
+
+// The agents' mean actions on floor(total_episodes / R) episodes per rank, seeded as every family's
+// evaluation; an episode's return and cost are the agents' mean, as in training.
+EvaluationSummary MultiAgentFamily::evaluate_mean_actions(int total_episodes, std::int64_t run_seed) {
+  if (total_episodes < 0) {
+    throw std::invalid_argument("evaluation: the number of episodes must be >= 0, got " + std::to_string(total_episodes));
+  }
+  const int local_episodes = total_episodes / mpi_.size();
   const int n = networks_->agent_count();
   std::vector<EvaluationEpisode> local;
   std::vector<Eigen::VectorXd> observations, inputs, actions;
@@ -442,13 +449,15 @@ EvaluationSummary MultiAgentFamily::evaluate(int /*epochs_completed*/) {
   };
   for (int e = 0; e < local_episodes; ++e) {
     if (e == 0) {
-      observe(env_->reset(derive_seed(static_cast<std::uint64_t>(config_.seed), SeedStream::evaluation_environment,
+      observe(env_->reset(derive_seed(static_cast<std::uint64_t>(run_seed), SeedStream::evaluation_environment,
                                       static_cast<std::uint64_t>(mpi_.rank()))));
     } else {
       observe(env_->reset());
     }
     EvaluationEpisode episode;
     episode.constraint_costs.assign(1, 0.0);
+    episode.agent_returns.assign(static_cast<std::size_t>(n), 0.0);
+    episode.agent_costs.assign(static_cast<std::size_t>(n), 0.0);
     for (int t = 0; t < config_.max_ep_len; ++t) {
       for (int i = 0; i < n; ++i) {
         const auto a = static_cast<std::size_t>(i);
@@ -457,8 +466,11 @@ EvaluationSummary MultiAgentFamily::evaluate(int /*epochs_completed*/) {
       }
       const envs::MultiAgentStepResult step = env_->step(action_views);
       for (int i = 0; i < n; ++i) {
-        episode.episode_return += step.rewards[static_cast<std::size_t>(i)] / n;
-        episode.episode_cost += step.costs[static_cast<std::size_t>(i)] / n;
+        const auto a = static_cast<std::size_t>(i);
+        episode.episode_return += step.rewards[a] / n;
+        episode.episode_cost += step.costs[a] / n;
+        episode.agent_returns[a] += step.rewards[a];
+        episode.agent_costs[a] += step.costs[a];
       }
       ++episode.episode_length;
       observe(step.observations);
@@ -467,7 +479,7 @@ EvaluationSummary MultiAgentFamily::evaluate(int /*epochs_completed*/) {
     episode.constraint_costs[0] = episode.episode_cost;
     local.push_back(std::move(episode));
   }
-  return gather_evaluation(local, mpi_, 1, {});
+  return gather_evaluation(local, mpi_, 1, {}, static_cast<std::size_t>(n));
 }
 
 }  // namespace bsg::algos

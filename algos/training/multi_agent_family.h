@@ -32,6 +32,7 @@
 // from the checkpoint after epoch k reproduces the uninterrupted run exactly.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -77,6 +78,10 @@ class MultiAgentFamily final : public TrainingFamily {
   std::vector<NamedScalar> progress_row(const EpochAccounts& accounts) override;
   std::vector<std::string> progress_columns() const override;
   EvaluationSummary evaluate(int epochs_completed) override;
+  // The final evaluation (every agent's mean action; the team's return and cost the agents' mean,
+  // each agent's own beside them) on `total_episodes` episodes seeded from `run_seed`: evaluate's
+  // with the config's eval_episodes and seed, `bsg eval`'s with its own. Collective.
+  EvaluationSummary evaluate_mean_actions(int total_episodes, std::int64_t run_seed);
 
   const MultiAgentNetworks& networks() const { return *networks_; }
   const OnPolicyAlgorithm& slot_algorithm(int slot) const { return *algorithms_.at(static_cast<std::size_t>(slot)); }

@@ -6,7 +6,10 @@
 #include "algos/training/budget_decorator.h"
 #include "algos/training/exploration_noise.h"
 #include "algos/training/load_policy.h"
+#include "algos/training/multi_agent_family.h"
+#include "algos/training/multi_agent_trainer.h"
 #include "algos/training/run_environment.h"
+#include "algos/training/run_start.h"
 
 namespace bsg::algos {
 
@@ -15,9 +18,44 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
   return evaluate_run_directory(directory, episodes, mpi, {});
 }
 
+namespace {
+
+// The multi-agent family rebuilt from the run's config, its checkpoint loaded, and its own final
+// evaluation run: the training's evaluation.json for the same episodes and seed.
+RunEvaluation evaluate_multi_agent_run(const RunDirectory& directory, const RunConfig& config,
+                                       std::optional<int> episodes, const MpiContext& mpi,
+                                       std::optional<std::int64_t> seed) {
+  MultiAgentFamily family(config, mpi, make_run_multi_agent_env(config));
+  RunEvaluation result;
+  result.epochs_completed = family.load_checkpoint(directory.checkpoint()).epochs_completed;
+  result.epochs = config.epochs;
+  result.summary = family.evaluate_mean_actions(episodes.value_or(config.eval_episodes), seed.value_or(config.seed));
+  return result;
+}
+
+void refuse_multi_agent_options(const RunDirectory& directory, const RunConfig& config, bool sampled_actions,
+                                bool recorded) {
+  if (!is_multi_agent(config.alg) || !(sampled_actions || recorded)) return;
+  const std::string run = directory.root.string() + ": a multi-agent run (alg " + std::string(to_string(config.alg)) + ")";
+  if (sampled_actions) throw std::invalid_argument(run + " evaluates its agents' mean actions; sampled actions do not apply");
+  throw std::invalid_argument(run + " cannot be recorded: --video and --trajectories (and bsg.evaluate) do not apply; "
+                              "bsg eval without them evaluates it");
+}
+
+}  // namespace
+
+void check_multi_agent_evaluation(const RunDirectory& directory, bool sampled_actions, bool recorded) {
+  refuse_multi_agent_options(directory, resumed_training_config(directory), sampled_actions, recorded);
+}
+
 RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
                                      const MpiContext& mpi, const EnvDecorator& decorate,
                                      std::optional<EvaluationActions> actions, std::optional<std::int64_t> seed) {
+  const RunConfig run_config = resumed_training_config(directory);
+  if (is_multi_agent(run_config.alg)) {
+    refuse_multi_agent_options(directory, run_config, actions == ActionMode::sampled, static_cast<bool>(decorate));
+    return evaluate_multi_agent_run(directory, run_config, episodes, mpi, seed);
+  }
   const std::unique_ptr<LoadedPolicy> policy = load_policy(directory);
   const RunConfig& config = policy->config();
   const ActionMode mode = actions.value_or(evaluation_actions(config));

@@ -20,7 +20,9 @@ struct RunEvaluation {
 };
 
 // `episodes` overrides the config's eval_episodes. Collective. Throws naming
-// the directory or file at fault (not a run directory, corrupt checkpoint).
+// the directory or file at fault (not a run directory, corrupt checkpoint). A multi-agent run is
+// evaluated by its family's final evaluation (MultiAgentFamily::evaluate_mean_actions: every
+// agent's mean action; the summary holds each agent's return and cost beside the agents' mean).
 RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
                                      const MpiContext& mpi);
 
@@ -28,11 +30,19 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
 // (e.g. to record them: render/observed_env.h); the results are unchanged. `actions`
 // overrides the config's sampled_evaluation (the sampled actions use the sigma of the
 // checkpoint's last epoch); `seed` the run seed the evaluation's streams derive from
-// (bsg.evaluate(seed=...): other episodes of the same policy).
+// (bsg.evaluate(seed=...): other episodes of the same policy). A multi-agent run takes `seed`
+// and `episodes` only: with a decorator or sampled actions it is refused
+// (check_multi_agent_evaluation).
 using EnvDecorator = std::function<std::unique_ptr<envs::Env>(std::unique_ptr<envs::Env>)>;
 RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
                                      const MpiContext& mpi, const EnvDecorator& decorate,
                                      std::optional<EvaluationActions> actions = std::nullopt,
                                      std::optional<std::int64_t> seed = std::nullopt);
+
+// Throws std::invalid_argument in one line if `directory` holds a multi-agent run and the
+// evaluation asks for sampled actions or recorded episodes, which a multi-agent run does not do
+// (its environment is not an envs::Env that a recorder could wrap). Throws as load_policy if
+// `directory` holds no run.
+void check_multi_agent_evaluation(const RunDirectory& directory, bool sampled_actions, bool recorded);
 
 }  // namespace bsg::algos
