@@ -4,7 +4,7 @@
 // with --json also every episode's figures. --video FILE.mp4 and
 // --trajectories FILE.png record the episodes (cli/recording.h; one process only).
 // A multi-agent run (docs/multi_agent.md#learners): its family's final evaluation, J and H the
-// agents' mean and each agent's own below them; --actions sampled and the recording are refused.
+// agents' mean and each agent's own below them (recorded alike; --actions sampled is refused).
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -43,12 +43,17 @@ int evaluate(const EvalArguments& args) {
     std::optional<algos::EvaluationActions> actions;
     if (args.actions) actions = *args.actions == "sampled" ? algos::EvaluationActions::sampled : algos::EvaluationActions::mean;
     // Before the recording opens its files.
-    algos::check_multi_agent_evaluation(directory, actions == algos::EvaluationActions::sampled, args.recording.any());
+    algos::check_multi_agent_evaluation(directory, actions == algos::EvaluationActions::sampled);
     std::optional<Recording> recording;
     if (args.recording.any()) recording.emplace(args.recording);
-    algos::EnvDecorator record;  // none unless asked for (a multi-agent run takes none)
-    if (recording) record = [&](std::unique_ptr<envs::Env> env) { return recording->wrap(std::move(env)); };
-    const algos::RunEvaluation result = algos::evaluate_run_directory(directory, args.episodes, mpi, record, actions);
+    algos::EnvDecorator record;  // none unless asked for
+    algos::MultiAgentEnvDecorator record_multi_agent;
+    if (recording) {
+      record = [&](std::unique_ptr<envs::Env> env) { return recording->wrap(std::move(env)); };
+      record_multi_agent = [&](std::unique_ptr<envs::MultiAgentEnv> env) { return recording->wrap(std::move(env)); };
+    }
+    const algos::RunEvaluation result = algos::evaluate_run_directory(directory, args.episodes, mpi, record, actions,
+                                                                      std::nullopt, record_multi_agent);
     if (recording) recording->finish(args.json ? std::cerr : std::cout);
     if (!mpi.is_root()) return 0;
     if (args.json) {

@@ -6,24 +6,38 @@
 
 namespace bsg::cli {
 
-class Recording::Fanout final : public render::EnvObserver {
+// Forwards every call to both recorders (either may be absent), of a single- or multi-agent env.
+class Recording::Fanout final : public render::EnvObserver, public render::MultiAgentEnvObserver {
  public:
-  Fanout(render::EnvObserver* first, render::EnvObserver* second) : observers_{first, second} {}
-  void before_reset(const envs::Env& env) override {
-    for (render::EnvObserver* o : observers_) if (o != nullptr) o->before_reset(env);
-  }
-  void after_reset(const envs::Env& env) override {
-    for (render::EnvObserver* o : observers_) if (o != nullptr) o->after_reset(env);
-  }
+  Fanout(render::VideoRecorder* video, render::TrajectoryRecorder* trajectories)
+      : observers_{video, trajectories}, multi_agent_observers_{video, trajectories} {}
+  void before_reset(const envs::Env& env) override { each([&](auto& o) { o.before_reset(env); }); }
+  void after_reset(const envs::Env& env) override { each([&](auto& o) { o.after_reset(env); }); }
   void after_step(const envs::Env& env, const envs::StepResult& result) override {
-    for (render::EnvObserver* o : observers_) if (o != nullptr) o->after_step(env, result);
+    each([&](auto& o) { o.after_step(env, result); });
   }
-  void before_destroy(const envs::Env& env) noexcept override {
-    for (render::EnvObserver* o : observers_) if (o != nullptr) o->before_destroy(env);
+  void before_destroy(const envs::Env& env) noexcept override { each([&](auto& o) { o.before_destroy(env); }); }
+  void before_reset(const envs::MultiAgentEnv& env) override { each_multi_agent([&](auto& o) { o.before_reset(env); }); }
+  void after_reset(const envs::MultiAgentEnv& env) override { each_multi_agent([&](auto& o) { o.after_reset(env); }); }
+  void after_step(const envs::MultiAgentEnv& env, const envs::MultiAgentStepResult& result) override {
+    each_multi_agent([&](auto& o) { o.after_step(env, result); });
+  }
+  void before_destroy(const envs::MultiAgentEnv& env) noexcept override {
+    each_multi_agent([&](auto& o) { o.before_destroy(env); });
   }
 
  private:
+  template <typename Call>
+  void each(Call call) {
+    for (render::EnvObserver* o : observers_) if (o != nullptr) call(*o);
+  }
+  template <typename Call>
+  void each_multi_agent(Call call) {
+    for (render::MultiAgentEnvObserver* o : multi_agent_observers_) if (o != nullptr) call(*o);
+  }
+
   render::EnvObserver* observers_[2];
+  render::MultiAgentEnvObserver* multi_agent_observers_[2];
 };
 
 void add_recording_options(CLI::App& command, RecordingArguments& args) {
@@ -61,6 +75,11 @@ Recording::~Recording() = default;
 std::unique_ptr<envs::Env> Recording::wrap(std::unique_ptr<envs::Env> env) {
   if (!args_.any()) return env;
   return std::make_unique<render::ObservedEnv>(std::move(env), *fanout_);
+}
+
+std::unique_ptr<envs::MultiAgentEnv> Recording::wrap(std::unique_ptr<envs::MultiAgentEnv> env) {
+  if (!args_.any()) return env;
+  return std::make_unique<render::ObservedMultiAgentEnv>(std::move(env), *fanout_);
 }
 
 void Recording::finish(std::ostream& out) {

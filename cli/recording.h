@@ -9,6 +9,7 @@
 #include <string>
 
 #include "envs/env.h"
+#include "envs/multi_agent_env.h"
 #include "render/episode_recorders.h"
 
 namespace CLI {
@@ -41,6 +42,7 @@ class Recording {
 
   // `env` observed by every recorder asked for (unchanged if none).
   std::unique_ptr<envs::Env> wrap(std::unique_ptr<envs::Env> env);
+  std::unique_ptr<envs::MultiAgentEnv> wrap(std::unique_ptr<envs::MultiAgentEnv> env);
   // Writes the files once the wrapped environment is destroyed; prints one line per file.
   void finish(std::ostream& out);
 

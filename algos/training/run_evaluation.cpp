@@ -24,8 +24,10 @@ namespace {
 // evaluation run: the training's evaluation.json for the same episodes and seed.
 RunEvaluation evaluate_multi_agent_run(const RunDirectory& directory, const RunConfig& config,
                                        std::optional<int> episodes, const MpiContext& mpi,
-                                       std::optional<std::int64_t> seed) {
-  MultiAgentFamily family(config, mpi, make_run_multi_agent_env(config));
+                                       std::optional<std::int64_t> seed, const MultiAgentEnvDecorator& decorate) {
+  std::unique_ptr<envs::MultiAgentEnv> env = make_run_multi_agent_env(config);
+  if (decorate) env = decorate(std::move(env));
+  MultiAgentFamily family(config, mpi, std::move(env));
   RunEvaluation result;
   result.epochs_completed = family.load_checkpoint(directory.checkpoint()).epochs_completed;
   result.epochs = config.epochs;
@@ -34,27 +36,30 @@ RunEvaluation evaluate_multi_agent_run(const RunDirectory& directory, const RunC
 }
 
 void refuse_multi_agent_options(const RunDirectory& directory, const RunConfig& config, bool sampled_actions,
-                                bool recorded) {
-  if (!is_multi_agent(config.alg) || !(sampled_actions || recorded)) return;
+                                bool single_agent_decorator_only) {
+  if (!is_multi_agent(config.alg)) return;
   const std::string run = directory.root.string() + ": a multi-agent run (alg " + std::string(to_string(config.alg)) + ")";
   if (sampled_actions) throw std::invalid_argument(run + " evaluates its agents' mean actions; sampled actions do not apply");
-  throw std::invalid_argument(run + " cannot be recorded: --video and --trajectories (and bsg.evaluate) do not apply; "
-                              "bsg eval without them evaluates it");
+  if (single_agent_decorator_only) {
+    throw std::invalid_argument(run + " is evaluated and recorded by bsg eval; bsg.evaluate takes single-agent runs");
+  }
 }
 
 }  // namespace
 
-void check_multi_agent_evaluation(const RunDirectory& directory, bool sampled_actions, bool recorded) {
-  refuse_multi_agent_options(directory, resumed_training_config(directory), sampled_actions, recorded);
+void check_multi_agent_evaluation(const RunDirectory& directory, bool sampled_actions) {
+  refuse_multi_agent_options(directory, resumed_training_config(directory), sampled_actions, false);
 }
 
 RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
                                      const MpiContext& mpi, const EnvDecorator& decorate,
-                                     std::optional<EvaluationActions> actions, std::optional<std::int64_t> seed) {
+                                     std::optional<EvaluationActions> actions, std::optional<std::int64_t> seed,
+                                     const MultiAgentEnvDecorator& decorate_multi_agent) {
   const RunConfig run_config = resumed_training_config(directory);
   if (is_multi_agent(run_config.alg)) {
-    refuse_multi_agent_options(directory, run_config, actions == ActionMode::sampled, static_cast<bool>(decorate));
-    return evaluate_multi_agent_run(directory, run_config, episodes, mpi, seed);
+    refuse_multi_agent_options(directory, run_config, actions == ActionMode::sampled,
+                               decorate && !decorate_multi_agent);
+    return evaluate_multi_agent_run(directory, run_config, episodes, mpi, seed, decorate_multi_agent);
   }
   const std::unique_ptr<LoadedPolicy> policy = load_policy(directory);
   const RunConfig& config = policy->config();

@@ -10,6 +10,7 @@
 #include "algos/training/evaluation.h"
 #include "algos/training/run_directory.h"
 #include "common/mpi_context.h"
+#include "envs/multi_agent_env.h"
 
 namespace bsg::algos {
 
@@ -30,19 +31,21 @@ RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optiona
 // (e.g. to record them: render/observed_env.h); the results are unchanged. `actions`
 // overrides the config's sampled_evaluation (the sampled actions use the sigma of the
 // checkpoint's last epoch); `seed` the run seed the evaluation's streams derive from
-// (bsg.evaluate(seed=...): other episodes of the same policy). A multi-agent run takes `seed`
-// and `episodes` only: with a decorator or sampled actions it is refused
-// (check_multi_agent_evaluation).
+// (bsg.evaluate(seed=...): other episodes of the same policy). A multi-agent run's environment
+// is wrapped by `decorate_multi_agent` instead (render/observed_multi_agent_env.h); it acts with
+// its agents' mean actions only, and is refused in one line with sampled actions or with
+// `decorate` but no `decorate_multi_agent` (a caller that records single-agent runs only).
 using EnvDecorator = std::function<std::unique_ptr<envs::Env>(std::unique_ptr<envs::Env>)>;
+using MultiAgentEnvDecorator = std::function<std::unique_ptr<envs::MultiAgentEnv>(std::unique_ptr<envs::MultiAgentEnv>)>;
 RunEvaluation evaluate_run_directory(const RunDirectory& directory, std::optional<int> episodes,
                                      const MpiContext& mpi, const EnvDecorator& decorate,
                                      std::optional<EvaluationActions> actions = std::nullopt,
-                                     std::optional<std::int64_t> seed = std::nullopt);
+                                     std::optional<std::int64_t> seed = std::nullopt,
+                                     const MultiAgentEnvDecorator& decorate_multi_agent = {});
 
 // Throws std::invalid_argument in one line if `directory` holds a multi-agent run and the
-// evaluation asks for sampled actions or recorded episodes, which a multi-agent run does not do
-// (its environment is not an envs::Env that a recorder could wrap). Throws as load_policy if
-// `directory` holds no run.
-void check_multi_agent_evaluation(const RunDirectory& directory, bool sampled_actions, bool recorded);
+// evaluation asks for sampled actions (before a caller opens its recordings). Throws as
+// load_policy if `directory` holds no run.
+void check_multi_agent_evaluation(const RunDirectory& directory, bool sampled_actions);
 
 }  // namespace bsg::algos

@@ -1,6 +1,7 @@
 // `bsg eval` of a multi-agent run (docs/multi_agent.md#learners) end to end: a tiny MAPPO-L run is
 // trained, then `bsg eval` with the trainer's seed and episode count reproduces its
-// evaluation.json, returns.csv and costs.csv; options that do not apply are refused in one line.
+// evaluation.json, returns.csv and costs.csv; sampled actions are refused in one line (the
+// recording: tests/render/eval_recording_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -92,18 +93,17 @@ TEST(MultiAgentEval, ReproducesTheTrainingsFinalEvaluation) {
   }
 }
 
-TEST(MultiAgentEval, OptionsThatDoNotApplyAreRefusedInOneLine) {
+TEST(MultiAgentEval, SampledActionsAreRefusedInOneLineBeforeARecordingStarts) {
   using namespace multi_agent_eval_test;
   TemporaryDirectory dir;
   ASSERT_EQ(run_bsg(train_tiny_run(dir)).exit_code, 0);
-  const std::string run = dir.str("run");
   const fs::path video = dir.path() / "episodes.mp4";
-  for (const std::string& options : {std::string(" --actions sampled"), " --video " + video.string(),
-                                     " --trajectories " + dir.str("paths.png")}) {
-    const auto refused = run_bsg("eval " + run + options);
-    EXPECT_NE(refused.exit_code, 0) << options;
-    EXPECT_NE(refused.output.find("a multi-agent run (alg mappo-lag)"), std::string::npos) << refused.output;
-    EXPECT_EQ(std::count(refused.output.begin(), refused.output.end(), '\n'), 1) << refused.output;
-  }
+  const auto refused = run_bsg("eval " + dir.str("run") + " --actions sampled --video " + video.string());
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.output.find("a multi-agent run (alg mappo-lag) evaluates its agents' mean actions; sampled actions "
+                                "do not apply"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_EQ(std::count(refused.output.begin(), refused.output.end(), '\n'), 1) << refused.output;
   EXPECT_FALSE(fs::exists(video));  // refused before the recording opens its file
 }
