@@ -65,6 +65,10 @@ struct RunConfig {
   // TensorBoard event files beside progress.csv (algos/training/event_file.h); config.yaml names
   // the key only when it is off, so a default run's files are as before the key.
   bool tensorboard = true;
+  // A single-agent learner on a multi-agent env_id controls every agent jointly
+  // (envs/joint_control_env.h, docs/multi_agent.md#one-learner-for-the-whole-team); config.yaml
+  // names the key only when it is on.
+  bool joint_control = false;
 
   // --- environment settings (report Table 3, docs/reproducing.md#environment-settings) ---
   double cost_limit = 25.0;        // d: limit on the undiscounted episode cost

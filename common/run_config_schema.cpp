@@ -51,6 +51,9 @@ std::vector<ConfigKeyRow> leading_rows() {
             "only when false"),
     choice("physics", enum_access<&R::physics>(), kPhysicsModelNames, L::run, all,
            "faithful (the original's model) or lean (equivalent, faster; the Ant and the Car)"),
+    boolean("joint_control", field<&R::joint_control>(), L::run, kOnPolicy | kOffPolicy,
+            "on a multi-agent env_id: one policy controls every agent (the agents' observations and actions "
+            "concatenated, reward and cost the agents' means); config.yaml names the key only when true"),
     choice("learner", enum_access<&R::learner>(), kLearnerNames, L::run, all,
            "preset: faithful (the original's learner) or corrected (every corrected switch on: Q1, Q4, Q5, "
            "Q10, Q19, Q20; a switch the run file or --set names itself keeps that value)"),

@@ -36,6 +36,8 @@ RunConfig from_document(const YAML::Node& document, const std::string& source_na
   if (origins.count("env") == 0) origins["env"] = source_name + " (no env: the standard description)";
   // No tensorboard: on (to_yaml names the key only when it is off).
   if (origins.count("tensorboard") == 0) origins["tensorboard"] = source_name + " (no tensorboard: on)";
+  // No joint_control: off (to_yaml names the key only when it is on).
+  if (origins.count("joint_control") == 0) origins["joint_control"] = source_name + " (no joint_control: off)";
   // No multiplier_schedule: epoch, the off-policy -lag schedule before the key (to_yaml names the
   // key, and the window with it, only for update_round or a window of its own).
   if (origins.count("multiplier_schedule") == 0) {
@@ -74,6 +76,8 @@ std::string to_yaml(const RunConfig& config) {
     if (key.type == ValueType::mapping && config.env.empty()) continue;
     // tensorboard only when off: a default run's config.yaml and checkpoint as before the key.
     if (key.key == "tensorboard" && config.tensorboard) continue;
+    // joint_control only when on: every other run's config.yaml and checkpoint as before the key.
+    if (key.key == "joint_control" && !config.joint_control) continue;
     // The multiplier schedule only when it is not the epoch schedule of before the keys (and the
     // window then only if it is not the default): an epoch run's config.yaml and checkpoint as before.
     const bool epoch_schedule = config.off_policy.multiplier_schedule == MultiplierSchedule::epoch;

@@ -1,137 +1,13 @@
 #include "envs/vector_env.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <functional>
-#include <mutex>
 #include <stdexcept>
-#include <thread>
+
+#include "envs/worker_pool.h"
 
 namespace bsg::envs {
-
-// A fixed pool of threads that runs job(i) for i in [0, count) with the caller
-// taking part. Indices are claimed one at a time from an atomic word holding
-// (round, next index), and the caller waits for `count` completed jobs, not for
-// every worker to check in: a worker the OS keeps off the CPU (the machine is
-// shared) merely takes fewer environments, or none, and never holds up the
-// round. Waiting is a short spin (a round is tens to hundreds of microseconds,
-// a futex wake-up several) and then a blocking atomic wait.
-class VectorEnvWorkers {
- public:
-  explicit VectorEnvWorkers(int num_threads) {
-    for (int t = 1; t < num_threads; ++t) threads_.emplace_back([this] { worker_loop(); });
-  }
-
-  ~VectorEnvWorkers() {
-    stopping_.store(true, std::memory_order_relaxed);
-    round_.fetch_add(1, std::memory_order_release);
-    round_.notify_all();
-    for (std::thread& thread : threads_) thread.join();
-  }
-
-  VectorEnvWorkers(const VectorEnvWorkers&) = delete;
-  VectorEnvWorkers& operator=(const VectorEnvWorkers&) = delete;
-
-  // Returns when every job has run; rethrows the first exception a job threw.
-  void run(int count, const std::function<void(int)>& job) {
-    const std::uint32_t round = round_.load(std::memory_order_relaxed) + 1;
-    job_.store(&job, std::memory_order_relaxed);
-    count_.store(count, std::memory_order_relaxed);
-    completed_.store(0, std::memory_order_relaxed);
-    error_ = nullptr;
-    claims_.store(std::uint64_t{round} << 32, std::memory_order_release);
-    round_.store(round, std::memory_order_release);
-    if (!threads_.empty()) round_.notify_all();
-    work(round);
-    for (;;) {
-      spin_until([&] { return completed_.load(std::memory_order_acquire) == count; });
-      const int completed = completed_.load(std::memory_order_acquire);
-      if (completed == count) break;
-      completed_.wait(completed, std::memory_order_acquire);
-    }
-    if (error_) std::rethrow_exception(error_);
-  }
-
- private:
-  // Spins a microsecond or so, or until done() holds.
-  template <typename Predicate>
-  static void spin_until(Predicate done) {
-    constexpr int kSpinIterations = 200;  // short: on a shared machine spinning steals the core
-    for (int i = 0; i < kSpinIterations && !done(); ++i) {
-#if defined(__x86_64__) || defined(__i386__)
-      __builtin_ia32_pause();
-#endif
-    }
-  }
-
-  void worker_loop() {
-    std::uint32_t seen = 0;
-    for (;;) {
-      for (;;) {
-        spin_until([&] { return round_.load(std::memory_order_acquire) != seen; });
-        const std::uint32_t now = round_.load(std::memory_order_acquire);
-        if (now != seen) {
-          seen = now;
-          break;
-        }
-        round_.wait(seen, std::memory_order_acquire);
-      }
-      if (stopping_.load(std::memory_order_relaxed)) return;
-      work(seen);
-    }
-  }
-
-  // Claims and runs jobs of `round` until none is left. A claim succeeds only
-  // while `round` is current, so a late worker never runs a stale job, and the
-  // round cannot end (completed_ == count) before a claimed job has run.
-  void work(std::uint32_t round) {
-    std::uint64_t claims = claims_.load(std::memory_order_acquire);
-    for (;;) {
-      const auto claim_round = static_cast<std::uint32_t>(claims >> 32);
-      const auto index = static_cast<int>(claims & 0xffffffffu);
-      const int count = count_.load(std::memory_order_relaxed);
-      if (claim_round != round || index >= count) return;
-      if (!claims_.compare_exchange_weak(claims, claims + 1, std::memory_order_acquire)) continue;
-      try {
-        (*job_.load(std::memory_order_relaxed))(index);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(error_mutex_);
-        if (!error_) error_ = std::current_exception();
-      }
-      if (completed_.fetch_add(1, std::memory_order_acq_rel) + 1 == count) {
-        completed_.notify_one();
-      }
-      claims = claims_.load(std::memory_order_acquire);
-    }
-  }
-
-  std::vector<std::thread> threads_;
-  std::atomic<std::uint32_t> round_{0};
-  std::atomic<bool> stopping_{false};
-  std::atomic<std::uint64_t> claims_{0};  // (round << 32) | next index
-  std::atomic<const std::function<void(int)>*> job_{nullptr};
-  std::atomic<int> count_{0};
-  std::atomic<int> completed_{0};
-  std::mutex error_mutex_;
-  std::exception_ptr error_;
-};
-
-namespace {
-
-int resolve_num_threads(int num_threads, int num_envs) {
-  if (num_threads < 0) {
-    throw std::invalid_argument("VectorEnv: num_threads must be >= 0 (0: one per hardware "
-                                "thread), got " + std::to_string(num_threads));
-  }
-  if (num_threads == 0) {
-    num_threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  }
-  return std::min(num_threads, num_envs);
-}
-
-}  // namespace
 
 VectorEnv::VectorEnv(const std::string& id, int num_envs, int num_threads,
                      const EnvOptions& options)
@@ -144,7 +20,7 @@ VectorEnv::VectorEnv(const EnvDescription& description, int num_envs, int num_th
     throw std::invalid_argument("VectorEnv: num_envs must be >= 1, got " +
                                 std::to_string(num_envs));
   }
-  num_threads_ = resolve_num_threads(num_threads, num_envs);
+  num_threads_ = resolve_num_threads(num_threads, num_envs, "VectorEnv");
   make_env_ = [description, options] { return make(description, options); };
   envs_.reserve(static_cast<size_t>(num_envs));
   for (int i = 0; i < num_envs; ++i) envs_.push_back(make_env_());
@@ -161,7 +37,7 @@ VectorEnv::VectorEnv(const EnvDescription& description, int num_envs, int num_th
   ended_.assign(n, 0);
   autoreset_envs_.assign(n, 0);
   used_.assign(n, 0);
-  workers_ = std::make_unique<VectorEnvWorkers>(num_threads_);
+  workers_ = std::make_unique<WorkerPool>(num_threads_);
 }
 
 VectorEnv::~VectorEnv() = default;

@@ -46,7 +46,7 @@
 
 namespace bsg::envs {
 
-class VectorEnvWorkers;
+class WorkerPool;
 
 // When step() resets an environment whose episode ended (Gymnasium's AutoresetMode).
 enum class AutoReset {
@@ -147,7 +147,7 @@ class VectorEnv {
   std::vector<double> cost_terms_;
   std::vector<std::vector<double>> env_cost_terms_;  // per environment, filled by its thread
 
-  std::unique_ptr<VectorEnvWorkers> workers_;
+  std::unique_ptr<WorkerPool> workers_;  // envs/worker_pool.h
 };
 
 }  // namespace bsg::envs

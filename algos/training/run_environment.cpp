@@ -4,10 +4,17 @@
 #include <stdexcept>
 
 #include "common/config_error.h"
+#include "envs/joint_control_env.h"
+#include "envs/multi_agent_env.h"
 
 namespace bsg::algos {
 
 envs::EnvDescription run_env_description(const RunConfig& config) {
+  if (config.joint_control) {
+    throw ConfigError("env_id " + config.env_id +
+                      " controlled jointly (joint_control: true) is a multi-agent environment: it has no "
+                      "single-agent description");
+  }
   try {
     return envs::describe(config.env_id, config.env);
   } catch (const std::invalid_argument& e) {
@@ -16,8 +23,10 @@ envs::EnvDescription run_env_description(const RunConfig& config) {
 }
 
 std::unique_ptr<envs::Env> make_run_env(const RunConfig& config) {
-  return envs::make(run_env_description(config),
-                    {.physics = config.physics});
+  if (config.joint_control) {
+    return envs::make_joint_control(envs::make_multi_agent(config.env_id, {.physics = config.physics}));
+  }
+  return envs::make(run_env_description(config), {.physics = config.physics});
 }
 
 void resolve_env_block(RunConfig& config) {

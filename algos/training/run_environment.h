@@ -11,10 +11,11 @@
 namespace bsg::algos {
 
 // env_id's description with config.env applied; throws ConfigError naming the
-// env: key and value at fault.
+// env: key and value at fault, or saying that a joint_control run has none.
 envs::EnvDescription run_env_description(const RunConfig& config);
 
-// The run's environment with its physics model.
+// The run's environment with its physics model; with joint_control the multi-agent env_id
+// seen as one agent (envs/joint_control_env.h).
 std::unique_ptr<envs::Env> make_run_env(const RunConfig& config);
 
 // For a new run with an env: block: replaces the block by every key of the

@@ -33,9 +33,17 @@ void check_env_matches_family(const RunConfig& config) {
                       "' is a single-agent environment; use a multi-agent id (`bsg envs --multi-agent`), e.g. "
                       "SafetyBallCircle2-v0");
   }
-  if (!is_multi_agent(config.alg) && multi_agent_env) {
+  if (!is_multi_agent(config.alg) && multi_agent_env && !config.joint_control) {
     throw ConfigError("env_id '" + config.env_id + "' is a multi-agent environment, but alg '" + alg +
-                      "' trains one agent; use alg mappo, mappo-lag, happo or macpo");
+                      "' trains one agent; use alg mappo, mappo-lag, happo or macpo, or set joint_control: true "
+                      "for one policy controlling every agent");
+  }
+  if (config.joint_control && !multi_agent_env) {
+    throw ConfigError("joint_control: true needs a multi-agent env_id (`bsg envs --multi-agent`), but '" +
+                      config.env_id + "' is a single-agent environment");
+  }
+  if (config.joint_control && !config.env.empty()) {
+    throw ConfigError("an env: block is not supported with joint_control: true (a multi-agent id takes none)");
   }
   if (is_sequential_multi_agent(config.alg) && config.multi_agent.share_policy) {
     throw ConfigError("alg '" + alg + "' updates each agent's own policy in turn; share_policy must be false");
@@ -79,7 +87,7 @@ void check_before_training(const RunConfig& config, int num_ranks) {
   }
   std::unique_ptr<envs::Env> env;
   try {
-    env = envs::make(config.env_id, {.physics = config.physics});
+    env = config.joint_control ? make_run_env(config) : envs::make(config.env_id, {.physics = config.physics});
   } catch (const std::invalid_argument& e) {
     throw ConfigError("physics = " + std::string(to_string(config.physics)) + ": " + e.what());
   }
@@ -95,7 +103,8 @@ std::unique_ptr<Trainer> allocate_trainer(const RunConfig& config, const RunDire
       throw std::runtime_error("out of memory while allocating the multi-agent networks (hidden_sizes) and " +
                                training_buffer(config, mpi.size()).description);
     }
-    const std::unique_ptr<envs::Env> env = envs::make(config.env_id, {.physics = config.physics});
+    const std::unique_ptr<envs::Env> env =
+        config.joint_control ? make_run_env(config) : envs::make(config.env_id, {.physics = config.physics});
     const TrainingMemoryEstimate estimate =
         estimate_training_memory(config, env->spec().observation_dim, env->spec().action_dim, mpi.size());
     throw std::runtime_error("out of memory while allocating the networks (hidden_sizes) and " +

@@ -21,9 +21,10 @@ description (``bsg.describe(id)`` lists them, docs/environments.md):
 The package's files import one way only, each from those below it
 (docs/python.md#the-package): registration -> making, vector -> wrappers ->
 gymnasium_env -> specs -> env -> spaces, rendering -> gymnasium_support -> datasets, _core;
-parallel -> rendering, spaces; policies -> spaces; training -> _core.
+parallel -> rendering, spaces; parallel_vector -> spaces; policies -> spaces; training -> _core.
 ``bsg.parallel_env(id)`` makes a multi-agent environment with PettingZoo's
-Parallel API (``bsg.parallel_env_ids()``, docs/multi_agent.md).
+Parallel API (``bsg.parallel_env_ids()``, docs/multi_agent.md);
+``bsg.parallel_vector_env(id, num_envs)`` steps N of them on the thread pool.
 ``bsg.datasets`` reads offline datasets (DSRL's HDF5 layout, docs/datasets.md).
 ``bsg.load_policy(run_dir)`` gives a trained run's policy (``policy.act(obs)``) and
 ``bsg.evaluate(run_dir)`` its evaluation, as ``bsg eval`` (``bsg.policies``).
@@ -40,6 +41,7 @@ from .gymnasium_env import GymnasiumEnv
 from .gymnasium_support import gymnasium as _gymnasium
 from .making import make
 from .parallel import ParallelEnv, describe_parallel_env, parallel_env, parallel_env_ids
+from .parallel_vector import ParallelVectorEnv, parallel_vector_env
 from .policies import Policy, evaluate, load_policy
 from .spaces import Box
 from .training import sweep, train
@@ -49,7 +51,8 @@ from . import registration
 
 __all__ = ["make", "describe", "env_ids", "Env", "VectorEnv", "GymnasiumVectorEnv", "EnvSpec",
            "GymnasiumEnv", "NextStepAutoreset", "Box", "load_policy", "evaluate", "Policy", "train", "sweep",
-           "parallel_env", "parallel_env_ids", "describe_parallel_env", "ParallelEnv"]
+           "parallel_env", "parallel_env_ids", "describe_parallel_env", "ParallelEnv",
+           "parallel_vector_env", "ParallelVectorEnv"]
 
 if _gymnasium is not None:
     registration.register_all()

@@ -10,6 +10,7 @@
 #include "envs/standard_envs.h"
 #include "python_env.h"
 #include "python_multi_agent_env.h"
+#include "python_multi_agent_vector_env.h"
 #include "python_policy.h"
 #include "python_render.h"
 #include "python_sweep.h"
@@ -31,6 +32,7 @@ PYBIND11_MODULE(_core, module) {
   bsg::python::bind_env(module);
   bsg::python::bind_vector_env(module);
   bsg::python::bind_multi_agent_env(module);
+  bsg::python::bind_multi_agent_vector_env(module);
   bsg::python::bind_bench_helpers(module);
   bsg::python::bind_render(module);
   bsg::python::bind_policy(module);

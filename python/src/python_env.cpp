@@ -29,6 +29,13 @@ py::array_t<double> copy_to_array(std::span<const double> values,
   return array;
 }
 
+py::array_t<bool> copy_flags(std::span<const std::uint8_t> flags) {
+  py::array_t<bool> array(static_cast<py::ssize_t>(flags.size()));
+  bool* out = array.mutable_data();
+  for (size_t i = 0; i < flags.size(); ++i) out[i] = flags[i] != 0;
+  return array;
+}
+
 PythonEnv::PythonEnv(py::handle env_id, const std::string& box_clock, py::handle parameters)
     : make_env_([description = env_description(env_id, parameters), options = env_options(box_clock)] {
         return envs::make(description, options);

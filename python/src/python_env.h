@@ -17,6 +17,7 @@
 
 #include <array>
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <span>
@@ -80,6 +81,8 @@ class PythonEnv {
 pybind11::array_t<double> copy_to_array(std::span<const double> values);
 pybind11::array_t<double> copy_to_array(std::span<const double> values,
                                         std::vector<pybind11::ssize_t> shape);
+// A fresh bool array, true where `flags` is non-zero.
+pybind11::array_t<bool> copy_flags(std::span<const std::uint8_t> flags);
 
 void bind_env(pybind11::module_& module);
 

@@ -17,13 +17,6 @@ namespace bsg::python {
 
 namespace {
 
-py::array_t<bool> copy_flags(std::span<const std::uint8_t> flags) {
-  py::array_t<bool> array(static_cast<py::ssize_t>(flags.size()));
-  bool* out = array.mutable_data();
-  for (size_t i = 0; i < flags.size(); ++i) out[i] = flags[i] != 0;
-  return array;
-}
-
 bool any_set(const std::vector<std::uint8_t>& flags) {
   for (const std::uint8_t flag : flags) {
     if (flag) return true;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <utility>
 
 #include "common/algorithms.h"
 #include "common/config_error.h"
@@ -237,6 +238,28 @@ TEST(GridExpansion, TheAllTaskBenchmarkHasEveryConstrainedOnlineLearnerOnTheSixt
     const RunConfig config = resolve_grid_run(run, kConfigs, "car_off_policy.yaml");
     EXPECT_TRUE(is_off_policy(run.alg));
     EXPECT_EQ(config.epochs * config.steps_per_epoch, 1000000);
+  }
+}
+
+TEST(GridExpansion, TheMultiAgentBenchmarksRunEveryMultiAgentLearnerBesideAJointPpoLag) {
+  std::set<std::string> expected{"ppo-lag"};
+  for (const AlgorithmInfo& info : kAlgorithms) {
+    if (is_multi_agent(info.alg)) expected.insert(std::string(info.name));
+  }
+  for (const auto& [file, epochs] : {std::pair{"multi_agent.yaml", 1000}, std::pair{"multi_agent_small.yaml", 60}}) {
+    const std::vector<GridRun> runs = expand_grid(load_grid_file(kConfigs / "benchmarks" / file));
+    ASSERT_EQ(runs.size(), 30u) << file;  // 5 configurations x 2 environments x 3 seeds
+    std::set<std::string> algorithms;
+    for (const GridRun& run : runs) {
+      algorithms.insert(std::string(algorithm_info(run.alg).name));
+      const RunConfig config = resolve_grid_run(run, kConfigs, file);
+      EXPECT_EQ(config.joint_control, run.alg == Algorithm::ppo_lag) << run.relative_dir();
+      EXPECT_EQ(config.epochs, epochs) << run.relative_dir();
+      EXPECT_EQ(config.steps_per_epoch, 10000) << run.relative_dir();
+      std::set<std::string> allowed{"env_id", "alg", "seed", "epochs", "joint_control"};
+      for (const std::string& key : benchmark_keys_of(run)) EXPECT_TRUE(allowed.count(key)) << file << " " << key;
+    }
+    EXPECT_EQ(algorithms, expected) << file;
   }
 }
 

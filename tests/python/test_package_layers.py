@@ -9,7 +9,7 @@ import pathlib
 PACKAGE = pathlib.Path(__file__).resolve().parents[2] / "python" / "bsg"
 DOCS = pathlib.Path(__file__).resolve().parents[2] / "docs" / "python.md"
 # Bottom to top; _core is the C++ module below them all.
-ORDER = ["datasets", "gymnasium_support", "spaces", "training", "policies", "rendering", "parallel", "env", "specs", "gymnasium_env", "wrappers",
+ORDER = ["datasets", "gymnasium_support", "spaces", "training", "policies", "rendering", "parallel", "parallel_vector", "env", "specs", "gymnasium_env", "wrappers",
          "vector", "making", "registration", "__init__"]
 
 
