@@ -182,7 +182,7 @@ TEST(ShippedConfigs, AlgorithmDefaultsMatchTheSpec) {
   };
   const std::map<std::string, Expected> expected = {
       {"trpo", {0.01, 15, false}},  {"lag-trpo", {0.01, 15, true}}, {"cpo", {0.01, 20, true}},
-      {"pdo", {1e-3, 15, true}},    {"pcpo", {1e-4, 25, true}},
+      {"pdo", {1e-3, 15, true}},    {"pcpo", {0.01, 25, true}},
   };
   for (const auto& [alg, e] : expected) {
     SCOPED_TRACE(alg);
