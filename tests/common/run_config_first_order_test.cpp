@@ -35,7 +35,9 @@ TEST(FirstOrderConfig, ShippedDefaults) {
     EXPECT_TRUE(config.use_standardized_advantages);
     EXPECT_EQ(config.use_cost_value_function, std::string(alg) != "ppo");
     if (std::string(alg) != "ppo") {
-      EXPECT_EQ(config.multiplier.lambda_optimizer, LambdaOptimizer::adam);
+      // PPO-Lag: TRPO-L's SGD rule at OmniSafe's rate (docs/algorithms.md#ppo-lag); FOCOPS and CUP: OmniSafe's Adam.
+      EXPECT_EQ(config.multiplier.lambda_optimizer,
+                std::string(alg) == "ppo-lag" ? LambdaOptimizer::sgd : LambdaOptimizer::adam);
       EXPECT_EQ(config.multiplier.lambda_lr, 0.035);
       EXPECT_EQ(config.multiplier.lagrangian_multiplier_init, 0.001);
     }
