@@ -218,9 +218,9 @@ TEST(ShippedConfigs, AlgorithmDefaultsMatchTheSpec) {
   EXPECT_EQ(lag.multiplier.lambda_lr, 0.05);
   EXPECT_EQ(lag.multiplier.lagrangian_multiplier_init, 0.001);
   const RunConfig pdo = resolve_shipped("pdo", "SafetyBallCircle-v0");
-  EXPECT_EQ(pdo.multiplier.lambda_optimizer, LambdaOptimizer::adam);
-  EXPECT_EQ(pdo.multiplier.lambda_lr, 0.001);
-  EXPECT_TRUE(pdo.trust_region.pdo_line_search);
+  EXPECT_EQ(pdo.multiplier.lambda_optimizer, LambdaOptimizer::sgd);  // TRPO-L's rule (docs/algorithms.md#pdo)
+  EXPECT_EQ(pdo.multiplier.lambda_lr, 0.05);
+  EXPECT_FALSE(pdo.trust_region.pdo_line_search);
   const RunConfig cpo = resolve_shipped("cpo", "SafetyBallCircle-v0");
   EXPECT_EQ(cpo.trust_region.cpo_r_sign, CpoRSign::original);
   const RunConfig pcpo = resolve_shipped("pcpo", "SafetyBallCircle-v0");

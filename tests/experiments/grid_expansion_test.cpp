@@ -111,10 +111,18 @@ TEST(GridExpansion, TheReportGridHasTheAppendixConfigurationsOverSixteenEnvironm
       EXPECT_DOUBLE_EQ(config.cost_limit, 25.0);
     }
   }
-  // Every run resolves (one seed per configuration is enough: seeds only set `seed`).
-  for (const GridRun& run : runs) {
-    if (run.seed != 0) continue;
-    EXPECT_NO_THROW(resolve_grid_run(run, kConfigs, "report.yaml")) << run.relative_dir();
+  // Every run resolves (one seed per configuration is enough: seeds only set `seed`), and PDO
+  // keeps the original's Adam multiplier and reward-only line search (Q14), which its shipped
+  // defaults no longer are (docs/algorithms.md#pdo).
+  for (const char* file : {"report.yaml", "report_corrected.yaml"}) {
+    for (const GridRun& run : expand_grid(load_grid_file(kConfigs / "grids" / file))) {
+      if (run.seed != 0) continue;
+      RunConfig config;
+      ASSERT_NO_THROW(config = resolve_grid_run(run, kConfigs, file)) << file << " " << run.relative_dir();
+      if (run.alg != Algorithm::pdo) continue;
+      EXPECT_EQ(config.multiplier.lambda_optimizer, LambdaOptimizer::adam) << file << " " << run.relative_dir();
+      EXPECT_TRUE(config.trust_region.pdo_line_search) << file << " " << run.relative_dir();
+    }
   }
 }
 
@@ -132,6 +140,9 @@ TEST(GridExpansion, ThePidGridRunsTheReportProtocolWithThePidMultiplier) {
     if (run.seed != 0) continue;
     const RunConfig config = resolve_grid_run(run, kConfigs, "pid.yaml");
     EXPECT_EQ(config.multiplier.lambda_optimizer, LambdaOptimizer::pid) << run.relative_dir();
+    if (run.alg == Algorithm::pdo) {
+      EXPECT_TRUE(config.trust_region.pdo_line_search) << run.relative_dir();
+    }
     if (run.relative_dir().generic_string() == "SafetyCarRun-v0/pdo/target_kl=0.01,pid_ki=0.001/seed=0") {
       EXPECT_DOUBLE_EQ(config.trust_region.target_kl, 0.01);
       EXPECT_DOUBLE_EQ(config.multiplier.pid_ki, 0.001);
@@ -211,6 +222,37 @@ TEST(GridExpansion, TheBallBenchmarkRunsEveryConstrainedBaselineAtThreeLimitsOnI
   const std::set<std::string> baselines{"lag-trpo", "cpo",    "pdo",     "pcpo",    "crpo",    "ppo-lag",
                                         "focops",   "cup",    "sac-lag", "td3-lag", "ddpg-lag"};
   EXPECT_EQ(algorithms, baselines);
+}
+
+// ball_small.yaml is ball.yaml cut to what two cores run in a session: seeds 0-2, the
+// non-Lagrangian learners at d = 25 only, TD3-Lag and DDPG-Lag at 60 000 steps; every run of it
+// is a run of ball.yaml but for TD3-Lag's and DDPG-Lag's budget.
+TEST(GridExpansion, TheSmallBallBenchmarkIsTheBallBenchmarkCut) {
+  const std::vector<GridRun> small = expand_grid(load_grid_file(kConfigs / "benchmarks" / "ball_small.yaml"));
+  const std::vector<GridRun> full = expand_grid(load_grid_file(kConfigs / "benchmarks" / "ball.yaml"));
+  std::set<std::string> full_dirs;
+  for (const GridRun& run : full) full_dirs.insert(run.relative_dir().generic_string());
+  ASSERT_EQ(small.size(), 180u);  // 30 configurations x 2 environments x 3 seeds
+  std::set<std::string> algorithms;
+  for (const GridRun& run : small) {
+    algorithms.insert(std::string(algorithm_info(run.alg).name));
+    EXPECT_LE(run.seed, 2);
+    const RunConfig config = resolve_grid_run(run, kConfigs, "ball_small.yaml");
+    const bool slow_off_policy = run.alg == Algorithm::td3_lag || run.alg == Algorithm::ddpg_lag;
+    EXPECT_EQ(config.epochs * config.steps_per_epoch,
+              slow_off_policy ? 60000 : (is_off_policy(run.alg) ? 300000 : 1500000))
+        << run.relative_dir();
+    if (!slow_off_policy) {
+      EXPECT_TRUE(full_dirs.count(run.relative_dir().generic_string())) << run.relative_dir();
+    }
+    const bool lagrangian = run.alg != Algorithm::cpo && run.alg != Algorithm::pcpo && run.alg != Algorithm::crpo;
+    if (!lagrangian) {
+      EXPECT_EQ(config.cost_limit, 25.0) << run.relative_dir();
+    }
+    std::set<std::string> allowed{"env_id", "alg", "seed", "epochs", "steps_per_epoch", "cost_limit", "lambda_optimizer"};
+    for (const std::string& key : benchmark_keys_of(run)) EXPECT_TRUE(allowed.count(key)) << key;
+  }
+  EXPECT_EQ(algorithms.size(), 11u);
 }
 
 TEST(GridExpansion, TheAllTaskBenchmarkHasEveryConstrainedOnlineLearnerOnTheSixteenTasksAtTheirBudgets) {

@@ -112,9 +112,10 @@ TEST(TrainerSmoke, LagTrpoImprovesTheReturnAndDrivesTheCostDown) {
 }
 
 TEST(TrainerSmoke, PdoImprovesTheReturnAndDrivesTheCostDown) {
-  // A larger trust region and multiplier rate than the defaults so that both
-  // effects show within 25 epochs.
-  const SmokeRun run = train("pdo", {"target_kl=0.01", "lambda_lr=1.0"});
+  // The original's Adam multiplier and line search, with a larger trust region and multiplier
+  // rate than its defaults so that both effects show within 25 epochs.
+  const SmokeRun run =
+      train("pdo", {"target_kl=0.01", "lambda_lr=1.0", "lambda_optimizer=Adam", "pdo_line_search=true"});
   expect_return_improves(run.progress);
   expect_cost_moves_towards_limit(run.progress, "25");
   const std::vector<double>& lambda = run.progress.at("lagrange_multiplier");

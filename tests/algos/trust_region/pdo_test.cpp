@@ -1,7 +1,7 @@
 // PDO's update (docs/algorithms.md#pdo, #test-oracles): the Adam multiplier is updated first,
 // lambda = 0 reproduces TRPO, the line search tests the reward-only loss
-// (Q14), pdo_line_search: false applies the full step, and the Adam state
-// survives a checkpoint.
+// (Q14) and rejects every step once lambda outweighs the reward, pdo_line_search:
+// false applies the full step, and the Adam state survives a checkpoint.
 #include "algos/trust_region/pdo.h"
 
 #include <gtest/gtest.h>
@@ -90,6 +90,50 @@ TEST(Pdo, RejectedLineSearchLeavesParametersBitIdentical) {
   const PolicyUpdateResult result = pdo.update(testing::inputs_for(batch, surrogate, 30.0, 100.0));
   EXPECT_EQ(result.value("Misc/AcceptanceStep"), 0.0);
   EXPECT_TRUE(testing::bit_identical(batch.policy.mean_net().parameters(), theta_old));
+}
+
+// The cause of the original's PDO missing its limit on BallCircle (docs/algorithms.md#pdo): where
+// cost comes with reward (A^C = A here, so b = g), p = g - lambda b = (1 - lambda) g points down
+// the reward surrogate once lambda > 1, and every trial of the reward-only line search (a
+// shorter step along p) lowers it: the search rejects the step and the policy never moves again.
+// Without the search (the shipped default) the step is taken and the cost surrogate falls.
+SyntheticBatch batch_where_cost_comes_with_reward() {
+  SyntheticBatch batch(64, 3, 4);
+  batch.cost_advantages = batch.advantages;
+  return batch;
+}
+
+RunConfig pdo_with_large_lambda(bool line_search) {
+  RunConfig config = testing::config_for(Algorithm::pdo);
+  config.multiplier.lambda_optimizer = LambdaOptimizer::sgd;
+  config.multiplier.lagrangian_multiplier_init = 3.0;
+  config.multiplier.lambda_lr = 0.05;
+  config.trust_region.pdo_line_search = line_search;
+  return config;
+}
+
+TEST(Pdo, RewardOnlyLineSearchRejectsEveryStepOnceLambdaOutweighsTheReward) {
+  SyntheticBatch batch = batch_where_cost_comes_with_reward();
+  const Eigen::VectorXd theta_old = batch.policy.mean_net().parameters();
+  PolicySurrogate surrogate = batch.surrogate();
+  Pdo pdo(pdo_with_large_lambda(true));
+  const PolicyUpdateResult result = pdo.update(testing::inputs_for(batch, surrogate, 30.0, 100.0));
+  EXPECT_GT(result.value("LagrangeMultiplier"), 1.0);
+  EXPECT_EQ(result.value("Misc/AcceptanceStep"), 0.0);
+  EXPECT_TRUE(testing::bit_identical(batch.policy.mean_net().parameters(), theta_old));
+}
+
+TEST(Pdo, WithoutTheLineSearchALargeLambdaLowersTheCostSurrogate) {
+  SyntheticBatch batch = batch_where_cost_comes_with_reward();
+  const double cost_before = batch.cost_surrogate();
+  const Eigen::MatrixXd old_means = batch.means();
+  PolicySurrogate surrogate = batch.surrogate();
+  Pdo pdo(pdo_with_large_lambda(false));
+  const PolicyUpdateResult result = pdo.update(testing::inputs_for(batch, surrogate, 30.0, 100.0));
+  EXPECT_GT(result.value("LagrangeMultiplier"), 1.0);
+  EXPECT_LT(batch.cost_surrogate(), cost_before);
+  EXPECT_GT(batch.kl_from(old_means), 0.0);
+  EXPECT_LE(batch.kl_from(old_means), 1.5 * testing::config_for(Algorithm::pdo).trust_region.target_kl);
 }
 
 TEST(Pdo, AdamStateRoundTripsThroughTheCheckpoint) {
