@@ -245,8 +245,7 @@ TEST(GridExpansion, TheSmallBallBenchmarkIsTheBallBenchmarkCut) {
     if (!slow_off_policy) {
       EXPECT_TRUE(full_dirs.count(run.relative_dir().generic_string())) << run.relative_dir();
     }
-    const bool lagrangian = run.alg != Algorithm::cpo && run.alg != Algorithm::pcpo && run.alg != Algorithm::crpo;
-    if (!lagrangian) {
+    if (!has_lagrange_multiplier(run.alg)) {
       EXPECT_EQ(config.cost_limit, 25.0) << run.relative_dir();
     }
     std::set<std::string> allowed{"env_id", "alg", "seed", "epochs", "steps_per_epoch", "cost_limit", "lambda_optimizer"};

@@ -13,8 +13,8 @@
 //
 // Off-policy family: TD3-Lag (its Adam multiplier stepped every update round)
 // with 64 x 64 networks and 5000 random steps instead of 256 x 256 and 25 000,
-// so that it learns within 20 epochs of 2000 steps (about 20 s of CPU per
-// run), against d = 5 and d = 150. At this budget the multiplier overshoots
+// so that it learns within 20 epochs of 2000 steps (54 s of CPU for the two
+// runs on the loaded 2-core machine), against d = 5 and d = 150. At this budget the multiplier overshoots
 // and cycles, so d = 10 against d = 40 ends in the wrong order on seed 1
 // (24.4 / 19.2); d = 5 against d = 150 ended 51.4 / 112.0, 22.2 / 102.4 and
 // 37.9 / 90.0 on seeds 0-2 (the d = 150 runs' multiplier stays 0).
