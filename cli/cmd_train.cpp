@@ -68,7 +68,7 @@ int train(const TrainArguments& args) {
     const ResolvedTrainConfig resolved = resolve_config(args);
     algos::check_before_training(resolved.config, 1);
     // A YAML comment, so that the output stays a valid run file.
-    std::cout << "# " << describe_configs(resolved.configs) << "\n" << to_yaml(resolved.config);
+    std::cout << "# " << describe_configs(resolved.configs) << "\n" << to_run_file_yaml(resolved.config);
     return 0;
   }
   const StopSignals stop_signals;  // before MPI starts its threads: they inherit the mask

@@ -63,7 +63,15 @@ RunConfig from_document(const YAML::Node& document, const std::string& source_na
 
 }  // namespace
 
-std::string to_yaml(const RunConfig& config) {
+namespace {
+
+// Which keys the text names: those to_yaml leaves out stand for the value a run directory written
+// before the key implied, which is what reading a resolved config assumes, but not what layering
+// the text over the algorithm and environment files as a run file gives.
+enum class KeysWritten { as_in_run_directories, every_key };
+
+std::string resolved_yaml(const RunConfig& config, KeysWritten written) {
+  const bool omit_implied = written == KeysWritten::as_in_run_directories;
   std::ostringstream out;
   out << "# bsg run configuration, resolved: configs/algorithms/" << to_string(config.alg)
       << ".yaml <- configs/envs/" << config.env_id << ".yaml <- run file <- --set\n";
@@ -75,14 +83,14 @@ std::string to_yaml(const RunConfig& config) {
     // No env: block for a standard environment, as before the key existed.
     if (key.type == ValueType::mapping && config.env.empty()) continue;
     // tensorboard only when off: a default run's config.yaml and checkpoint as before the key.
-    if (key.key == "tensorboard" && config.tensorboard) continue;
+    if (omit_implied && key.key == "tensorboard" && config.tensorboard) continue;
     // joint_control only when on: every other run's config.yaml and checkpoint as before the key.
-    if (key.key == "joint_control" && !config.joint_control) continue;
+    if (omit_implied && key.key == "joint_control" && !config.joint_control) continue;
     // The multiplier schedule only when it is not the epoch schedule of before the keys (and the
     // window then only if it is not the default): an epoch run's config.yaml and checkpoint as before.
     const bool epoch_schedule = config.off_policy.multiplier_schedule == MultiplierSchedule::epoch;
-    if (key.key == "multiplier_schedule" && epoch_schedule) continue;
-    if (key.key == "multiplier_window" && epoch_schedule &&
+    if (omit_implied && key.key == "multiplier_schedule" && epoch_schedule) continue;
+    if (omit_implied && key.key == "multiplier_window" && epoch_schedule &&
         config.off_policy.multiplier_window == OffPolicyKeys{}.multiplier_window) {
       continue;
     }
@@ -96,6 +104,12 @@ std::string to_yaml(const RunConfig& config) {
   }
   return out.str();
 }
+
+}  // namespace
+
+std::string to_yaml(const RunConfig& config) { return resolved_yaml(config, KeysWritten::as_in_run_directories); }
+
+std::string to_run_file_yaml(const RunConfig& config) { return resolved_yaml(config, KeysWritten::every_key); }
 
 void write_run_config(const RunConfig& config, const std::filesystem::path& path) {
   std::ofstream out(path, std::ios::trunc);

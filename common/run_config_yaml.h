@@ -1,4 +1,4 @@
-// Writing a resolved RunConfig as YAML (into a run directory, or for
+// Writing a resolved RunConfig as YAML (into a run directory, as a sweep's run file, or for
 // `bsg train --print-config`) and reading it back (to resume a run) with the
 // same validation as the configs/ files. The text lists exactly the keys that
 // apply to the config's algorithm, in schema order, each with its description
@@ -14,7 +14,16 @@
 
 namespace bsg {
 
+// The text of a run directory's config.yaml and of a checkpoint's header. Keys added after run
+// directories existed are left out at the value those directories imply (tensorboard on,
+// joint_control off, multiplier_schedule epoch), so that an old run's text stays the same.
 std::string to_yaml(const RunConfig& config);
+
+// The same config as a run file that names every key: layered over the algorithm and environment
+// files (`bsg train FILE`, a sweep's run.yaml), it resolves to `config` whatever their defaults.
+// to_yaml's text would not: sac-lag.yaml's multiplier_schedule: update_round would replace the
+// epoch schedule that to_yaml leaves unsaid.
+std::string to_run_file_yaml(const RunConfig& config);
 
 // Writes to_yaml(config) to `path` (overwriting); throws ConfigError naming
 // the path if it cannot be written.

@@ -143,7 +143,7 @@ void prepare_sweep_directory(const SweepPlanRequest& request, const SweepPlan& p
 
 void prepare_run_directory(const PlannedRun& run) {
   std::filesystem::create_directories(run.dir);
-  write_file_atomically(run.dir / kSweepRunFileName, to_yaml(run.config));
+  write_file_atomically(run.dir / kSweepRunFileName, to_run_file_yaml(run.config));
 }
 
 std::string dry_run_listing(const SweepPlan& plan) {

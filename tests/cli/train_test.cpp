@@ -138,6 +138,22 @@ TEST(Train, PrintConfigShowsTheResolvedConfiguration) {
   EXPECT_FALSE(fs::exists(dir.path() / "runs"));
 }
 
+TEST(Train, PrintedConfigIsARunFileThatResolvesToItself) {
+  // sac-lag.yaml steps its multiplier per update round; the printed epoch schedule must survive
+  // being trained from, where a run directory's config.yaml leaves it unsaid.
+  TemporaryDirectory dir;
+  const auto first = run_bsg("train --print-config" + kConfigsOption +
+                             " --set env_id=SafetyBallCircle-v0 --set alg=sac-lag --set multiplier_schedule=epoch");
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_NE(first.output.find("\nmultiplier_schedule: epoch"), std::string::npos) << first.output;
+  const fs::path printed = dir.path() / "printed.yaml";
+  write_text_file(printed, first.output);
+  const auto again = run_bsg("train --print-config " + printed.string() + kConfigsOption);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  const auto after_header = [](const std::string& text) { return text.substr(text.find('\n')); };
+  EXPECT_EQ(after_header(again.output), after_header(first.output));
+}
+
 TEST(Train, AMissingRunFileIsAnErrorNamingIt) {
   const auto result = run_bsg("train /nonexistent/run.yaml" + kConfigsOption);
   EXPECT_NE(result.exit_code, 0);

@@ -13,6 +13,11 @@
 
 #include "common/algorithms.h"
 #include "common/config_error.h"
+#include "common/run_config_resolve.h"
+#include "common/run_config_yaml.h"
+#include "experiments/sweep_manifest.h"
+#include "experiments/sweep_plan.h"
+#include "../test_support.h"
 
 namespace bsg::experiments {
 namespace {
@@ -76,6 +81,36 @@ TEST(GridExpansion, RunsResolveAgainstTheConfigsDirectory) {
   const RunConfig car = resolve_grid_run(runs.back(), kConfigs, "g.yaml");
   EXPECT_EQ(car.env_id, "SafetyCarRun-v0");
   EXPECT_EQ(car.max_ep_len, 500);
+}
+
+TEST(GridExpansion, ARunFileResolvesToTheGridsValuesWhereTheAlgorithmFileSaysOtherwise) {
+  // sac-lag.yaml and td3-lag.yaml step their multipliers per update round. A grid that asks for
+  // the epoch schedule must train with it: the run's run.yaml, layered over those files by
+  // `bsg train run.yaml`, has to name the keys a run directory's config.yaml leaves unsaid.
+  const GridSpec grid = parse_grid(
+      "envs: [SafetyBallCircle-v0]\n"
+      "seeds: [0]\n"
+      "algorithms:\n"
+      "  sac-lag:\n"
+      "    fixed: {epochs: 3, steps_per_epoch: 2000, multiplier_schedule: epoch, pid_ki: 0.05}\n"
+      "  td3-lag:\n"
+      "    fixed: {multiplier_schedule: epoch, multiplier_window: 7, tensorboard: false}\n",
+      "g.yaml");
+  const testing::TemporaryDirectory sweep;
+  for (const GridRun& run : expand_grid(grid)) {
+    SCOPED_TRACE(run.relative_dir().string());
+    PlannedRun planned;
+    planned.run = run;
+    planned.config = resolve_grid_run(run, kConfigs, "g.yaml");
+    planned.dir = sweep.path() / run.relative_dir();
+    prepare_run_directory(planned);
+    RunConfigRequest request;
+    request.configs_dir = kConfigs;
+    request.run_file = planned.dir / kSweepRunFileName;
+    const RunConfig trained = resolve_run_config(request).config;
+    EXPECT_EQ(trained.off_policy.multiplier_schedule, MultiplierSchedule::epoch);
+    EXPECT_EQ(to_run_file_yaml(trained), to_run_file_yaml(planned.config));
+  }
 }
 
 TEST(GridExpansion, AnUnknownEnvironmentFailsNamingTheGridAndTheRun) {
