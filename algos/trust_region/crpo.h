@@ -11,7 +11,7 @@
 // No multiplier, no state. Column crpo_case: 0 for a reward step, j for a step on constraint j.
 //
 // Parameters (RunConfig): those of TRPO, cost_limit (or constraints:), and
-// crpo_tolerance eta (OmniSafe's `distance`, 2.0 there and here).
+// crpo_tolerance eta (OmniSafe's `distance`: 2.0 there and in RunConfig; 0 in configs/algorithms/crpo.yaml).
 #pragma once
 
 #include <span>

@@ -143,7 +143,10 @@ TEST(Crpo, BadToleranceKeysAreRefusedNamingTheKey) {
   request.configs_dir = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
   request.set_arguments = {"alg=crpo", "env_id=SafetyBallCircle-v0"};
   const RunConfig shipped = resolve_run_config(request).config;
-  EXPECT_EQ(shipped.trust_region.crpo_tolerance, 2.0);  // OmniSafe's distance
+  EXPECT_EQ(shipped.trust_region.crpo_tolerance, 0.0);  // aims at d (OmniSafe's distance is 2.0)
+  // Any excess over d then rectifies: 25.5 against d = 25 is a cost step.
+  EXPECT_EQ(crpo_rectified_constraint(std::vector<ConstraintEstimate>{{25.5, 25.0}},
+                                      shipped.trust_region.crpo_tolerance), 1);
   EXPECT_TRUE(shipped.use_cost_value_function);
 
   const std::string negative = resolve_error({"alg=crpo", "env_id=SafetyBallCircle-v0", "crpo_tolerance=-1"});
