@@ -99,5 +99,31 @@ TEST(OffPolicyMultipliers, AdamMovesLambdaByItsRateInEveryRound) {
   }
 }
 
+// sac-lag.yaml's multiplier: FSRL's PID gains K_P 0.05 and K_D 0.1 (delay 1), with K_I 0.05
+// stepped once per epoch on the epoch's episodes (FSRL steps K_I 0.0005 before every round, which
+// at 300 000 steps did not follow d: docs/benchmark.md). Hand computation with d = 25, I_0 = 0:
+//   epoch 1, J = 35: I = 0.5, P = 0.05 * 10 = 0.5, D = 0.1 * (35 - 0) = 3.5, lambda = 4.5;
+//   epoch 2, J = 35: I = 1.0, P = 0.5, D = 0 (no rise), lambda = 1.5;
+//   epoch 3, J = 15: I = 0.5, P = -0.5, D = 0, lambda = 0.
+TEST(OffPolicyMultipliers, SacLagsShippedRuleStepsTheFsrlGainsOncePerEpoch) {
+  const MpiContext mpi = MpiContext::single_process();
+  RunConfigRequest request;
+  request.configs_dir = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
+  request.set_arguments = {"env_id=SafetyBallCircle-v0", "alg=sac-lag", "cost_limit=25"};
+  OffPolicyMultipliers multipliers(resolve_run_config(request).config);
+  ASSERT_EQ(multipliers.schedule(), MultiplierSchedule::epoch);
+  const auto lambda = [&] { return multipliers.multipliers().value(0); };
+  Episodes episodes;
+  const double tolerance = 2e-5;  // the integral may start at 1e-5 rather than 0
+  episodes.complete(multipliers, {30.0, 40.0});
+  EXPECT_FALSE(multipliers.before_gradient_round(true, mpi));  // never within the epoch
+  ASSERT_TRUE(multipliers.after_epoch(std::vector<ConstraintEstimate>{{35.0, 25.0}}, 2));
+  EXPECT_NEAR(lambda(), 4.5, tolerance);
+  ASSERT_TRUE(multipliers.after_epoch(std::vector<ConstraintEstimate>{{35.0, 25.0}}, 2));
+  EXPECT_NEAR(lambda(), 1.5, tolerance);
+  ASSERT_TRUE(multipliers.after_epoch(std::vector<ConstraintEstimate>{{15.0, 25.0}}, 2));
+  EXPECT_NEAR(lambda(), 0.0, tolerance);
+}
+
 }  // namespace
 }  // namespace bsg::algos
