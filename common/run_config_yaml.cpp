@@ -61,10 +61,6 @@ RunConfig from_document(const YAML::Node& document, const std::string& source_na
   return config;
 }
 
-}  // namespace
-
-namespace {
-
 // Which keys the text names: those to_yaml leaves out stand for the value a run directory written
 // before the key implied, which is what reading a resolved config assumes, but not what layering
 // the text over the algorithm and environment files as a run file gives.
