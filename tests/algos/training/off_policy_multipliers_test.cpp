@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "algos/training/off_policy_multipliers.h"
@@ -123,6 +124,35 @@ TEST(OffPolicyMultipliers, SacLagsShippedRuleStepsTheFsrlGainsOncePerEpoch) {
   EXPECT_NEAR(lambda(), 1.5, tolerance);
   ASSERT_TRUE(multipliers.after_epoch(std::vector<ConstraintEstimate>{{15.0, 25.0}}, 2));
   EXPECT_NEAR(lambda(), 0.0, tolerance);
+}
+
+// td3-lag.yaml's and ddpg-lag.yaml's multiplier: TRPO-L's gradient step, once per epoch on the
+// epoch's episodes, lambda_lr 0.02 from OmniSafe's 0.001 (OmniSafe's Adam step every round moved
+// lambda by 2 per epoch whatever the violation, and the final policies scattered: docs/benchmark.md).
+// Hand computation with d = 25: 0.001 + 0.02 * 10 = 0.201; + 0.02 * 10 = 0.401;
+// + 0.02 * (5 - 25) = 0.001; 0.001 + 0.02 * (0 - 25) projected onto 0.
+TEST(OffPolicyMultipliers, Td3AndDdpgLagsShippedRuleIsAGradientStepOncePerEpoch) {
+  const MpiContext mpi = MpiContext::single_process();
+  for (const std::string alg : {"td3-lag", "ddpg-lag"}) {
+    SCOPED_TRACE(alg);
+    RunConfigRequest request;
+    request.configs_dir = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
+    request.set_arguments = {"env_id=SafetyBallCircle-v0", "alg=" + alg, "cost_limit=25"};
+    OffPolicyMultipliers multipliers(resolve_run_config(request).config);
+    ASSERT_EQ(multipliers.schedule(), MultiplierSchedule::epoch);
+    const auto lambda = [&] { return multipliers.multipliers().value(0); };
+    EXPECT_DOUBLE_EQ(lambda(), 0.001);
+    Episodes episodes;
+    episodes.complete(multipliers, {30.0, 40.0});
+    EXPECT_FALSE(multipliers.before_gradient_round(true, mpi));  // never within the epoch
+    const std::vector<std::pair<double, double>> epochs_and_lambdas = {{35.0, 0.201}, {35.0, 0.401}, {5.0, 0.001}};
+    for (const auto& [epoch_cost, expected] : epochs_and_lambdas) {
+      ASSERT_TRUE(multipliers.after_epoch(std::vector<ConstraintEstimate>{{epoch_cost, 25.0}}, 2));
+      EXPECT_NEAR(lambda(), expected, 1e-12) << "after an epoch costing " << epoch_cost;
+    }
+    ASSERT_TRUE(multipliers.after_epoch(std::vector<ConstraintEstimate>{{0.0, 25.0}}, 2));
+    EXPECT_DOUBLE_EQ(lambda(), 0.0);
+  }
 }
 
 }  // namespace
