@@ -11,13 +11,13 @@
 // 38.8, CPPO-PID 12.3 / 37.5; PPO-Lag's former Adam multiplier (OmniSafe's
 // rate) failed it, 46.0 / 50.0 (docs/algorithms.md#ppo-lag).
 //
-// Off-policy family: TD3-Lag (its Adam multiplier stepped every update round)
+// Off-policy family: TD3-Lag (its gradient-step multiplier, 0.02 once per epoch)
 // with 64 x 64 networks and 5000 random steps instead of 256 x 256 and 25 000,
-// so that it learns within 20 epochs of 2000 steps (54 s of CPU for the two
-// runs on the loaded 2-core machine), against d = 5 and d = 150. At this budget the multiplier overshoots
-// and cycles, so d = 10 against d = 40 ends in the wrong order on seed 1
-// (24.4 / 19.2); d = 5 against d = 150 ended 51.4 / 112.0, 22.2 / 102.4 and
-// 37.9 / 90.0 on seeds 0-2 (the d = 150 runs' multiplier stays 0).
+// so that it learns within 20 epochs of 2000 steps (about 44 s per run on the
+// loaded 2-core machine), against d = 5 and d = 150. At this budget the multiplier
+// overshoots (lambda 4-17 at the end), so d = 10 against d = 40 ends in the wrong
+// order on seed 1 (49.0 / 24.2); d = 5 against d = 150 ended 25.7 / 112.0,
+// 0.3 / 102.9 and 64.2 / 90.0 on seeds 0-2 (the d = 150 runs' multiplier stays 0).
 //
 // Each run is deterministic.
 #include <gtest/gtest.h>
