@@ -16,13 +16,16 @@
 namespace bsg::algos {
 namespace {
 
-RunConfig td3_lag_config(const std::vector<std::string>& settings) {
+// The shipped configs/algorithms/<alg>.yaml on BallCircle at d = 25, with the given settings on top.
+RunConfig ball_circle_config(const std::string& alg, const std::vector<std::string>& settings = {}) {
   RunConfigRequest request;
   request.configs_dir = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
-  request.set_arguments = {"env_id=SafetyBallCircle-v0", "alg=td3-lag", "cost_limit=25"};
+  request.set_arguments = {"env_id=SafetyBallCircle-v0", "alg=" + alg, "cost_limit=25"};
   request.set_arguments.insert(request.set_arguments.end(), settings.begin(), settings.end());
   return resolve_run_config(request).config;
 }
+
+RunConfig td3_lag_config(const std::vector<std::string>& settings) { return ball_circle_config("td3-lag", settings); }
 
 RunConfig sgd_config(const std::string& schedule) {
   return td3_lag_config({"lambda_optimizer=SGD", "lambda_lr=0.1", "lagrangian_multiplier_init=0.5",
@@ -108,10 +111,7 @@ TEST(OffPolicyMultipliers, AdamMovesLambdaByItsRateInEveryRound) {
 //   epoch 3, J = 15: I = 0.5, P = -0.5, D = 0, lambda = 0.
 TEST(OffPolicyMultipliers, SacLagsShippedRuleStepsTheFsrlGainsOncePerEpoch) {
   const MpiContext mpi = MpiContext::single_process();
-  RunConfigRequest request;
-  request.configs_dir = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
-  request.set_arguments = {"env_id=SafetyBallCircle-v0", "alg=sac-lag", "cost_limit=25"};
-  OffPolicyMultipliers multipliers(resolve_run_config(request).config);
+  OffPolicyMultipliers multipliers(ball_circle_config("sac-lag"));
   ASSERT_EQ(multipliers.schedule(), MultiplierSchedule::epoch);
   const auto lambda = [&] { return multipliers.multipliers().value(0); };
   Episodes episodes;
@@ -135,10 +135,7 @@ TEST(OffPolicyMultipliers, Td3AndDdpgLagsShippedRuleIsAGradientStepOncePerEpoch)
   const MpiContext mpi = MpiContext::single_process();
   for (const std::string alg : {"td3-lag", "ddpg-lag"}) {
     SCOPED_TRACE(alg);
-    RunConfigRequest request;
-    request.configs_dir = std::filesystem::path(BSG_SOURCE_DIR) / "configs";
-    request.set_arguments = {"env_id=SafetyBallCircle-v0", "alg=" + alg, "cost_limit=25"};
-    OffPolicyMultipliers multipliers(resolve_run_config(request).config);
+    OffPolicyMultipliers multipliers(ball_circle_config(alg));
     ASSERT_EQ(multipliers.schedule(), MultiplierSchedule::epoch);
     const auto lambda = [&] { return multipliers.multipliers().value(0); };
     EXPECT_DOUBLE_EQ(lambda(), 0.001);
